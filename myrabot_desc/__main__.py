@@ -1,0 +1,4 @@
+from myrabot_desc.cli import main
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,28 @@
+"""The one error type for input that cannot be processed (exit code 2)."""
+
+from __future__ import annotations
+
+from myrabot_desc.diagnostics import Loc
+
+
+class InputError(Exception):
+    """Bad or unprocessable input. Rendered as ``file:line: error: message``.
+
+    ``stack`` holds extra context lines (for example the macro call stack).
+    """
+
+    def __init__(self, message: str, loc: Loc | None = None, stack: list[str] | None = None,
+                 code: str | None = None):
+        super().__init__(message)
+        self.message = message
+        self.loc = loc
+        self.stack = stack or []
+        self.code = code
+
+    def __str__(self) -> str:
+        where = f"{self.loc}: " if self.loc else ""
+        code = f"{self.code} " if self.code else ""
+        text = f"{where}error: {code}{self.message}"
+        for line in self.stack:
+            text += f"\n  {line}"
+        return text

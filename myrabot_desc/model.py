@@ -1,0 +1,319 @@
+"""The robot model: a typed, read-only view of one URDF document.
+
+Built once (``load_robot`` in loader.py) from a URDF lxml tree; every item keeps
+its source location (the xacro file:line it came from when the URDF was built
+from xacro). Checks, converters, the simulator and ``info`` read this model;
+none of them parses the XML again. Raw lxml elements are kept where a consumer
+needs the original markup (``<gazebo>`` blocks, the Electric ``controller:`` /
+``sensor:`` dialect, transmissions).
+
+Pure Python on purpose (no numpy at import): ``build`` and ``--help`` stay fast.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from myrabot_desc.diagnostics import Loc
+
+Vec3 = tuple[float, float, float]
+
+
+@dataclass(frozen=True)
+class Pose:
+    xyz: Vec3 = (0.0, 0.0, 0.0)
+    rpy: Vec3 = (0.0, 0.0, 0.0)
+
+    @property
+    def is_identity(self) -> bool:
+        return not any(self.xyz) and not any(self.rpy)
+
+    def matrix(self):
+        """4x4 homogeneous transform (numpy), URDF convention R = Rz(y) Ry(p) Rx(r)."""
+        from myrabot_desc.kinematics import pose_matrix
+
+        return pose_matrix(self)
+
+
+# ---------------------------------------------------------------- geometry
+@dataclass(frozen=True)
+class Box:
+    size: Vec3
+    kind = "box"
+
+
+@dataclass(frozen=True)
+class Cylinder:
+    radius: float
+    length: float
+    kind = "cylinder"
+
+
+@dataclass(frozen=True)
+class Sphere:
+    radius: float
+    kind = "sphere"
+
+
+@dataclass(frozen=True)
+class Mesh:
+    filename: str                 # as written in the URDF (package://..., file://..., relative)
+    scale: Vec3 = (1.0, 1.0, 1.0)
+    path: Path | None = None      # resolved file on disk, or None when it cannot be resolved
+    kind = "mesh"
+
+
+Geometry = Box | Cylinder | Sphere | Mesh
+
+
+@dataclass(frozen=True)
+class Material:
+    name: str
+    rgba: tuple[float, float, float, float] | None = None
+    texture: str | None = None
+    loc: Loc | None = None
+
+
+@dataclass(frozen=True)
+class Visual:
+    origin: Pose
+    geometry: Geometry | None
+    name: str | None = None
+    material_name: str | None = None
+    material: Material | None = None   # resolved against robot-level materials when only named
+    loc: Loc | None = None
+
+
+@dataclass(frozen=True)
+class Collision:
+    origin: Pose
+    geometry: Geometry | None
+    name: str | None = None
+    loc: Loc | None = None
+
+
+@dataclass(frozen=True)
+class Inertial:
+    mass: float
+    origin: Pose
+    ixx: float = 0.0
+    ixy: float = 0.0
+    ixz: float = 0.0
+    iyy: float = 0.0
+    iyz: float = 0.0
+    izz: float = 0.0
+    loc: Loc | None = None
+
+    def tensor(self):
+        """3x3 inertia matrix (numpy) in the inertial frame."""
+        import numpy as np
+
+        return np.array([[self.ixx, self.ixy, self.ixz],
+                         [self.ixy, self.iyy, self.iyz],
+                         [self.ixz, self.iyz, self.izz]], dtype=float)
+
+
+@dataclass(frozen=True)
+class Link:
+    name: str
+    inertial: Inertial | None = None
+    visuals: tuple[Visual, ...] = ()
+    collisions: tuple[Collision, ...] = ()
+    loc: Loc | None = None
+
+    @property
+    def mass(self) -> float:
+        return self.inertial.mass if self.inertial else 0.0
+
+
+# ---------------------------------------------------------------- joints
+@dataclass(frozen=True)
+class Limit:
+    lower: float | None = None
+    upper: float | None = None
+    effort: float | None = None
+    velocity: float | None = None
+
+
+@dataclass(frozen=True)
+class Mimic:
+    joint: str
+    multiplier: float = 1.0
+    offset: float = 0.0
+
+
+@dataclass(frozen=True)
+class Dynamics:
+    damping: float = 0.0
+    friction: float = 0.0
+
+
+JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
+
+
+@dataclass(frozen=True)
+class Joint:
+    name: str
+    type: str
+    parent: str
+    child: str
+    origin: Pose = Pose()
+    axis: Vec3 = (1.0, 0.0, 0.0)      # URDF default when <axis> is absent
+    limit: Limit | None = None
+    mimic: Mimic | None = None
+    dynamics: Dynamics | None = None
+    loc: Loc | None = None
+
+    @property
+    def moves(self) -> bool:
+        return self.type not in ("fixed",)
+
+
+# ---------------------------------------------------------------- gazebo extensions
+@dataclass(frozen=True)
+class Plugin:
+    """A Gazebo plugin or Electric-era controller.
+
+    ``dialect``: 'electric' for ``<controller:NAME plugin|filename=...>``, 'classic' for
+    ``<plugin name filename>`` (Gazebo classic, ROS 1/2), 'gz' for gz-sim systems
+    (``filename="gz-sim-..."`` or ``name="gz::sim::systems::..."``).
+    ``params``: direct child element name -> text (first occurrence; attribute
+    ``value=`` is accepted as text). ``element`` is the raw lxml element.
+    """
+
+    name: str | None
+    filename: str | None
+    dialect: str
+    params: dict[str, str]
+    element: Any
+    reference: str | None = None      # the <gazebo reference> it sits in, or the sensor's link
+    sensor: str | None = None         # name of the enclosing sensor, if any
+    file_attr: str | None = None      # which attribute carried the library: 'filename' or 'plugin'
+    loc: Loc | None = None
+
+    @property
+    def library(self) -> str:
+        return (self.filename or "").rsplit("/", 1)[-1]
+
+
+@dataclass(frozen=True)
+class Sensor:
+    """A ``<sensor type=...>`` (classic/SDF) or Electric ``<sensor:camera|ray ...>``."""
+
+    name: str | None
+    type: str                         # 'camera', 'ray', 'depth', 'imu', ... (Electric: 'camera', 'ray')
+    dialect: str                      # 'electric' or 'sdf'
+    reference: str | None             # link the sensor is attached to
+    element: Any
+    plugins: tuple[Plugin, ...] = ()
+    loc: Loc | None = None
+
+    def param(self, *path: str) -> str | None:
+        """Text of a descendant element by path, e.g. param('camera', 'horizontal_fov')."""
+        el = self.element
+        for p in path:
+            el = next((c for c in el if _local(c.tag) == p), None)
+            if el is None:
+                return None
+        return (el.text or "").strip() or el.get("value")
+
+
+@dataclass(frozen=True)
+class GazeboBlock:
+    """One ``<gazebo>`` element. ``properties``: simple children such as material,
+    mu1, mu2, kp, kd, fdir1/fdir, selfCollide, turnGravityOff (text or value=)."""
+
+    reference: str | None
+    element: Any
+    properties: dict[str, str]
+    plugins: tuple[Plugin, ...] = ()
+    sensors: tuple[Sensor, ...] = ()
+    loc: Loc | None = None
+
+
+@dataclass(frozen=True)
+class Transmission:
+    name: str | None
+    element: Any
+    joints: tuple[str, ...] = ()
+    loc: Loc | None = None
+
+
+# ---------------------------------------------------------------- the robot
+@dataclass
+class Robot:
+    name: str
+    links: dict[str, Link]
+    joints: dict[str, Joint]
+    materials: dict[str, Material]
+    gazebo: tuple[GazeboBlock, ...]
+    transmissions: tuple[Transmission, ...]
+    root_element: Any                     # lxml <robot> element (annotation-free)
+    source: Path | None                   # the file the user gave (xacro or urdf)
+    urdf_text: str                        # the URDF document as text (built or read)
+    loc: Loc | None = None
+    package_roots: dict[str, Path] = field(default_factory=dict)   # packages the build resolved
+    build_warnings: list = field(default_factory=list)              # Diagnostics from build (X codes)
+    from_xacro: bool = False
+    # Problems found while reading (bad numbers, unknown joint types...) that checks report.
+    load_issues: list = field(default_factory=list)
+
+    # -------------------------------------------------------- tree helpers
+    def child_joints(self, link: str) -> list[Joint]:
+        return [j for j in self.joints.values() if j.parent == link]
+
+    def parent_joint(self, link: str) -> Joint | None:
+        return next((j for j in self.joints.values() if j.child == link), None)
+
+    @property
+    def roots(self) -> list[str]:
+        children = {j.child for j in self.joints.values()}
+        return [n for n in self.links if n not in children]
+
+    @property
+    def root(self) -> str | None:
+        r = self.roots
+        return r[0] if len(r) == 1 else None
+
+    @property
+    def total_mass(self) -> float:
+        return sum(link.mass for link in self.links.values())
+
+    def plugins(self) -> list[Plugin]:
+        """Every plugin/controller, top-level or inside sensors."""
+        out: list[Plugin] = []
+        for g in self.gazebo:
+            out.extend(g.plugins)
+            for s in g.sensors:
+                out.extend(s.plugins)
+        return out
+
+    def sensors(self) -> list[Sensor]:
+        return [s for g in self.gazebo for s in g.sensors]
+
+    def resolve_uri(self, uri: str) -> Path | None:
+        """package://, file:// or a relative path -> a file on disk, or None."""
+        from myrabot_desc.packages import resolve_resource_uri
+
+        base = self.source.parent if self.source else Path.cwd()
+        return resolve_resource_uri(uri, self.package_roots, base)
+
+    def pinocchio(self, floating: bool = False):
+        """A Pinocchio model of this robot (built on demand; see pin_bridge)."""
+        from myrabot_desc.pin_bridge import build_model
+
+        return build_model(self, floating=floating)
+
+
+def _local(tag) -> str:
+    """Element tag without namespace; Electric 'sensor:camera' keeps its prefix name."""
+    if not isinstance(tag, str):
+        return ""
+    return tag.rsplit("}", 1)[-1]
+
+
+def deg(x: float) -> float:
+    return math.degrees(x)

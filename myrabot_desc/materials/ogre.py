@@ -1,0 +1,644 @@
+"""Read OGRE 1.x material scripts (the ``.material`` files of Gazebo classic).
+
+Grammar covered (Ogre manual, "Material Scripts")::
+
+    import * from "other.material"
+    vertex_program Name glsl { ... }              // skipped, as are fragment/geometry programs
+    material Name [: Parent]
+    {
+        receive_shadows on
+        technique [name]
+        {
+            pass [name]
+            {
+                lighting on|off
+                ambient r g b [a]                 // also diffuse, emissive; 'vertexcolour' ignored
+                specular r g b [a] shininess
+                scene_blend alpha_blend
+                depth_write on|off
+                alpha_rejection greater 128
+                vertex_program_ref X { }          // skipped
+                texture_unit [name]
+                {
+                    texture file.png
+                    rotate 180
+                    scale 1 1
+                    colour_op_ex source1 src_manual src_current r g b
+                    alpha_op_ex source1 src_manual src_current a
+                }
+            }
+        }
+    }
+
+``//`` and ``/* */`` comments. Inheritance follows Ogre: the child starts from a copy of its
+parent's techniques; a child technique, pass or texture_unit overrides the parent's one with the
+same name, or, when unnamed, the one at the same position; otherwise it is appended.
+
+Public functions: :func:`parse_text`, :func:`parse_file`, :func:`parse_raw` plus
+:func:`build_materials` (used by the resolver to link parents across files).
+Every error is an :class:`~myrabot_desc.errors.InputError` with the file:line.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Callable, Iterable
+
+from myrabot_desc.diagnostics import Loc
+from myrabot_desc.errors import InputError
+
+RGBA = tuple[float, float, float, float]
+
+MAX_BYTES = 5 * 1024 * 1024   # refuse larger scripts (Gazebo's own gazebo.material is 24 kB)
+MAX_DEPTH = 32                # brace nesting; real scripts use 4 (material/technique/pass/unit)
+MAX_IMPORT_DEPTH = 8
+
+# Ogre's defaults for a pass that does not set a colour.
+DEFAULTS: dict[str, object] = {
+    "ambient": (1.0, 1.0, 1.0, 1.0),
+    "diffuse": (1.0, 1.0, 1.0, 1.0),
+    "specular": (0.0, 0.0, 0.0, 0.0),
+    "emissive": (0.0, 0.0, 0.0, 0.0),
+    "shininess": 0.0,
+    "lighting": True,
+    "depth_write": True,
+}
+
+# Top-level objects other than materials: skipped whole (their bodies are not materials).
+_SKIPPED_TOP = {"vertex_program", "fragment_program", "geometry_program", "tesselation_hull_program",
+                "tesselation_domain_program", "compute_program", "shared_params", "sampler",
+                "compositor", "particle_system", "overlay_template", "font"}
+
+_NUMBER = re.compile(r"^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$")
+_TOKEN = re.compile(r'"[^"\n]*"|[{}]|[^\s{}"]+|"')
+
+
+# ------------------------------------------------------------------ result types
+@dataclass(frozen=True)
+class TextureUnit:
+    name: str | None = None
+    texture: str | None = None
+    rotate: float = 0.0                           # degrees
+    scale: tuple[float, float] = (1.0, 1.0)
+    tex_coord_set: int = 0
+    colour_op: str | None = None
+    manual_colour: tuple[float, float, float] | None = None   # colour_op_ex source1 src_manual
+    manual_alpha: float | None = None                         # alpha_op_ex source1 src_manual
+    line: int | None = None
+
+
+@dataclass(frozen=True)
+class Pass:
+    name: str | None = None
+    props: dict = field(default_factory=dict)    # only what the script sets (see DEFAULTS)
+    texture_units: tuple[TextureUnit, ...] = ()
+    line: int | None = None
+
+
+@dataclass(frozen=True)
+class Technique:
+    name: str | None = None
+    passes: tuple[Pass, ...] = ()
+    line: int | None = None
+
+
+@dataclass(frozen=True)
+class Material:
+    """One material after inheritance, plus a flat summary for SDF/MJCF.
+
+    The summary takes, for each property, the first pass of the first technique that sets
+    it (so a two-pass "ambient" + "light" material gets its ambient from the first and its
+    diffuse from the second), falling back to Ogre's defaults. ``explicit`` names the
+    properties some pass sets.
+    """
+
+    name: str
+    parent: str | None
+    ambient: RGBA
+    diffuse: RGBA
+    specular: RGBA
+    emissive: RGBA
+    shininess: float
+    lighting: bool
+    scene_blend: str | None
+    depth_write: bool
+    alpha_rejection: str | None
+    transparency: float            # 0 opaque .. 1 invisible (alpha_blend with a manual alpha)
+    texture: str | None            # image file name as written
+    texture_rotate: float
+    texture_scale: tuple[float, float]
+    explicit: frozenset
+    techniques: tuple[Technique, ...]
+    loc: Loc | None = None
+
+    def as_dict(self) -> dict:
+        return {
+            "name": self.name, "parent": self.parent,
+            "ambient": list(self.ambient), "diffuse": list(self.diffuse),
+            "specular": list(self.specular), "emissive": list(self.emissive),
+            "shininess": self.shininess, "lighting": self.lighting,
+            "scene_blend": self.scene_blend, "depth_write": self.depth_write,
+            "alpha_rejection": self.alpha_rejection, "transparency": self.transparency,
+            "texture": self.texture, "texture_rotate": self.texture_rotate,
+            "texture_scale": list(self.texture_scale),
+            "passes": sum(len(t.passes) for t in self.techniques[:1]),
+            "explicit": sorted(self.explicit),
+            "loc": str(self.loc) if self.loc else None,
+        }
+
+
+@dataclass
+class RawMaterial:
+    """A material as written, before its parent is applied."""
+
+    name: str
+    parent: str | None
+    techniques: list          # list[Technique] (child overrides)
+    loc: Loc
+
+
+@dataclass
+class Script:
+    path: str
+    materials: dict[str, Material]        # in file order
+    imports: list[str] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
+
+
+# ------------------------------------------------------------------ tokens and blocks
+@dataclass
+class _Node:
+    key: str
+    args: list[str]
+    line: int
+    children: list | None = None      # None for a plain statement
+    end_line: int | None = None
+
+
+def _strip_comments(text: str, file: str) -> str:
+    """Blank out // and /* */ comments, keeping newlines so line numbers stay right."""
+    out, i, n = [], 0, len(text)
+    in_quote = False
+    while i < n:
+        c = text[i]
+        if c == '"':
+            in_quote = not in_quote
+        elif c == "\n":
+            in_quote = False
+        if not in_quote and c == "/" and i + 1 < n and text[i + 1] == "/":
+            j = text.find("\n", i)
+            i = n if j < 0 else j
+            continue
+        if not in_quote and c == "/" and i + 1 < n and text[i + 1] == "*":
+            j = text.find("*/", i + 2)
+            if j < 0:
+                line = text.count("\n", 0, i) + 1
+                raise InputError("'/*' comment is never closed (truncated file?)", Loc(file, line))
+            out.append("\n" * text.count("\n", i, j + 2))
+            i = j + 2
+            continue
+        out.append(c)
+        i += 1
+    return "".join(out)
+
+
+def _tokens(text: str, file: str):
+    for lineno, line in enumerate(text.split("\n"), 1):
+        for m in _TOKEN.finditer(line):
+            tok = m.group(0)
+            if tok == '"':
+                raise InputError("unterminated string (a '\"' without its closing quote)", Loc(file, lineno))
+            if len(tok) >= 2 and tok[0] == '"' and tok[-1] == '"':
+                tok = tok[1:-1]
+            yield tok, lineno
+
+
+def _tree(text: str, file: str, max_depth: int) -> list[_Node]:
+    root = _Node("<root>", [], 0, [])
+    stack = [root]
+    pending: _Node | None = None
+
+    def flush():
+        nonlocal pending
+        if pending is not None:
+            stack[-1].children.append(pending)
+            pending = None
+
+    for tok, line in _tokens(_strip_comments(text, file), file):
+        if tok == "{":
+            if pending is None:
+                raise InputError("'{' without a block name before it", Loc(file, line))
+            node, pending = pending, None
+            node.children = []
+            if node.key in ("material", "abstract") and len(stack) > 1:
+                opener = stack[-1]
+                raise InputError(
+                    f"'{node.key}' inside the '{opener.key}' block opened at line {opener.line}: "
+                    f"a '}}' is missing before line {line}", Loc(file, line))
+            stack[-1].children.append(node)
+            stack.append(node)
+            if len(stack) - 1 > max_depth:
+                raise InputError(f"blocks nest deeper than {max_depth} levels", Loc(file, line))
+        elif tok == "}":
+            flush()
+            if len(stack) == 1:
+                raise InputError("unexpected '}' (no block is open here)", Loc(file, line))
+            stack[-1].end_line = line
+            stack.pop()
+        elif pending is not None and pending.line == line:
+            pending.args.append(tok)
+        else:
+            flush()
+            pending = _Node(tok, [], line)
+    flush()
+    if len(stack) > 1:
+        node = stack[-1]
+        name = " ".join([node.key] + node.args)
+        raise InputError(f"'{name}' block opened here is never closed: the file ends without its '}}' "
+                         "(truncated, or a '}' is missing)", Loc(file, node.line))
+    return root.children
+
+
+# ------------------------------------------------------------------ values
+def _num(tok: str, what: str, file: str, line: int) -> float:
+    if not _NUMBER.match(tok):
+        raise InputError(f"{what}: {tok!r} is not a number", Loc(file, line))
+    v = float(tok)
+    if not math.isfinite(v):
+        raise InputError(f"{what}: {tok!r} is not a finite number", Loc(file, line))
+    return v
+
+
+def _colour(node: _Node, file: str) -> RGBA | None:
+    if node.args and node.args[0] == "vertexcolour":
+        return None
+    if len(node.args) not in (3, 4):
+        raise InputError(f"{node.key} takes 3 or 4 numbers (r g b [a]), got {len(node.args)}",
+                         Loc(file, node.line))
+    vals = [_num(t, node.key, file, node.line) for t in node.args]
+    if len(vals) == 3:
+        vals.append(1.0)
+    return tuple(vals)  # type: ignore[return-value]
+
+
+def _specular(node: _Node, file: str) -> tuple[RGBA | None, float | None]:
+    args = node.args
+    if args and args[0] == "vertexcolour":
+        return None, (_num(args[1], "specular shininess", file, node.line) if len(args) > 1 else None)
+    vals = [_num(t, "specular", file, node.line) for t in args]
+    if len(vals) == 3:                 # lenient: Ogre wants a shininess too
+        return (vals[0], vals[1], vals[2], 1.0), None
+    if len(vals) == 4:                 # r g b shininess
+        return (vals[0], vals[1], vals[2], 1.0), vals[3]
+    if len(vals) == 5:                 # r g b a shininess
+        return (vals[0], vals[1], vals[2], vals[3]), vals[4]
+    raise InputError(f"specular takes r g b [a] shininess (4 or 5 numbers), got {len(vals)}",
+                     Loc(file, node.line))
+
+
+def _on_off(node: _Node, file: str) -> bool:
+    if len(node.args) != 1 or node.args[0] not in ("on", "off", "true", "false"):
+        raise InputError(f"{node.key} takes 'on' or 'off', got {' '.join(node.args) or 'nothing'!r}",
+                         Loc(file, node.line))
+    return node.args[0] in ("on", "true")
+
+
+def _name_arg(node: _Node) -> str | None:
+    return " ".join(node.args) if node.args else None
+
+
+# ------------------------------------------------------------------ blocks -> objects
+def _texture_unit(node: _Node, file: str) -> TextureUnit:
+    kw: dict = {"name": _name_arg(node), "line": node.line}
+    for c in node.children or []:
+        if c.children is not None:
+            continue                       # nested blocks (program refs...) are not texture data
+        a = c.args
+        if c.key == "texture" and a:
+            kw["texture"] = a[0]
+        elif c.key == "rotate" and a:
+            kw["rotate"] = _num(a[0], "rotate", file, c.line)
+        elif c.key == "scale":
+            if len(a) != 2:
+                raise InputError(f"scale takes 2 numbers (u v), got {len(a)}", Loc(file, c.line))
+            kw["scale"] = (_num(a[0], "scale", file, c.line), _num(a[1], "scale", file, c.line))
+        elif c.key == "tex_coord_set" and a:
+            kw["tex_coord_set"] = int(_num(a[0], "tex_coord_set", file, c.line))
+        elif c.key == "colour_op" and a:
+            kw["colour_op"] = a[0]
+        elif c.key == "colour_op_ex" and len(a) >= 6 and a[0] == "source1" and a[1] == "src_manual":
+            kw["manual_colour"] = tuple(_num(t, "colour_op_ex", file, c.line) for t in a[3:6])
+        elif c.key == "alpha_op_ex" and len(a) >= 4 and a[0] == "source1" and a[1] == "src_manual":
+            kw["manual_alpha"] = _num(a[3], "alpha_op_ex", file, c.line)
+    return TextureUnit(**kw)
+
+
+def _pass(node: _Node, file: str) -> Pass:
+    props: dict = {}
+    units: list[TextureUnit] = []
+    for c in node.children or []:
+        if c.children is not None:
+            if c.key == "texture_unit":
+                units.append(_texture_unit(c, file))
+            continue                       # vertex_program_ref { } and friends: skipped
+        if c.key in ("ambient", "diffuse", "emissive"):
+            col = _colour(c, file)
+            if col is not None:
+                props[c.key] = col
+        elif c.key == "specular":
+            col, shin = _specular(c, file)
+            if col is not None:
+                props["specular"] = col
+            if shin is not None:
+                props["shininess"] = shin
+        elif c.key in ("lighting", "depth_write"):
+            props[c.key] = _on_off(c, file)
+        elif c.key == "scene_blend":
+            if not c.args:
+                raise InputError("scene_blend needs a value (e.g. alpha_blend)", Loc(file, c.line))
+            props["scene_blend"] = " ".join(c.args)
+        elif c.key == "alpha_rejection":
+            if len(c.args) != 2:
+                raise InputError("alpha_rejection takes a function and a value (e.g. greater 128)",
+                                 Loc(file, c.line))
+            _num(c.args[1], "alpha_rejection", file, c.line)
+            props["alpha_rejection"] = " ".join(c.args)
+    return Pass(name=_name_arg(node), props=props, texture_units=tuple(units), line=node.line)
+
+
+def _technique(node: _Node, file: str) -> Technique:
+    passes = [_pass(c, file) for c in node.children or [] if c.key == "pass" and c.children is not None]
+    return Technique(name=_name_arg(node), passes=tuple(passes), line=node.line)
+
+
+def _split_header(node: _Node, file: str) -> tuple[str, str | None]:
+    toks: list[str] = []
+    for t in node.args:                       # "A : B", "A: B", "A :B"
+        if t != ":" and t.endswith(":"):
+            toks += [t[:-1], ":"]
+        elif t != ":" and t.startswith(":"):
+            toks += [":", t[1:]]
+        else:
+            toks.append(t)
+    if ":" in toks:
+        i = toks.index(":")
+        name, parent = " ".join(toks[:i]), " ".join(toks[i + 1:])
+        if not parent:
+            raise InputError(f"material {name!r}: ':' without a parent name", Loc(file, node.line))
+    else:
+        name, parent = " ".join(toks), None
+    if not name:
+        raise InputError("material without a name", Loc(file, node.line))
+    return name, parent
+
+
+def parse_raw(text: str, file: str = "<string>", *, max_bytes: int = MAX_BYTES,
+              max_depth: int = MAX_DEPTH) -> tuple[list[RawMaterial], list[tuple[str, int]], list[str]]:
+    """Parse one script without linking parents.
+
+    Returns (materials, imports as (file name, line), warnings).
+    """
+    if len(text) > max_bytes:
+        raise InputError(f"material script is {len(text)} bytes, over the {max_bytes}-byte limit",
+                         Loc(file))
+    mats: list[RawMaterial] = []
+    imports: list[tuple[str, int]] = []
+    warnings: list[str] = []
+    seen: dict[str, int] = {}
+    for node in _tree(text, file, max_depth):
+        key, args = node.key, node.args
+        if key == "abstract" and args and args[0] == "material":
+            key, args = "material", args[1:]
+            node = _Node(key, args, node.line, node.children, node.end_line)
+        if key == "import":
+            if node.children is not None or "from" not in args or args.index("from") + 1 >= len(args):
+                raise InputError("import takes: import NAME from \"file.material\"", Loc(file, node.line))
+            imports.append((args[args.index("from") + 1], node.line))
+        elif key == "material":
+            if node.children is None:
+                raise InputError(f"'material {' '.join(args)}' has no '{{ ... }}' body",
+                                 Loc(file, node.line))
+            name, parent = _split_header(node, file)
+            if name in seen:
+                warnings.append(f"{file}:{node.line}: material {name!r} already defined at line "
+                                f"{seen[name]}; the later one wins")
+            seen[name] = node.line
+            techs = [_technique(c, file) for c in node.children
+                     if c.key == "technique" and c.children is not None]
+            mats.append(RawMaterial(name, parent, techs, Loc(file, node.line)))
+        elif key in _SKIPPED_TOP or node.children is not None:
+            continue
+        else:
+            raise InputError(f"unexpected {key!r} outside any block (expected 'material', 'import' "
+                             "or a program definition)", Loc(file, node.line))
+    return mats, imports, warnings
+
+
+# ------------------------------------------------------------------ inheritance
+def _merge_list(base: list, over: Iterable, merge: Callable) -> list:
+    """Ogre's override rule: same name, or same position when unnamed; else append."""
+    out = list(base)
+    for i, item in enumerate(over):
+        j = None
+        if item.name is not None:
+            j = next((k for k, b in enumerate(out) if b.name == item.name), None)
+        elif i < len(out):
+            j = i
+        if j is None:
+            out.append(item)
+        else:
+            out[j] = merge(out[j], item)
+    return out
+
+
+def _merge_unit(a: TextureUnit, b: TextureUnit) -> TextureUnit:
+    changes = {k: getattr(b, k) for k in ("texture", "colour_op", "manual_colour", "manual_alpha")
+               if getattr(b, k) is not None}
+    for k, default in (("rotate", 0.0), ("scale", (1.0, 1.0)), ("tex_coord_set", 0)):
+        if getattr(b, k) != default:
+            changes[k] = getattr(b, k)
+    return _replace(a, changes)
+
+
+def _replace(obj, changes: dict):
+    from dataclasses import replace
+
+    return replace(obj, **changes)
+
+
+def _merge_pass(a: Pass, b: Pass) -> Pass:
+    return _replace(a, {"props": {**a.props, **b.props},
+                        "texture_units": tuple(_merge_list(list(a.texture_units), b.texture_units, _merge_unit))})
+
+
+def _merge_technique(a: Technique, b: Technique) -> Technique:
+    return _replace(a, {"passes": tuple(_merge_list(list(a.passes), b.passes, _merge_pass))})
+
+
+def summarize(name: str, parent: str | None, techniques: tuple[Technique, ...], loc: Loc | None) -> Material:
+    """Flatten techniques into the colour summary (see :class:`Material`)."""
+    passes = techniques[0].passes if techniques else ()
+    got: dict = {}
+    for p in passes:
+        for k, v in p.props.items():
+            got.setdefault(k, v)
+    units = [u for p in passes for u in p.texture_units]
+    tex_unit = next((u for u in units if u.texture), None)
+    manual_colour = next((u.manual_colour for u in units if u.manual_colour is not None), None)
+    manual_alpha = next((u.manual_alpha for u in units if u.manual_alpha is not None), None)
+    explicit = set(got)
+    if manual_colour is not None:          # e.g. Gazebo/RedTransparent: a flat colour, no lighting terms
+        for k in ("ambient", "diffuse"):
+            if k not in got:
+                got[k] = (*manual_colour, 1.0)
+                explicit.add(k)
+    vals = {**DEFAULTS, **got}
+    blend = got.get("scene_blend")
+    transparency = 0.0
+    if blend == "alpha_blend":
+        alpha = manual_alpha if manual_alpha is not None else vals["diffuse"][3]
+        transparency = round(min(1.0, max(0.0, 1.0 - alpha)), 6)
+    return Material(
+        name=name, parent=parent,
+        ambient=vals["ambient"], diffuse=vals["diffuse"], specular=vals["specular"],
+        emissive=vals["emissive"], shininess=vals["shininess"], lighting=vals["lighting"],
+        scene_blend=blend, depth_write=vals["depth_write"], alpha_rejection=got.get("alpha_rejection"),
+        transparency=transparency,
+        texture=tex_unit.texture if tex_unit else None,
+        texture_rotate=tex_unit.rotate if tex_unit else 0.0,
+        texture_scale=tex_unit.scale if tex_unit else (1.0, 1.0),
+        explicit=frozenset(explicit), techniques=tuple(techniques), loc=loc)
+
+
+def build_materials(raws: list[RawMaterial], external: Callable[[str], Material | None] | None = None,
+                    on_error: Callable[[InputError], None] | None = None) -> dict[str, Material]:
+    """Apply inheritance. Parents are looked up among ``raws`` first, then ``external(name)``.
+
+    An unknown parent or a cycle raises InputError at the child's line, or, when ``on_error``
+    is given, is passed to it and the material is left out.
+    """
+    by_name: dict[str, RawMaterial] = {}
+    for r in raws:
+        by_name[r.name] = r                # the later definition wins, as in Ogre
+    done: dict[str, Material] = {}
+
+    def build(raw: RawMaterial, chain: tuple[str, ...]) -> Material:
+        if raw.name in done:
+            return done[raw.name]
+        base: tuple[Technique, ...] = ()
+        if raw.parent is not None:
+            if raw.parent in chain or raw.parent == raw.name:
+                raise InputError(f"material {raw.name!r}: inheritance cycle "
+                                 f"{' -> '.join(chain + (raw.name, raw.parent))}", raw.loc)
+            if raw.parent in by_name:
+                base = build(by_name[raw.parent], chain + (raw.name,)).techniques
+            else:
+                ext = external(raw.parent) if external else None
+                if ext is None:
+                    raise InputError(f"material {raw.name!r}: parent {raw.parent!r} is not defined "
+                                     "(not in this script, its imports, or Gazebo's stock materials)",
+                                     raw.loc)
+                base = ext.techniques
+        techs = tuple(_merge_list(list(base), raw.techniques, _merge_technique))
+        mat = summarize(raw.name, raw.parent, techs, raw.loc)
+        done[raw.name] = mat
+        return mat
+
+    out: dict[str, Material] = {}
+    for r in raws:
+        if by_name[r.name] is not r:
+            continue
+        try:
+            out[r.name] = build(r, ())
+        except InputError as exc:
+            if on_error is None:
+                raise
+            on_error(exc)
+    return out
+
+
+# ------------------------------------------------------------------ entry points
+def _stock_external(name: str) -> Material | None:
+    from myrabot_desc.materials.stock import stock_material
+
+    return stock_material(name)
+
+
+def parse_text(text: str, file: str = "<string>", *, parents: Callable[[str], Material | None] | None = None,
+               max_bytes: int = MAX_BYTES, max_depth: int = MAX_DEPTH) -> Script:
+    """Parse a script held in memory. Imports are not followed (see :func:`parse_file`).
+
+    ``parents`` finds parents defined elsewhere; by default Gazebo's stock materials.
+    """
+    raws, imports, warnings = parse_raw(text, file, max_bytes=max_bytes, max_depth=max_depth)
+    mats = build_materials(raws, parents or _stock_external)
+    return Script(file, mats, [i for i, _ in imports], warnings)
+
+
+def read_script_text(path: Path, file: str, max_bytes: int = MAX_BYTES) -> str:
+    try:
+        size = path.stat().st_size
+        if size > max_bytes:
+            raise InputError(f"material script is {size} bytes, over the {max_bytes}-byte limit", Loc(file))
+        data = path.read_bytes()
+    except IsADirectoryError:
+        raise InputError("is a folder, not a .material file", Loc(file)) from None
+    except FileNotFoundError:
+        raise InputError("no such file", Loc(file)) from None
+    except OSError as exc:
+        raise InputError(f"cannot read: {exc.strerror}", Loc(file)) from None
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError:
+        return data.decode("latin-1")     # old scripts (Spanish comments) are often Latin-1
+
+
+def parse_file(path: str | Path, *, parents: Callable[[str], Material | None] | None = None,
+               max_bytes: int = MAX_BYTES, max_depth: int = MAX_DEPTH) -> Script:
+    """Parse a .material file, following ``import ... from "x.material"`` next to it.
+
+    Imported materials serve as parents only; ``Script.materials`` holds this file's own.
+    A missing import is a warning (Ogre logs it and goes on); an unknown parent is an error.
+    """
+    path = Path(path)
+    file = str(path)
+    text = read_script_text(path, file, max_bytes)
+    raws, imports, warnings = parse_raw(text, file, max_bytes=max_bytes, max_depth=max_depth)
+    imported: list[RawMaterial] = []
+    seen = {path.resolve()}
+
+    def follow(items, base: Path, depth: int):
+        for name, line in items:
+            target = (base / name).resolve()
+            if target in seen:
+                continue
+            seen.add(target)
+            if depth > MAX_IMPORT_DEPTH:
+                raise InputError(f"imports nest deeper than {MAX_IMPORT_DEPTH} files", Loc(file, line))
+            if not target.is_file():
+                warnings.append(f"{file}:{line}: imported script {name!r} not found next to it; ignored")
+                continue
+            sub_file = str(target)
+            sub_raws, sub_imports, sub_warn = parse_raw(read_script_text(target, sub_file, max_bytes),
+                                                        sub_file, max_bytes=max_bytes, max_depth=max_depth)
+            imported.extend(sub_raws)
+            warnings.extend(sub_warn)
+            follow(sub_imports, target.parent, depth + 1)
+
+    follow(imports, path.parent, 1)
+    pool = {r.name: r for r in imported}
+    ext = parents or _stock_external
+    built_imports: dict[str, Material] = {}
+
+    def external(name: str) -> Material | None:
+        if name in pool:
+            if name not in built_imports:
+                built_imports.update(build_materials(list(pool.values()), ext))
+            return built_imports.get(name)
+        return ext(name)
+
+    mats = build_materials(raws, external)
+    return Script(file, mats, [i for i, _ in imports], warnings)

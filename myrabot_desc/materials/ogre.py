@@ -257,8 +257,10 @@ def _tree(text: str, file: str, max_depth: int) -> list[_Node]:
     if len(stack) > 1:
         node = stack[-1]
         name = " ".join([node.key] + node.args)
-        raise InputError(f"'{name}' block opened here is never closed: the file ends without its '}}' "
-                         "(truncated, or a '}' is missing)", Loc(file, node.line))
+        last = text.count("\n") + (0 if text.endswith("\n") else 1)
+        raise InputError(f"'{name}' block opened here is never closed: the file ends at line {last} "
+                         f"with {len(stack) - 1} block(s) open (truncated, or a '}}' is missing)",
+                         Loc(file, node.line))
     return root.children
 
 
@@ -513,6 +515,15 @@ def summarize(name: str, parent: str | None, techniques: tuple[Technique, ...], 
         explicit=frozenset(explicit), techniques=tuple(techniques), loc=loc)
 
 
+def _did_you_mean(name: str, local) -> str:
+    import difflib
+
+    from myrabot_desc.materials.stock import names as stock_names
+
+    close = difflib.get_close_matches(name, sorted(set(local) | set(stock_names())), n=2, cutoff=0.75)
+    return f"; did you mean {' or '.join(map(repr, close))}?" if close else ""
+
+
 def build_materials(raws: list[RawMaterial], external: Callable[[str], Material | None] | None = None,
                     on_error: Callable[[InputError], None] | None = None) -> dict[str, Material]:
     """Apply inheritance. Parents are looked up among ``raws`` first, then ``external(name)``.
@@ -539,8 +550,8 @@ def build_materials(raws: list[RawMaterial], external: Callable[[str], Material 
                 ext = external(raw.parent) if external else None
                 if ext is None:
                     raise InputError(f"material {raw.name!r}: parent {raw.parent!r} is not defined "
-                                     "(not in this script, its imports, or Gazebo's stock materials)",
-                                     raw.loc)
+                                     "(not in this script, its imports, or Gazebo's stock materials)"
+                                     + _did_you_mean(raw.parent, by_name), raw.loc)
                 base = ext.techniques
         techs = tuple(_merge_list(list(base), raw.techniques, _merge_technique))
         mat = summarize(raw.name, raw.parent, techs, raw.loc)

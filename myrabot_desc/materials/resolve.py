@@ -12,7 +12,7 @@ Usage::
     m.diffuse, m.source                    # (0.7, 0.7, 0.7, 1.0), 'stock'
     res.errors                             # scripts that could not be read (InputError each)
 
-Scripts are searched, for each search dir D, in ``D/materials/scripts``, ``D/materials``,
+Scripts are searched, for each search dir D, in ``D``, ``D/materials/scripts``, ``D/materials``,
 ``D/Media/materials/scripts`` and ``D/media/materials/scripts`` (ROS 1 ``gazebo_media_path``
 convention; the MYRAbot packages use ``Media/`` in fuerte and ``media/`` later). They are read on
 the first lookup. Script materials win over Gazebo's stock table; among scripts the first file
@@ -30,7 +30,7 @@ from myrabot_desc.materials.stock import stock_material
 
 RGBA = tuple[float, float, float, float]
 
-SCRIPT_SUBDIRS = ("materials/scripts", "materials", "Media/materials/scripts", "media/materials/scripts")
+SCRIPT_SUBDIRS = ("", "materials/scripts", "materials", "Media/materials/scripts", "media/materials/scripts")
 MAX_SCRIPTS = 2000          # a search dir that is someone's whole disk should not hang `check`
 
 
@@ -128,6 +128,10 @@ class MaterialResolver:
         return self._materials
 
     # ---------------------------------------------------------------- queries
+    def material(self, name: str) -> ogre.Material | None:
+        """The parsed material ``name`` from the scripts, else from the stock table, else None."""
+        return self._load().get(name) or stock_material(name)
+
     def lookup(self, name: str) -> ResolvedMaterial | None:
         """Explicit values for ``name``, or None when no script nor the stock table has it."""
         mat = self._load().get(name)

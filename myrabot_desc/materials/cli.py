@@ -1,0 +1,124 @@
+"""``myrabot-desc materials FILE.material``: OGRE script -> SDF <material> blocks or JSON."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import click
+
+from myrabot_desc.cli_common import guarded
+from myrabot_desc.diagnostics import Loc
+from myrabot_desc.errors import InputError
+
+
+def _num(v: float) -> str:
+    s = format(float(v), ".6g")
+    return "0" if s == "-0" else s
+
+
+def _vec(v) -> str:
+    return " ".join(_num(x) for x in v)
+
+
+def _xml_comment(text: str) -> str:
+    return text.replace("--", "- -")
+
+
+def sdf_block(res, texture_uri: str | None) -> str:
+    """One SDF <material> for a ResolvedMaterial (explicit colours; texture as PBR albedo map)."""
+    m = res.material
+    notes = []
+    if m.transparency > 0:
+        notes.append(f"transparency {_num(m.transparency)}: put <transparency>{_num(m.transparency)}"
+                     "</transparency> on the visual")
+    if m.texture and res.texture_path is None:
+        notes.append(f"texture {m.texture} not found in ../textures or next to the script")
+    lines = [f"<!-- {_xml_comment(m.name)} ({_xml_comment(res.source)}) -->"]
+    lines += [f"<!-- {_xml_comment(n)} -->" for n in notes]
+    lines += ["<material>",
+             f"  <ambient>{_vec(m.ambient)}</ambient>",
+             f"  <diffuse>{_vec(m.diffuse)}</diffuse>",
+             f"  <specular>{_vec(m.specular)}</specular>",
+             f"  <emissive>{_vec(m.emissive)}</emissive>"]
+    if not m.lighting:
+        lines.append("  <lighting>false</lighting>")
+    if texture_uri:
+        lines += ["  <pbr>", "    <metal>", f"      <albedo_map>{texture_uri}</albedo_map>",
+                  "    </metal>", "  </pbr>"]
+    lines.append("</material>")
+    return "\n".join(lines)
+
+
+def _texture_uri(res, prefix: str | None) -> str | None:
+    if not res.texture:
+        return None
+    if prefix is not None:
+        return prefix + res.texture
+    return str(res.texture_path.resolve()) if res.texture_path else res.texture
+
+
+@click.command("materials", context_settings={"help_option_names": ["-h", "--help"]})
+@click.argument("file", metavar="FILE.material")
+@click.option("--to", "fmt", type=click.Choice(["sdf", "json"]), default="sdf", show_default=True,
+              help="Output format.")
+@click.option("-o", "--output", default="-", metavar="OUT", help="Write here instead of standard output.")
+@click.option("--name", "names", multiple=True, metavar="NAME",
+              help="Only this material (repeatable). Default: every material in the file.")
+@click.option("--texture-prefix", default=None, metavar="URI",
+              help="Write textures as URI+name (e.g. model://cans/materials/textures/) instead of the "
+                   "image's absolute path.")
+def materials_cmd(file, fmt, output, names, texture_prefix):
+    """Read an OGRE .material script (Gazebo classic) and print explicit colours.
+
+    gz-sim cannot read material scripts, so each material becomes an SDF
+    <material> with ambient, diffuse, specular and emissive (a texture as
+    <pbr><metal><albedo_map>), or JSON. Parents (`material A : B`) are looked
+    up in the file, its imports, the other scripts in its folder and Gazebo's
+    stock materials (Gazebo/Grey...). Textures are looked for in ../textures.
+
+    \b
+    Examples:
+      myrabot-desc materials Media/materials/scripts/myrabot_fer.material
+      myrabot-desc materials brazo_fer.material --to json -o out/brazo.json
+      myrabot-desc materials brazo_fer.material --name brazo_fer/White
+    """
+    from myrabot_desc.materials import ogre
+    from myrabot_desc.materials.resolve import MaterialResolver, find_texture, resolved
+    from myrabot_desc.materials.stock import stock_material
+    from myrabot_desc.output import write_output
+
+    with guarded():
+        path = Path(file)
+        siblings = MaterialResolver([path.parent])
+
+        def parents(name: str):
+            own = siblings._load().get(name)      # noqa: SLF001 (same package)
+            return own if own is not None else stock_material(name)
+
+        script = ogre.parse_file(path, parents=parents)
+        mats = list(script.materials.values())
+        if names:
+            missing = [n for n in names if n not in script.materials]
+            if missing:
+                raise InputError(f"no material named {', '.join(map(repr, missing))} in this file "
+                                 f"(it has {len(mats)}: {', '.join(m.name for m in mats[:8])}"
+                                 f"{'...' if len(mats) > 8 else ''})", Loc(str(path)))
+            mats = [script.materials[n] for n in names]
+        results = [resolved(m, find_texture(path, m.texture) if m.texture else None) for m in mats]
+        if fmt == "json":
+            doc = {"file": str(path), "materials": [], "warnings": script.warnings}
+            for r in results:
+                d = r.material.as_dict()
+                d["texture_path"] = str(r.texture_path.resolve()) if r.texture_path else None
+                doc["materials"].append(d)
+            text = json.dumps(doc, indent=2) + "\n"
+        else:
+            head = [f"<!-- {len(results)} material(s) from {_xml_comment(str(path))}; explicit values for "
+                    "gz-sim, which cannot read OGRE scripts -->"]
+            head += [f"<!-- warning: {_xml_comment(w)} -->" for w in script.warnings]
+            text = "\n".join(head + [sdf_block(r, _texture_uri(r, texture_prefix)) for r in results]) + "\n"
+        write_output(output, text)
+        if output != "-":                  # on stdout the warnings are already in the text
+            for w in script.warnings:
+                click.echo(f"warning: {w}", err=True)

@@ -1,0 +1,603 @@
+"""Build: xacro (old or new) -> URDF, without ROS, safely, with a source map.
+
+We drive the real ROS ``xacro`` library and hook it at a few points:
+
+* reading files: lxml with entities, DTDs and network off; size, include depth
+  and include-cycle limits; reads only under the input's folder, the resolved
+  package roots and ``--allow-path`` folders; the legacy upgrade (legacy.py);
+  each element gets a ``_mdsrc`` attribute naming its file:line (xacro copies
+  attributes through macro expansion, so expanded elements keep the line of the
+  macro body they came from);
+* ``$(find)`` -> our package resolver (packages.py); ``$(env)``/``$(optenv)``
+  refused under ``--no-env``; ``$(eval)`` and ``${}`` through the allow-list
+  (safe_eval.py) unless ``--unsafe-eval``;
+* node replacement -> the linear-time splice of xacro_fast.py.
+
+After expansion the annotations are read off (document order) and removed, so
+the text we write is byte-identical to the xacro CLI's for the same input.
+"""
+
+from __future__ import annotations
+
+import re
+import sys
+import threading
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from myrabot_desc.diagnostics import Diagnostic, Loc
+from myrabot_desc.errors import InputError
+
+SRC_ATTR = "_mdsrc"
+XSRC_ATTR = "xacro:mdsrc"   # on xacro elements; xacro itself strips xacro:* attributes
+
+
+@dataclass
+class Limits:
+    """Guards against hostile input; each is configurable (CLI flags of ``build``)."""
+
+    max_input_bytes: int = 20_000_000      # one file
+    max_include_depth: int = 32
+    max_macro_depth: int = 200             # nested macro calls (xacro dies near 400)
+    max_output_elements: int = 2_000_000
+
+
+@dataclass
+class BuildResult:
+    text: str                           # the URDF document (pretty-printed, with banner)
+    locations: list                     # Loc | None per output element, in document order
+    diagnostics: list[Diagnostic]       # X-code warnings/errors
+    deps: list[str]                     # files read (input, includes, YAML)
+    source: Path
+    package_roots: dict[str, Path] = field(default_factory=dict)
+
+    @property
+    def errors(self) -> list[Diagnostic]:
+        return [d for d in self.diagnostics if d.severity == "error"]
+
+
+_lock = threading.Lock()
+
+# URDF (and common extension) vocabulary at <robot> level: anything else there
+# is either a macro call that went unexpanded or an unknown element.
+ROBOT_CHILDREN = {"link", "joint", "material", "gazebo", "transmission", "sensor", "ros2_control", "mujoco",
+                  "drake", "klampt", "webots", "plugin", "version"}
+XACRO_WORDS = {"macro", "property", "include", "insert_block", "arg", "if", "unless", "call", "element",
+               "attribute"}
+
+
+def build_file(path, mappings: dict | None = None, *, packages: dict | None = None, package_paths=(),
+               legacy: str = "auto", unsafe_eval: bool = False, no_env: bool = False, allow_paths=(),
+               limits: Limits | None = None, resolve_uris: bool = False) -> BuildResult:
+    """Expand ``path`` into URDF. Raises InputError for input that cannot be built."""
+    src = Path(path)
+    if not src.exists():
+        raise InputError(f"no such file: {src}")
+    if not src.is_file():
+        raise InputError(f"not a file: {src}")
+    with _lock:
+        return _Build(src, mappings or {}, packages or {}, list(package_paths), legacy, unsafe_eval, no_env,
+                      list(allow_paths), limits or Limits(), resolve_uris).run()
+
+
+class _Build:
+    def __init__(self, src, mappings, packages, package_paths, legacy, unsafe_eval, no_env, allow_paths,
+                 limits, resolve_uris):
+        from myrabot_desc.packages import PackageResolver
+
+        if legacy not in ("auto", "on", "off"):
+            raise InputError(f"--legacy must be auto, on or off, not {legacy!r}")
+        self.src = src
+        self.mappings = {str(k): str(v) for k, v in mappings.items()}
+        self.resolver = PackageResolver(packages, package_paths, input_file=src)
+        self.legacy = legacy
+        self.unsafe_eval = unsafe_eval
+        self.no_env = no_env
+        self.allow_roots = [src.resolve().parent] + [Path(p).expanduser().resolve() for p in allow_paths]
+        self.limits = limits
+        self.resolve_uris = resolve_uris
+        self.locs: list[Loc] = []          # index -> Loc for _mdsrc annotations
+        self.last_loc: Loc | None = None
+        self.call_stack: list[tuple[str, Loc | None]] = []
+        self.diagnostics: list[Diagnostic] = []
+        self.macro_names: set[str] = set()
+        self.macro_files: dict[str, str] = {}
+        self.trees: dict[Path, object] = {}   # path -> parsed lxml root (prescan cache)
+        self.deps: list[str] = []
+
+    # ------------------------------------------------------------ reading files
+    def allowed(self, path: Path) -> bool:
+        real = path.resolve()
+        roots = self.allow_roots + [p.resolve() for p in self.resolver.roots()]
+        return any(real.is_relative_to(r) for r in roots)
+
+    def read_tree(self, path: Path, asked_at: Loc | None = None):
+        """Parse one file with lxml, safely; cached per resolved path."""
+        from lxml import etree
+
+        key = path.resolve()
+        if key in self.trees:
+            return self.trees[key]
+        try:
+            size = path.stat().st_size
+        except OSError as exc:
+            raise InputError(f"cannot read {path}: {exc.strerror}", asked_at) from None
+        if size > self.limits.max_input_bytes:
+            raise InputError(f"{path} is {size} bytes, over the {self.limits.max_input_bytes}-byte limit "
+                             "(see --max-input-bytes)", asked_at)
+        try:
+            data = path.read_bytes()
+        except OSError as exc:
+            raise InputError(f"cannot read {path}: {exc.strerror}", asked_at) from None
+        root = parse_xml_bytes(data, str(path))
+        self.trees[key] = root
+        return root
+
+    # ------------------------------------------------------------ prescan
+    def prescan(self, path: Path, seen: set, depth: int = 0) -> None:
+        """Collect macro names over the include tree (needed to spot bare calls)."""
+        key = path.resolve()
+        if key in seen or depth > self.limits.max_include_depth:
+            return
+        seen.add(key)
+        try:
+            root = self.read_tree(path)
+        except InputError:
+            return  # reported properly when xacro reaches the include
+        from myrabot_desc import legacy as lg
+
+        for name in lg.macro_names(root):
+            self.macro_names.add(name)
+            self.macro_files.setdefault(name, str(path))
+        for spec, _line in lg.include_filenames(root):
+            target = self._guess_include(spec, path)
+            if target is not None:
+                self.prescan(target, seen, depth + 1)
+
+    def _guess_include(self, spec: str, including: Path) -> Path | None:
+        def find(m):
+            p = self.resolver.find(m.group(1))
+            return str(p) if p else m.group(0)
+
+        s = re.sub(r"\$\(find\s+([^)\s]+)\)", find, spec)
+        s = re.sub(r"\$\(dirname\)", str(including.parent), s)
+        if "$" in s or any(ch in s for ch in "*?["):
+            return None
+        p = Path(s)
+        if not p.is_absolute():
+            p = including.parent / p
+            if not p.exists() and self.legacy == "on":
+                p = self.src.parent / s
+        return p if p.is_file() and self.allowed(p) else None
+
+    # ------------------------------------------------------------ annotate + hand to minidom
+    def load_dom(self, path: Path, asked_at: Loc | None):
+        import xml.dom.minidom
+
+        from lxml import etree
+
+        from myrabot_desc import legacy as lg
+
+        root = self.read_tree(path, asked_at)
+        # The prescan cache is shared; work on a copy so a file included twice is fresh.
+        root = _copy_tree(root)
+        if self.legacy != "off" and lg.needs_upgrade(root, self.macro_names):
+            root, kinds = lg.upgrade(root, self.macro_names)
+            for kind, (count, line) in sorted(kinds.items()):
+                new = "xacro:" + kind.strip("<>") if kind.startswith("<") else "xacro:NAME"
+                times = f" ({count} times)" if count > 1 else ""
+                self.diagnostics.append(Diagnostic(
+                    "X001", "warning", f"legacy {kind} upgraded to <{new}>{times}; xacro 2.x would copy it "
+                    "into the URDF unexpanded", Loc(str(path), line)))
+        uri = lg.xacro_uri(root)
+        fname = str(path)
+        for el in root.iter():
+            if not isinstance(el.tag, str):
+                continue
+            idx = len(self.locs)
+            self.locs.append(Loc(fname, el.sourceline))
+            if uri and el.tag.startswith("{" + uri + "}"):
+                el.set("{%s}mdsrc" % uri, str(idx))
+            else:
+                el.set(SRC_ATTR, str(idx))
+        text = etree.tostring(root, encoding="unicode")
+        try:
+            return xml.dom.minidom.parseString(text)
+        except Exception as exc:  # pragma: no cover - lxml already validated
+            raise InputError(f"XML error: {exc}", Loc(fname)) from None
+
+    # ------------------------------------------------------------ run
+    def run(self) -> BuildResult:
+        import xacro
+
+        self.prescan(self.src, set())
+        with _Hooks(self):
+            xacro.init_stacks(str(self.src))
+            xacro.all_includes = []
+            self.check_include(self.src, None)
+            doc = self.load_dom(self.src, None)
+            try:
+                xacro.process_doc(doc, mappings=dict(self.mappings), verbosity=0)
+            except InputError:
+                raise
+            except xacro.XacroException as exc:
+                raise self._xacro_error(exc) from None
+            except RecursionError:
+                raise InputError("macros nest too deeply (Python recursion limit); is a macro calling itself?",
+                                 self.last_loc, self._stack()) from None
+            except RuntimeError as exc:  # xmlutils.reqd_attrs raises RuntimeError for a missing attribute
+                raise InputError(str(exc), self.last_loc, self._stack()) from None
+            except (NameError, TypeError, ValueError, KeyError, AttributeError, ZeroDivisionError) as exc:
+                raise InputError(f"{type(exc).__name__}: {exc}", self.last_loc, self._stack()) from None
+            self.deps = [str(self.src)] + [d for d in dict.fromkeys(xacro.all_includes)]
+        locations = self.finish(doc)
+        text = self.render(doc)
+        self.check_unexpanded(text, locations)
+        return BuildResult(text=text, locations=locations, diagnostics=self.diagnostics, deps=self.deps,
+                           source=self.src, package_roots=dict(self.resolver.used))
+
+    def check_include(self, path: Path, asked_at: Loc | None) -> None:
+        import xacro
+
+        if not self.allowed(path):
+            raise InputError(f"refusing to read {path}: outside the input's folder and the package roots "
+                             "(use --allow-path DIR to allow it)", asked_at or self.last_loc, code="X006")
+        stack = [Path(f).resolve() for f in (xacro.filestack or [])[:-1] if f]
+        if path.resolve() in stack:
+            chain = " -> ".join(str(p) for p in stack + [path])
+            raise InputError(f"include cycle: {chain}", asked_at or self.last_loc)
+        if len(xacro.filestack or []) > self.limits.max_include_depth:
+            raise InputError(f"includes nest deeper than {self.limits.max_include_depth} "
+                             "(see --max-include-depth)", asked_at or self.last_loc)
+
+    def _stack(self) -> list[str]:
+        out = []
+        for name, loc in reversed(self.call_stack[-8:]):
+            out.append(f"in macro '{name}' called at {loc}" if loc else f"in macro '{name}'")
+        if len(self.call_stack) > 8:
+            out.append(f"... {len(self.call_stack) - 8} more macro calls")
+        return out
+
+    def _xacro_error(self, exc) -> InputError:
+        msg = str(exc).strip()
+        inner = getattr(exc, "exc", None)
+        if isinstance(inner, InputError):
+            return inner
+        msg = msg.replace("\n", " ").replace("  ", " ")
+        return InputError(msg, self.last_loc, self._stack())
+
+    # ------------------------------------------------------------ after expansion
+    def finish(self, doc) -> list:
+        """Read the source annotations off in document order, and remove them."""
+        locations = []
+        count = 0
+        stack = [doc.documentElement]
+        while stack:
+            el = stack.pop()
+            count += 1
+            if count > self.limits.max_output_elements:
+                raise InputError(f"the expanded URDF has over {self.limits.max_output_elements} elements")
+            idx = el.getAttribute(SRC_ATTR) if el.hasAttribute(SRC_ATTR) else None
+            if idx is not None:
+                el.removeAttribute(SRC_ATTR)
+            for a in [a for a in el.attributes.keys() if a.endswith(":mdsrc")]:
+                el.removeAttribute(a)
+            locations.append(self.locs[int(idx)] if idx and idx.isdigit() and int(idx) < len(self.locs) else None)
+            kids = [c for c in el.childNodes if c.nodeType == c.ELEMENT_NODE]
+            stack.extend(reversed(kids))
+        # elements without an annotation (xacro:element) inherit their parent's location
+        return locations
+
+    def render(self, doc) -> str:
+        import xml.dom.minidom
+
+        banner = [xml.dom.minidom.Comment(c) for c in [
+            " %s " % ("=" * 83),
+            " |    This document was autogenerated by xacro from %-30s | " % re.sub(r"-+", "-", str(self.src)),
+            " |    EDITING THIS FILE BY HAND IS NOT RECOMMENDED  %-30s | " % "",
+            " %s " % ("=" * 83)]]
+        first = doc.firstChild
+        for comment in banner:
+            doc.insertBefore(comment, first)
+        return doc.toprettyxml(indent="  ")
+
+    def check_unexpanded(self, text: str, locations: list) -> None:
+        """X002: leftover macro calls / xacro keywords; X003: macro-only file; X004: bad package://."""
+        from lxml import etree
+
+        root = etree.fromstring(text.encode("utf-8"), parser=safe_parser())
+        elements = [el for el in root.iter() if isinstance(el.tag, str)]
+        loc_of = dict(zip(map(id, elements), locations))
+        found_links = False
+        for el in elements:
+            tag = el.tag
+            if tag in ("link", "joint") and el.getparent() is root:
+                found_links = True
+            plain = not tag.startswith("{") and ":" not in tag
+            loc = loc_of.get(id(el))
+            if plain and tag in XACRO_WORDS and (el.get("name") or el.get("filename") or el.get("value")) \
+                    and not _inside(el, "gazebo"):
+                self.diagnostics.append(Diagnostic(
+                    "X002", "error", f"<{tag}> was not expanded: xacro keywords need the xacro: prefix "
+                    "(run with --legacy auto, the default)", loc))
+            elif plain and el.getparent() is root and tag not in ROBOT_CHILDREN:
+                where = self.macro_files.get(tag) or _defined_nearby(tag, self.src, self.resolver.roots())
+                if where:
+                    self.diagnostics.append(Diagnostic(
+                        "X002", "error", f"<{tag}> looks like a call of macro '{tag}' (defined in {where}), "
+                        "but it was not expanded: the file defining it is not included, so everything it "
+                        "would add is missing", loc, {"macro": tag, "defined_in": where}))
+                elif el.get("parent") is not None or el.find("origin") is not None:
+                    self.diagnostics.append(Diagnostic(
+                        "X002", "error", f"<{tag}> looks like a macro call (it has parent=/an <origin> block) "
+                        "but no macro of that name is defined or included; it was left unexpanded", loc,
+                        {"macro": tag}))
+        if not found_links and self.macro_names:
+            names = sorted(self.macro_names)
+            shown = ", ".join(names[:5]) + (", ..." if len(names) > 5 else "")
+            self.diagnostics.append(Diagnostic(
+                "X003", "warning", f"this file defines {len(names)} macro(s) ({shown}) and instantiates none: "
+                "the URDF has no links", Loc(str(self.src), 1)))
+        from myrabot_desc.packages import split_package_uri
+
+        seen = set()
+        for el in elements:
+            uri = el.get("filename")
+            if not uri or not uri.startswith("package://"):
+                continue
+            parts = split_package_uri(uri)
+            if parts and parts[0] not in seen and self.resolver.find(parts[0]) is None:
+                seen.add(parts[0])
+                self.diagnostics.append(Diagnostic(
+                    "X004", "warning", f"package '{parts[0]}' of {uri} cannot be found (give -p "
+                    f"{parts[0]}=PATH or --package-path)", loc_of.get(id(el))))
+
+
+def _inside(el, tag: str) -> bool:
+    p = el.getparent()
+    while p is not None:
+        if p.tag == tag:
+            return True
+        p = p.getparent()
+    return False
+
+
+def _defined_nearby(name: str, src: Path, roots) -> str | None:
+    """A .xacro file next to the input (or in a resolved package) that defines macro ``name``."""
+    pattern = re.compile(r"<(?:xacro:)?macro\s[^>]*name\s*=\s*[\"']%s[\"']" % re.escape(name))
+    folders = [src.parent] + [Path(r) for r in roots]
+    seen = set()
+    for folder in folders:
+        for f in sorted(folder.rglob("*.xacro")) if folder.is_dir() else []:
+            if f in seen or len(seen) > 500:
+                continue
+            seen.add(f)
+            try:
+                if f.stat().st_size < 2_000_000 and pattern.search(f.read_text(errors="replace")):
+                    return str(f)
+            except OSError:
+                continue
+    return None
+
+
+def _copy_tree(root):
+    import copy
+
+    return copy.deepcopy(root)
+
+
+def safe_parser():
+    from lxml import etree
+
+    return etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False, dtd_validation=False,
+                           huge_tree=False, remove_blank_text=False, collect_ids=False)
+
+
+def parse_xml_bytes(data: bytes, name: str):
+    """Parse XML bytes safely; refuse DTDs/entities; InputError with file:line on failure."""
+    from lxml import etree
+
+    if not data.strip():
+        raise InputError("empty file", Loc(name))
+    head = data[:4096].lstrip()
+    if b"<!DOCTYPE" in data[:65536] or b"<!ENTITY" in data[:65536]:
+        line = data[:data.find(b"<!")].count(b"\n") + 1 if b"<!" in data else 1
+        raise InputError("DTDs and entity declarations are not allowed in model files", Loc(name, line))
+    if head.startswith(b"\x00") or b"\x00" in data[:1024]:
+        raise InputError("not an XML file (binary data)", Loc(name, 1))
+    try:
+        root = etree.fromstring(data, parser=safe_parser())
+    except etree.XMLSyntaxError as exc:
+        line = exc.position[0] if exc.position else None
+        msg = exc.msg or str(exc)
+        msg = re.sub(r", line \d+, column \d+$", "", msg)
+        raise InputError(f"malformed XML: {msg}", Loc(name, line)) from None
+    except ValueError as exc:
+        raise InputError(f"malformed XML: {exc}", Loc(name)) from None
+    return root
+
+
+class _Hooks:
+    """Install our hooks into the xacro module for one build; restore them after."""
+
+    def __init__(self, build: _Build):
+        self.b = build
+
+    def __enter__(self):
+        import xacro
+        import xacro.substitution_args as sa
+
+        from myrabot_desc import safe_eval, xacro_fast
+
+        b = self.b
+        self.saved = {
+            (xacro, "parse"): xacro.parse, (xacro, "eval_all"): xacro.eval_all,
+            (xacro, "handle_macro_call"): xacro.handle_macro_call, (xacro, "check_attrs"): xacro.check_attrs,
+            (xacro, "grab_macro"): xacro.grab_macro, (xacro, "grab_property"): xacro.grab_property,
+            (xacro, "replace_node"): xacro.replace_node,
+            (xacro, "remove_previous_comments"): xacro.remove_previous_comments,
+            (xacro, "safe_eval"): xacro.safe_eval, (sa, "_eval_find"): sa._eval_find,
+            (sa, "_eval_env"): sa._eval_env, (sa, "_eval_optenv"): sa._eval_optenv, (sa, "_eval"): sa._eval,
+        }
+        self.saved_dict = dict(sa._eval_dict)
+        g = xacro._global_symbols
+        self.saved_yaml = (g["xacro"].get("load_yaml") if "xacro" in g else None, g.get("load_yaml"))
+        self.saved_recursion = sys.getrecursionlimit()
+        sys.setrecursionlimit(max(self.saved_recursion, b.limits.max_macro_depth * 12 + 2000))
+        xacro_fast.reset()
+
+        orig_eval_all = xacro.eval_all
+        orig_macro = xacro.handle_macro_call
+        orig_check_attrs = xacro.check_attrs
+        orig_grab_macro = xacro.grab_macro
+        orig_grab_property = xacro.grab_property
+        orig_load_yaml = self.saved_yaml[1] or self.saved_yaml[0]
+
+        def loc_of(node, attr):
+            if node.nodeType != node.ELEMENT_NODE or not node.hasAttribute(attr):
+                return None
+            v = node.getAttribute(attr)
+            return b.locs[int(v)] if v.isdigit() and int(v) < len(b.locs) else None
+
+        def take_xloc(node):
+            loc = loc_of(node, XSRC_ATTR)
+            if node.nodeType == node.ELEMENT_NODE and node.hasAttribute(XSRC_ATTR):
+                node.removeAttribute(XSRC_ATTR)
+            if loc:
+                b.last_loc = loc
+            return loc
+
+        def eval_all(node, macros, symbols):
+            loc = loc_of(node, SRC_ATTR)
+            if loc:
+                b.last_loc = loc
+            orig_eval_all(node, macros, symbols)
+
+        def handle_macro_call(node, macros, symbols):
+            if not node.tagName.startswith("xacro:"):
+                return False
+            loc = take_xloc(node)
+            name = node.tagName[6:]
+            if len(b.call_stack) >= b.limits.max_macro_depth:
+                raise InputError(f"macro calls nest deeper than {b.limits.max_macro_depth} (macro '{name}'); "
+                                 "is a macro calling itself? (see --max-macro-depth)", loc or b.last_loc, b._stack())
+            b.call_stack.append((name, loc))
+            result = orig_macro(node, macros, symbols)
+            b.call_stack.pop()
+            return result
+
+        def check_attrs(tag, required, optional):
+            take_xloc(tag)
+            return orig_check_attrs(tag, required, optional)
+
+        def grab_macro(elt, macros):
+            take_xloc(elt)
+            return orig_grab_macro(elt, macros)
+
+        def grab_property(elt, table):
+            take_xloc(elt)
+            return orig_grab_property(elt, table)
+
+        def parse(inp, filename=None):
+            if inp is not None:
+                return self.saved[(xacro, "parse")](inp, filename)
+            asked = b.last_loc
+            path = Path(filename)
+            if not path.is_absolute():
+                path = Path(xacro.root_dir) / path
+            if not path.is_file() and b.legacy == "on" and not Path(filename).is_absolute():
+                alt = b.src.parent / Path(filename).name
+                if alt.is_file():
+                    path = alt
+            if not path.is_file():
+                xacro.filestack.pop()
+                err = FileNotFoundError(2, "No such file or directory", str(path))
+                raise xacro.XacroException(f"include not found: {path}", exc=err)
+            b.check_include(path, asked)
+            return b.load_dom(path, asked)
+
+        def eval_find(pkg):
+            path = b.resolver.find(pkg)
+            if path is None:
+                raise InputError(f"unknown package '{pkg}' in $(find {pkg}) (give -p {pkg}=PATH or "
+                                 "--package-path DIR)", b.last_loc, b._stack())
+            return str(path)
+
+        def refuse_env(name, *args):
+            raise InputError(f"$(env {name}) / $(optenv {name}) is refused by --no-env", b.last_loc, b._stack())
+
+        def refuse(expr, reason):
+            raise InputError(f"refused expression ${{{expr.strip()}}}: {reason} (--unsafe-eval allows it for "
+                             "trusted files)", b.last_loc, b._stack(), code="X005")
+
+        def subst_eval(s, context):
+            if "arg" not in context:
+                context["arg"] = {}
+            functions = {"arg": lambda name: sa.convert_value(sa._eval_arg(name, args=context["arg"]), "auto"),
+                         "dirname": lambda: sa._eval_dirname(context["filename"])}
+            functions.update(sa._eval_dict)
+            if not b.unsafe_eval:
+                try:
+                    safe_eval.check_subst_eval(s, set(functions))
+                except safe_eval.RefusedExpression as exc:
+                    raise InputError(f"refused expression $(eval {s.strip()}): {exc}", b.last_loc,
+                                     b._stack(), code="X005") from None
+            return str(eval(s, {"__builtins__": {}}, sa._DictWrapper(context["arg"], functions)))
+
+        def load_yaml(filename):
+            spec = xacro.abs_filename_spec(filename)
+            p = Path(spec)
+            if not b.allowed(p):
+                raise InputError(f"refusing to read {p}: outside the input's folder and the package roots "
+                                 "(use --allow-path DIR to allow it)", b.last_loc, b._stack(), code="X006")
+            if p.is_file() and p.stat().st_size > b.limits.max_input_bytes:
+                raise InputError(f"{p} is over the {b.limits.max_input_bytes}-byte limit", b.last_loc)
+            return orig_load_yaml(filename)
+
+        xacro.parse = parse
+        xacro.eval_all = eval_all
+        xacro.handle_macro_call = handle_macro_call
+        xacro.check_attrs = check_attrs
+        xacro.grab_macro = grab_macro
+        xacro.grab_property = grab_property
+        xacro.replace_node = xacro_fast.replace_node
+        xacro.remove_previous_comments = xacro_fast.remove_previous_comments
+        if not b.unsafe_eval:
+            xacro.safe_eval = safe_eval.make_safe_eval(self.saved[(xacro, "safe_eval")], refuse)
+        sa._eval_find = eval_find
+        sa._eval_dict["find"] = eval_find
+        sa._eval = subst_eval
+        if b.no_env:
+            sa._eval_env = refuse_env
+            sa._eval_optenv = refuse_env
+            sa._eval_dict["env"] = refuse_env
+            sa._eval_dict["optenv"] = refuse_env
+        if "xacro" in g:
+            dict.__setitem__(g["xacro"], "load_yaml", load_yaml)
+        if "load_yaml" in g:
+            dict.__setitem__(g, "load_yaml", load_yaml)
+        return self
+
+    def __exit__(self, *exc):
+        import xacro
+        import xacro.substitution_args as sa
+
+        from myrabot_desc import xacro_fast
+
+        for (mod, name), value in self.saved.items():
+            setattr(mod, name, value)
+        sa._eval_dict.clear()
+        sa._eval_dict.update(self.saved_dict)
+        g = xacro._global_symbols
+        if "xacro" in g and self.saved_yaml[0] is not None:
+            dict.__setitem__(g["xacro"], "load_yaml", self.saved_yaml[0])
+        if "load_yaml" in g and self.saved_yaml[1] is not None:
+            dict.__setitem__(g, "load_yaml", self.saved_yaml[1])
+        sys.setrecursionlimit(self.saved_recursion)
+        xacro_fast.reset()
+        xacro.substitution_args_context["arg"] = {}
+        return False
+
+
+def deps_text(result: BuildResult) -> str:
+    return "\n".join(result.deps) + "\n"

@@ -1,0 +1,151 @@
+"""``myrabot-desc info``: what the robot is."""
+
+from __future__ import annotations
+
+import math
+
+import click
+
+from myrabot_desc.cli_common import guarded, input_options
+
+
+def summarize(robot) -> dict:
+    """Everything ``info`` shows, as plain data (also the --json output)."""
+    from myrabot_desc.kinematics import center_of_mass, world_transforms
+
+    T = world_transforms(robot)
+    mass, com = center_of_mass(robot)
+    dof = [j for j in robot.joints.values() if j.type in ("revolute", "continuous", "prismatic") and not j.mimic]
+    frames = []
+    for name in _tree_order(robot):
+        if name in T:
+            p = T[name][:3, 3]
+            frames.append({"frame": name, "xyz": [round(float(v), 6) for v in p]})
+    joints = []
+    for j in robot.joints.values():
+        joints.append({"name": j.name, "type": j.type, "parent": j.parent, "child": j.child,
+                       "axis": list(j.axis) if j.type != "fixed" else None,
+                       "limit": None if j.limit is None else {"lower": j.limit.lower, "upper": j.limit.upper,
+                                                              "effort": j.limit.effort,
+                                                              "velocity": j.limit.velocity}})
+    return {
+        "name": robot.name,
+        "source": str(robot.source) if robot.source else None,
+        "links": len(robot.links),
+        "joints": len(robot.joints),
+        "roots": robot.roots,
+        "dof": len(dof),
+        "movable_joints": [j.name for j in dof],
+        "total_mass": round(mass, 6),
+        "center_of_mass": [round(float(v), 6) for v in com] if mass > 0 else None,
+        "sensors": [{"name": s.name, "type": s.type, "link": s.reference} for s in robot.sensors()],
+        "plugins": [{"name": p.name, "library": p.library} for p in robot.plugins()],
+        "joint_list": joints,
+        "frames": frames,
+    }
+
+
+def _tree_order(robot) -> list[str]:
+    children: dict[str, list] = {}
+    for j in robot.joints.values():
+        children.setdefault(j.parent, []).append(j)
+    order, seen = [], set()
+    for root in robot.roots or list(robot.links)[:1]:
+        stack = [root]
+        while stack:
+            link = stack.pop()
+            if link in seen:
+                continue
+            seen.add(link)
+            order.append(link)
+            stack.extend(j.child for j in reversed(children.get(link, [])))
+    return order
+
+
+def tree_lines(robot) -> list[str]:
+    children: dict[str, list] = {}
+    for j in robot.joints.values():
+        children.setdefault(j.parent, []).append(j)
+    lines, seen = [], set()
+
+    def walk(link, depth, via):
+        if link in seen:
+            lines.append("  " * depth + f"{link} (cycle)")
+            return
+        seen.add(link)
+        if via is None:
+            lines.append(link)
+        else:
+            ax = "" if via.type == "fixed" else " axis " + " ".join(f"{a:g}" for a in via.axis)
+            lines.append("  " * depth + f"└─ {link}  [{via.name}: {via.type}{ax}]")
+        for j in children.get(link, []):
+            walk(j.child, depth + 1, j)
+
+    for root in robot.roots or list(robot.links)[:1]:
+        walk(root, 0, None)
+    return lines
+
+
+def _fmt_limit(j) -> str:
+    if j.type == "continuous":
+        return "continuous"
+    if j.limit is None:
+        return "no <limit>"
+    lo, hi = j.limit.lower, j.limit.upper
+    rng = f"[{lo:g}, {hi:g}] {'m' if j.type == 'prismatic' else 'rad'}" if lo is not None and hi is not None else "[?]"
+    if j.type == "revolute" and lo is not None and hi is not None:
+        rng += f" ({math.degrees(lo):.0f}° .. {math.degrees(hi):.0f}°)"
+    return f"{rng}, effort {j.limit.effort}, velocity {j.limit.velocity}"
+
+
+@click.command("info")
+@input_options()
+@click.option("--json", "as_json", is_flag=True, help="Print the summary as JSON.")
+@click.option("--no-tree", is_flag=True, help="Leave out the link tree.")
+def info_cmd(inputs, as_json, no_tree):
+    """Show what the robot is: the link tree (joint types and axes), degrees of
+    freedom, joint limits, total mass, centre of mass at the zero configuration,
+    and every frame's world position.
+
+    \b
+    Examples:
+      myrabot-desc info                      # the bundled MYRAbot
+      myrabot-desc info robot.urdf --json
+    """
+    import json
+
+    with guarded():
+        robot = inputs.load()
+        for d in robot.build_warnings:
+            if d.severity == "error":
+                click.echo(str(d), err=True)
+        s = summarize(robot)
+        if as_json:
+            click.echo(json.dumps(s, indent=2))
+            return
+        echo = click.echo
+        echo(f"robot {s['name']!r}  ({s['source']})")
+        echo(f"  {s['links']} links, {s['joints']} joints, {s['dof']} degrees of freedom, root: "
+             f"{', '.join(s['roots']) or 'none (cycle?)'}")
+        com = s["center_of_mass"]
+        echo(f"  total mass {s['total_mass']:.4f} kg; centre of mass at zero configuration "
+             + (f"({com[0]:.4f}, {com[1]:.4f}, {com[2]:.4f}) m" if com else "undefined (no mass)"))
+        if not no_tree:
+            echo("\ntree:")
+            for line in tree_lines(robot):
+                echo("  " + line)
+        movable = [j for j in robot.joints.values() if j.type in ("revolute", "continuous", "prismatic")]
+        if movable:
+            echo("\nmovable joints:")
+            w = max(len(j.name) for j in movable)
+            for j in movable:
+                echo(f"  {j.name:<{w}}  {j.type:<10} {_fmt_limit(j)}")
+        if s["sensors"]:
+            echo("\nsensors:")
+            for x in s["sensors"]:
+                echo(f"  {x['name']} ({x['type']}) on {x['link']}")
+        echo("\nframes (world position at zero configuration, m):")
+        w = max((len(f["frame"]) for f in s["frames"]), default=5)
+        for f in s["frames"]:
+            x, y, z = f["xyz"]
+            echo(f"  {f['frame']:<{w}}  {x:9.4f} {y:9.4f} {z:9.4f}")

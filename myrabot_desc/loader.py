@@ -1,0 +1,349 @@
+"""Load a robot: build a xacro file or read a URDF file, then read it into the model.
+
+``load_robot(None)`` loads the bundled MYRAbot (``xacro/myrabot.urdf.xacro`` of
+the ``myrabot_description`` package shipped with this tool).
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+from myrabot_desc.diagnostics import Diagnostic, Loc
+from myrabot_desc.errors import InputError
+from myrabot_desc.model import (
+    Box, Collision, Cylinder, Dynamics, GazeboBlock, Inertial, Joint, Limit, Link, Material, Mesh, Mimic,
+    Plugin, Pose, Robot, Sensor, Sphere, Transmission, Visual,
+)
+
+BUNDLED_ASSEMBLY = "xacro/myrabot.urdf.xacro"
+ELECTRIC_SUFFIXES = ("#controller", "#sensor", "#interface")
+
+
+def data_root() -> Path:
+    """Folder of the bundled ROS package ``myrabot_description``.
+
+    In a source checkout it is the repository top (package.xml beside the
+    package folder); in an installed wheel it is ``myrabot_desc/share/...``.
+    """
+    here = Path(__file__).resolve().parent
+    shipped = here / "share" / "myrabot_description"
+    if (shipped / "package.xml").is_file():
+        return shipped
+    return here.parent
+
+
+def bundled_path(relative: str = BUNDLED_ASSEMBLY) -> Path:
+    return data_root() / relative
+
+
+def is_xacro(path: Path) -> bool:
+    return path.name.endswith(".xacro") or path.suffix == ".xacro"
+
+
+def load_robot(path=None, **build_options) -> Robot:
+    """Build (``.xacro``) or read (anything else) ``path`` into a Robot. None = bundled MYRAbot."""
+    src = Path(path) if path is not None else bundled_path()
+    if not src.exists():
+        raise InputError(f"no such file: {src}")
+    if src.is_dir():
+        raise InputError(f"{src} is a folder; give a .urdf or .xacro file")
+    if is_xacro(src):
+        from myrabot_desc.build import build_file
+
+        result = build_file(src, build_options.pop("mappings", None), **build_options)
+        return read_urdf_text(result.text, src, locations=result.locations, package_roots=result.package_roots,
+                              build_warnings=result.diagnostics, from_xacro=True,
+                              packages=build_options.get("packages"),
+                              package_paths=build_options.get("package_paths", ()))
+    from myrabot_desc.build import Limits
+
+    limit = build_options.get("limits", Limits()).max_input_bytes if build_options.get("limits") else \
+        Limits().max_input_bytes
+    try:
+        size = src.stat().st_size
+        if size > limit:
+            raise InputError(f"{src} is {size} bytes, over the {limit}-byte limit")
+        data = src.read_bytes()
+    except OSError as exc:
+        raise InputError(f"cannot read {src}: {exc.strerror}") from None
+    return read_urdf_bytes(data, src, packages=build_options.get("packages"),
+                           package_paths=build_options.get("package_paths", ()))
+
+
+def read_urdf_bytes(data: bytes, src: Path, packages=None, package_paths=()) -> Robot:
+    from myrabot_desc.build import parse_xml_bytes
+
+    root = parse_xml_bytes(data, str(src))
+    text = data.decode("utf-8", errors="replace")
+    return _read(root, text, src, None, {}, [], False, packages, package_paths)
+
+
+def read_urdf_text(text: str, src: Path, locations=None, package_roots=None, build_warnings=None,
+                   from_xacro=False, packages=None, package_paths=()) -> Robot:
+    from myrabot_desc.build import parse_xml_bytes
+
+    root = parse_xml_bytes(text.encode("utf-8"), str(src))
+    return _read(root, text, src, locations, package_roots or {}, list(build_warnings or []), from_xacro,
+                 packages, package_paths)
+
+
+# ---------------------------------------------------------------- reading
+class _Reader:
+    def __init__(self, root, src: Path, locations, from_xacro: bool):
+        self.src = src
+        self.issues: list[Diagnostic] = []
+        self.loc_of: dict[int, Loc] = {}
+        elements = [el for el in root.iter() if isinstance(el.tag, str)]
+        if locations is not None and len(locations) == len(elements):
+            last = None
+            parent_loc: dict[int, Loc] = {}
+            for el, loc in zip(elements, locations):
+                if loc is None:
+                    p = el.getparent()
+                    loc = parent_loc.get(id(p)) if p is not None else last
+                parent_loc[id(el)] = loc
+                self.loc_of[id(el)] = loc
+                last = loc or last
+            self._keep = elements  # keep proxies alive so id() stays valid
+        else:
+            for el in elements:
+                self.loc_of[id(el)] = Loc(str(src), el.sourceline)
+            self._keep = elements
+
+    def loc(self, el) -> Loc | None:
+        return self.loc_of.get(id(el)) if el is not None else None
+
+    def issue(self, el, message: str, code: str = "T010") -> None:
+        self.issues.append(Diagnostic(code, "error", message, self.loc(el)))
+
+    def num(self, el, attr: str, default: float | None = 0.0) -> float | None:
+        raw = el.get(attr)
+        if raw is None:
+            return default
+        try:
+            v = float(raw)
+        except ValueError:
+            self.issue(el, f"<{el.tag} {attr}=\"{raw}\">: not a number")
+            return default
+        if not math.isfinite(v):
+            self.issue(el, f"<{el.tag} {attr}=\"{raw}\">: not a finite number")
+            return default
+        return v
+
+    def vec(self, el, attr: str, default=(0.0, 0.0, 0.0), n: int = 3) -> tuple:
+        raw = el.get(attr) if el is not None else None
+        if raw is None:
+            return default
+        parts = raw.split()
+        try:
+            vals = tuple(float(p) for p in parts)
+        except ValueError:
+            self.issue(el, f"<{el.tag} {attr}=\"{raw}\">: expected {n} numbers")
+            return default
+        if len(vals) != n or not all(math.isfinite(v) for v in vals):
+            self.issue(el, f"<{el.tag} {attr}=\"{raw}\">: expected {n} finite numbers")
+            return default
+        return vals
+
+    def pose(self, el) -> Pose:
+        o = el.find("origin") if el is not None else None
+        if o is None:
+            return Pose()
+        return Pose(self.vec(o, "xyz"), self.vec(o, "rpy"))
+
+    def geometry(self, el, robot_src_dir: Path, package_roots, resolve):
+        g = el.find("geometry")
+        if g is None:
+            return None
+        shape = next((c for c in g if isinstance(c.tag, str)), None)
+        if shape is None:
+            self.issue(g, "<geometry> is empty")
+            return None
+        if shape.tag == "box":
+            return Box(self.vec(shape, "size"))
+        if shape.tag == "cylinder":
+            return Cylinder(self.num(shape, "radius"), self.num(shape, "length"))
+        if shape.tag == "sphere":
+            return Sphere(self.num(shape, "radius"))
+        if shape.tag == "mesh":
+            fn = shape.get("filename", "")
+            return Mesh(fn, self.vec(shape, "scale", (1.0, 1.0, 1.0)), resolve(fn) if fn else None)
+        self.issue(shape, f"unknown geometry <{shape.tag}>")
+        return None
+
+    def material(self, el) -> Material | None:
+        if el is None:
+            return None
+        color = el.find("color")
+        rgba = self.vec(color, "rgba", None, 4) if color is not None else None
+        tex = el.find("texture")
+        return Material(el.get("name", ""), rgba, tex.get("filename") if tex is not None else None, self.loc(el))
+
+    def inertial(self, el) -> Inertial | None:
+        i = el.find("inertial")
+        if i is None:
+            return None
+        m = i.find("mass")
+        mass = self.num(m, "value", 0.0) if m is not None else 0.0
+        t = i.find("inertia")
+        vals = {k: (self.num(t, k, 0.0) if t is not None else 0.0) for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
+        return Inertial(mass, self.pose(i), loc=self.loc(i), **vals)
+
+
+def _read(root, text, src: Path, locations, package_roots, build_warnings, from_xacro, packages,
+          package_paths) -> Robot:
+    from myrabot_desc.packages import PackageResolver, resolve_resource_uri, split_package_uri
+
+    if root.tag != "robot":
+        raise InputError(f"the root element is <{root.tag}>, not <robot>: not a URDF file",
+                         Loc(str(src), root.sourceline))
+    r = _Reader(root, src, locations, from_xacro)
+
+    # Resolve every package named by a package:// URI (meshes, textures).
+    roots = dict(package_roots)
+    resolver = None
+    for el in root.iter():
+        if not isinstance(el.tag, str):
+            continue
+        fn = el.get("filename")
+        parts = split_package_uri(fn) if fn else None
+        if parts and parts[0] not in roots:
+            if resolver is None:
+                resolver = PackageResolver(packages, package_paths, input_file=src)
+            p = resolver.find(parts[0])
+            if p is not None:
+                roots[parts[0]] = p
+    base = src.parent
+
+    def resolve(uri: str):
+        return resolve_resource_uri(uri, roots, base)
+
+    materials: dict[str, Material] = {}
+    for m in root.findall("material"):
+        mat = r.material(m)
+        if mat.name:
+            materials.setdefault(mat.name, mat)
+
+    links: dict[str, Link] = {}
+    for el in root.findall("link"):
+        name = el.get("name")
+        if not name:
+            r.issue(el, "<link> without a name")
+            continue
+        visuals = []
+        for v in el.findall("visual"):
+            mel = v.find("material")
+            mat = r.material(mel) if mel is not None else None
+            mname = mat.name if mat else None
+            if mat is not None and mat.rgba is None and mat.texture is None and mname in materials:
+                mat = materials[mname]
+            if mat is not None and mname and mname not in materials and (mat.rgba or mat.texture):
+                materials[mname] = mat
+            visuals.append(Visual(r.pose(v), r.geometry(v, base, roots, resolve), v.get("name"), mname, mat,
+                                  r.loc(v)))
+        collisions = [Collision(r.pose(c), r.geometry(c, base, roots, resolve), c.get("name"), r.loc(c))
+                      for c in el.findall("collision")]
+        if name in links:
+            continue  # duplicates are reported by the tree rules from the XML
+        links[name] = Link(name, r.inertial(el), tuple(visuals), tuple(collisions), r.loc(el))
+
+    joints: dict[str, Joint] = {}
+    for el in root.findall("joint"):
+        name = el.get("name")
+        jtype = el.get("type", "")
+        p, c = el.find("parent"), el.find("child")
+        if not name:
+            r.issue(el, "<joint> without a name")
+            continue
+        if p is None or c is None or not p.get("link") or not c.get("link"):
+            r.issue(el, f"joint '{name}' needs <parent link=...> and <child link=...>")
+            continue
+        axis_el = el.find("axis")
+        axis = r.vec(axis_el, "xyz", (1.0, 0.0, 0.0)) if axis_el is not None else (1.0, 0.0, 0.0)
+        lim = el.find("limit")
+        limit = Limit(r.num(lim, "lower", None), r.num(lim, "upper", None), r.num(lim, "effort", None),
+                      r.num(lim, "velocity", None)) if lim is not None else None
+        mim = el.find("mimic")
+        mimic = Mimic(mim.get("joint", ""), r.num(mim, "multiplier", 1.0), r.num(mim, "offset", 0.0)) \
+            if mim is not None else None
+        dyn = el.find("dynamics")
+        dynamics = Dynamics(r.num(dyn, "damping", 0.0), r.num(dyn, "friction", 0.0)) if dyn is not None else None
+        if name in joints:
+            continue
+        joints[name] = Joint(name, jtype, p.get("link"), c.get("link"), r.pose(el), axis, limit, mimic,
+                             dynamics, r.loc(el))
+
+    gazebo = tuple(_gazebo_block(r, g) for g in root.findall("gazebo"))
+    transmissions = tuple(
+        Transmission(t.get("name"), t, tuple(j.get("name", "") for j in t.findall("joint")), r.loc(t))
+        for t in root.findall("transmission"))
+
+    return Robot(name=root.get("name", ""), links=links, joints=joints, materials=materials, gazebo=gazebo,
+                 transmissions=transmissions, root_element=root, source=src, urdf_text=text, loc=r.loc(root),
+                 package_roots=roots, build_warnings=build_warnings, from_xacro=from_xacro, load_issues=r.issues)
+
+
+# ---------------------------------------------------------------- gazebo extensions
+def _ns(el) -> str:
+    tag = el.tag if isinstance(el.tag, str) else ""
+    return tag[1:].split("}", 1)[0] if tag.startswith("{") else ""
+
+
+def _local(el) -> str:
+    return el.tag.rsplit("}", 1)[-1] if isinstance(el.tag, str) else ""
+
+
+def _text(el) -> str:
+    t = (el.text or "").strip()
+    return t if t else (el.get("value") or "").strip()
+
+
+def _params(el) -> dict[str, str]:
+    out: dict[str, str] = {}
+    for c in el:
+        if isinstance(c.tag, str) and len(c) == 0:
+            out.setdefault(_local(c), _text(c))
+    return out
+
+
+def _plugin(r: _Reader, el, reference, sensor) -> Plugin:
+    if _ns(el).endswith("#controller"):
+        fattr = "plugin" if el.get("plugin") is not None else ("filename" if el.get("filename") is not None else None)
+        return Plugin(el.get("name"), el.get(fattr) if fattr else _local(el), "electric", _params(el), el,
+                      reference, sensor, fattr, r.loc(el))
+    fn = el.get("filename") or ""
+    name = el.get("name") or ""
+    dialect = "gz" if fn.startswith(("gz-sim", "ignition-gazebo", "libgz-sim", "libignition-gazebo")) or \
+        name.startswith(("gz::sim", "ignition::gazebo")) else "classic"
+    return Plugin(el.get("name"), el.get("filename"), dialect, _params(el), el, reference, sensor,
+                  "filename" if el.get("filename") is not None else None, r.loc(el))
+
+
+def _sensor(r: _Reader, el, reference) -> Sensor:
+    electric = _ns(el).endswith("#sensor")
+    stype = _local(el) if electric else (el.get("type") or "")
+    plugins = []
+    for c in el.iter():
+        if c is el or not isinstance(c.tag, str):
+            continue
+        if _ns(c).endswith("#controller") or _local(c) == "plugin":
+            plugins.append(_plugin(r, c, reference, el.get("name")))
+    return Sensor(el.get("name"), stype, "electric" if electric else "sdf", reference, el, tuple(plugins), r.loc(el))
+
+
+def _gazebo_block(r: _Reader, g) -> GazeboBlock:
+    ref = g.get("reference")
+    props: dict[str, str] = {}
+    plugins, sensors = [], []
+    for c in g:
+        if not isinstance(c.tag, str):
+            continue
+        ns, name = _ns(c), _local(c)
+        if ns.endswith("#sensor") or (not ns and name == "sensor"):
+            sensors.append(_sensor(r, c, ref))
+        elif ns.endswith("#controller") or (not ns and name == "plugin"):
+            plugins.append(_plugin(r, c, ref, None))
+        elif len(c) == 0:
+            props.setdefault(name, _text(c))
+    return GazeboBlock(ref, g, props, tuple(plugins), tuple(sensors), r.loc(g))

@@ -1,0 +1,63 @@
+"""Build a Pinocchio model from our Robot, with urdfdom's real errors captured.
+
+urdfdom prints its reasons ("Two root links found...") on C-level stderr (fd 2)
+and Pinocchio raises only "does not contain a valid URDF model" (env-notes.md §4);
+we redirect fd 2 around the call and put the captured text into our error.
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+
+from myrabot_desc.errors import InputError
+
+
+def capture_fd2(fn, *args, **kwargs):
+    """Run fn with file descriptor 2 redirected; return (result, captured_text)."""
+    import sys
+
+    sys.stderr.flush()
+    saved = os.dup(2)
+    with tempfile.TemporaryFile(mode="w+b") as tmp:
+        os.dup2(tmp.fileno(), 2)
+        try:
+            result = fn(*args, **kwargs)
+            error = None
+        except Exception as exc:  # re-raised after fd 2 is restored
+            result, error = None, exc
+        finally:
+            os.dup2(saved, 2)
+            os.close(saved)
+        tmp.seek(0)
+        text = tmp.read().decode("utf-8", errors="replace")
+    if error is not None:
+        raise _Wrapped(error, text)
+    return result, text
+
+
+class _Wrapped(Exception):
+    def __init__(self, error, text):
+        super().__init__(str(error))
+        self.error, self.text = error, text
+
+
+def _clean(text: str) -> str:
+    lines = [ln.strip() for ln in text.splitlines() if ln.strip() and "Library error" not in ln]
+    return "; ".join(dict.fromkeys(lines))
+
+
+def build_model(robot, floating: bool = False):
+    """pinocchio.Model of ``robot`` (free-flyer root when ``floating``)."""
+    import pinocchio as pin
+
+    xml = robot.urdf_text
+    try:
+        if floating:
+            model, _ = capture_fd2(pin.buildModelFromXML, xml, pin.JointModelFreeFlyer())
+        else:
+            model, _ = capture_fd2(pin.buildModelFromXML, xml)
+    except _Wrapped as w:
+        detail = _clean(w.text) or str(w.error)
+        raise InputError(f"Pinocchio (urdfdom) rejects the URDF: {detail}", robot.loc) from None
+    return model

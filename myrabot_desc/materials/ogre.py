@@ -378,8 +378,11 @@ def _technique(node: _Node, file: str) -> Technique:
 
 def _split_header(node: _Node, file: str) -> tuple[str, str | None]:
     toks: list[str] = []
-    for t in node.args:                       # "A : B", "A: B", "A :B"
-        if t != ":" and t.endswith(":"):
+    for t in node.args:                       # "A : B", "A: B", "A :B", "A:B"
+        if t != ":" and ":" in t.strip(":") and ":" not in toks:
+            a, b = t.split(":", 1)
+            toks += [a, ":", b]
+        elif t != ":" and t.endswith(":"):
             toks += [t[:-1], ":"]
         elif t != ":" and t.startswith(":"):
             toks += [":", t[1:]]

@@ -359,3 +359,24 @@ def test_seed_robot_gazebo_materials_resolve_with_the_arm_script_on_the_path():
         "Gazebo/Black", "Gazebo/Green", "Gazebo/Grey", "Gazebo/Red"}
     assert found["brazo_fer/WhiteTransparent"].transparency == pytest.approx(0.6)
     assert found["brazo_fer/White"].source.endswith("brazo_fer.material:20")
+
+
+def test_cli_stock_table():
+    res = _run("--stock", "--name", "Gazebo/Grey", "--to", "json")
+    assert res.exit_code == 0, res.output
+    grey = json.loads(res.output)["materials"][0]
+    assert grey["ambient"] == [0.3, 0.3, 0.3, 1.0] and grey["diffuse"] == [0.7, 0.7, 0.7, 1.0]
+    assert grey["gz_sim_lookup"]["ambient"] == [0.5, 0.5, 0.5, 1.0]        # the substring quirk, shown
+    res = _run("--stock")
+    assert res.exit_code == 0 and res.output.count("<material>") == 78
+    assert _run().exit_code == 2 and _run("--stock", FER).exit_code == 2
+    res = _run("--stock", "--name", "Gazebo/LightWood")
+    assert res.exit_code == 2 and "no material named 'Gazebo/LightWood' in Gazebo's stock table" in res.output
+
+
+def test_latin1_and_crlf_scripts(tmp_path):
+    p = tmp_path / "viejo.material"
+    p.write_bytes("// añadir al final del archivo\r\nmaterial fer/Añejo\r\n{\r\n technique\r\n {\r\n"
+                  "  pass\r\n  {\r\n   diffuse 0.5 0.25 0 1\r\n  }\r\n }\r\n}\r\n".encode("latin-1"))
+    m = ogre.parse_file(p).materials["fer/Añejo"]
+    assert m.diffuse == (0.5, 0.25, 0, 1) and m.loc.line == 2

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 
 import click
@@ -25,6 +26,14 @@ def _xml_comment(text: str) -> str:
     return text.replace("--", "- -")
 
 
+_NUM_LIST = re.compile(r"\[\s+(-?[\d.eE+-]+(?:,\s+-?[\d.eE+-]+)*)\s+\]")
+
+
+def _compact_vectors(text: str) -> str:
+    """Colours on one line: [0.3, 0.3, 0.3, 1.0] instead of six lines."""
+    return _NUM_LIST.sub(lambda m: "[" + ", ".join(x.strip() for x in m.group(1).split(",")) + "]", text)
+
+
 def sdf_block(res, texture_uri: str | None) -> str:
     """One SDF <material> for a ResolvedMaterial (explicit colours; texture as PBR albedo map)."""
     m = res.material
@@ -32,7 +41,7 @@ def sdf_block(res, texture_uri: str | None) -> str:
     if m.transparency > 0:
         notes.append(f"transparency {_num(m.transparency)}: put <transparency>{_num(m.transparency)}"
                      "</transparency> on the visual")
-    if m.texture and res.texture_path is None:
+    if m.texture and res.texture_path is None and not res.is_stock:
         notes.append(f"texture {m.texture} not found in ../textures or next to the script")
     lines = [f"<!-- {_xml_comment(m.name)} ({_xml_comment(res.source)}) -->"]
     lines += [f"<!-- {_xml_comment(n)} -->" for n in notes]
@@ -59,7 +68,7 @@ def _texture_uri(res, prefix: str | None) -> str | None:
 
 
 @click.command("materials", context_settings={"help_option_names": ["-h", "--help"]})
-@click.argument("file", metavar="FILE.material")
+@click.argument("file", metavar="FILE.material", required=False)
 @click.option("--to", "fmt", type=click.Choice(["sdf", "json"]), default="sdf", show_default=True,
               help="Output format.")
 @click.option("-o", "--output", default="-", metavar="OUT", help="Write here instead of standard output.")
@@ -68,7 +77,10 @@ def _texture_uri(res, prefix: str | None) -> str | None:
 @click.option("--texture-prefix", default=None, metavar="URI",
               help="Write textures as URI+name (e.g. model://cans/materials/textures/) instead of the "
                    "image's absolute path.")
-def materials_cmd(file, fmt, output, names, texture_prefix):
+@click.option("--stock", is_flag=True,
+              help="Print Gazebo classic's stock materials (Gazebo/Grey...) instead of a FILE; JSON also "
+                   "shows what gz-sim's substring lookup would give.")
+def materials_cmd(file, fmt, output, names, texture_prefix, stock):
     """Read an OGRE .material script (Gazebo classic) and print explicit colours.
 
     gz-sim cannot read material scripts, so each material becomes an SDF
@@ -82,6 +94,7 @@ def materials_cmd(file, fmt, output, names, texture_prefix):
       myrabot-desc materials Media/materials/scripts/myrabot_fer.material
       myrabot-desc materials brazo_fer.material --to json -o out/brazo.json
       myrabot-desc materials brazo_fer.material --name brazo_fer/White
+      myrabot-desc materials --stock --name Gazebo/Grey
     """
     from myrabot_desc.materials import ogre
     from myrabot_desc.materials.resolve import MaterialResolver, find_texture, resolved
@@ -89,36 +102,52 @@ def materials_cmd(file, fmt, output, names, texture_prefix):
     from myrabot_desc.output import write_output
 
     with guarded():
-        path = Path(file)
-        siblings = MaterialResolver([path.parent])
+        if stock == (file is not None):
+            raise click.UsageError("give a FILE.material, or --stock (not both)")
+        if stock:
+            from myrabot_desc.materials import stock as stock_mod
 
-        def parents(name: str):
-            own = siblings._load().get(name)      # noqa: SLF001 (same package)
-            return own if own is not None else stock_material(name)
+            path, warnings = None, []
+            available = {n: stock_material(n) for n in stock_mod.names()}
+            where = "Gazebo's stock table"
+        else:
+            path = Path(file)
+            siblings = MaterialResolver([path.parent])
 
-        script = ogre.parse_file(path, parents=parents)
-        mats = list(script.materials.values())
+            def parents(name: str):
+                own = siblings._load().get(name)      # noqa: SLF001 (same package)
+                return own if own is not None else stock_material(name)
+
+            script = ogre.parse_file(path, parents=parents)
+            available, warnings, where = script.materials, script.warnings, "this file"
+        mats = list(available.values())
         if names:
-            missing = [n for n in names if n not in script.materials]
+            missing = [n for n in names if n not in available]
             if missing:
-                raise InputError(f"no material named {', '.join(map(repr, missing))} in this file "
+                raise InputError(f"no material named {', '.join(map(repr, missing))} in {where} "
                                  f"(it has {len(mats)}: {', '.join(m.name for m in mats[:8])}"
-                                 f"{'...' if len(mats) > 8 else ''})", Loc(str(path)))
-            mats = [script.materials[n] for n in names]
-        results = [resolved(m, find_texture(path, m.texture) if m.texture else None) for m in mats]
+                                 f"{'...' if len(mats) > 8 else ''})", Loc(str(path)) if path else None)
+            mats = [available[n] for n in names]
+        results = [resolved(m, find_texture(path, m.texture) if (m.texture and path) else None) for m in mats]
+        source = str(path) if path else "stock"
         if fmt == "json":
-            doc = {"file": str(path), "materials": [], "warnings": script.warnings}
+            doc = {"file": source, "materials": [], "warnings": warnings}
             for r in results:
                 d = r.material.as_dict()
                 d["texture_path"] = str(r.texture_path.resolve()) if r.texture_path else None
+                if stock:
+                    from myrabot_desc.materials.stock import gz_sim_values
+
+                    gz = gz_sim_values(r.name)
+                    d["gz_sim_lookup"] = {k: list(v) for k, v in gz.items()} if gz else None
                 doc["materials"].append(d)
-            text = json.dumps(doc, indent=2) + "\n"
+            text = _compact_vectors(json.dumps(doc, indent=2)) + "\n"
         else:
-            head = [f"<!-- {len(results)} material(s) from {_xml_comment(str(path))}; explicit values for "
+            head = [f"<!-- {len(results)} material(s) from {_xml_comment(source)}; explicit values for "
                     "gz-sim, which cannot read OGRE scripts -->"]
-            head += [f"<!-- warning: {_xml_comment(w)} -->" for w in script.warnings]
+            head += [f"<!-- warning: {_xml_comment(w)} -->" for w in warnings]
             text = "\n".join(head + [sdf_block(r, _texture_uri(r, texture_prefix)) for r in results]) + "\n"
         write_output(output, text)
         if output != "-":                  # on stdout the warnings are already in the text
-            for w in script.warnings:
+            for w in warnings:
                 click.echo(f"warning: {w}", err=True)

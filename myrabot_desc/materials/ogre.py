@@ -178,31 +178,22 @@ class _Node:
     end_line: int | None = None
 
 
+_COMMENT_OR_STRING = re.compile(r'"[^"\n]*"|//[^\n]*|/\*(?:.*?\*/|.*)', re.S)
+
+
 def _strip_comments(text: str, file: str) -> str:
-    """Blank out // and /* */ comments, keeping newlines so line numbers stay right."""
-    out, i, n = [], 0, len(text)
-    in_quote = False
-    while i < n:
-        c = text[i]
-        if c == '"':
-            in_quote = not in_quote
-        elif c == "\n":
-            in_quote = False
-        if not in_quote and c == "/" and i + 1 < n and text[i + 1] == "/":
-            j = text.find("\n", i)
-            i = n if j < 0 else j
-            continue
-        if not in_quote and c == "/" and i + 1 < n and text[i + 1] == "*":
-            j = text.find("*/", i + 2)
-            if j < 0:
-                line = text.count("\n", 0, i) + 1
-                raise InputError("'/*' comment is never closed (truncated file?)", Loc(file, line))
-            out.append("\n" * text.count("\n", i, j + 2))
-            i = j + 2
-            continue
-        out.append(c)
-        i += 1
-    return "".join(out)
+    """Blank out // and /* */ comments (not inside "strings"), keeping newlines for line numbers."""
+
+    def repl(m: re.Match) -> str:
+        s = m.group(0)
+        if s[0] == '"':
+            return s
+        if s.startswith("/*") and not (len(s) >= 4 and s.endswith("*/")):
+            line = text.count("\n", 0, m.start()) + 1
+            raise InputError("'/*' comment is never closed (truncated file?)", Loc(file, line))
+        return "\n" * s.count("\n")
+
+    return _COMMENT_OR_STRING.sub(repl, text)
 
 
 def _tokens(text: str, file: str):

@@ -235,18 +235,18 @@ def stl_bytes(mesh):
 # ---------------------------------------------------------------- textures
 
 def _wood_texture(size=256):
+    """Light grey grain (0.78..1.0): the material's wood colour modulates it."""
     import numpy as np
     from PIL import Image
 
     rng = np.random.default_rng(20140212)  # the seed page's revision date
     y, x = np.mgrid[0:size, 0:size].astype(float)
-    wobble = 6.0 * np.sin(x / 37.0) + 3.0 * np.sin(x / 11.0 + 1.3)
-    rings = 0.5 + 0.5 * np.sin((y + wobble) / 5.5)
-    noise = rng.normal(0.0, 0.04, (size, size))
-    t = np.clip(0.75 + 0.2 * rings + noise, 0, 1)
-    base = np.array([205, 133, 63], dtype=float)  # the seed's "wood" colour
-    img = np.clip(base[None, None, :] * t[..., None] * 1.05, 0, 255).astype(np.uint8)
-    return Image.fromarray(img, "RGB")
+    wobble = 6.0 * np.sin(2 * np.pi * x / size) + 3.0 * np.sin(6 * np.pi * x / size + 1.3)
+    rings = 0.5 + 0.5 * np.sin(2 * np.pi * 8 * (y + wobble) / size)
+    noise = rng.normal(0.0, 0.02, (size, size))
+    t = np.clip(0.80 + 0.18 * rings + noise, 0, 1)
+    img = (255 * t).round().astype(np.uint8)
+    return Image.fromarray(np.stack([img] * 3, axis=-1), "RGB")
 
 
 def _can_texture(background, band, stripe, wave=False, size=(512, 256)):
@@ -272,7 +272,7 @@ def _can_texture(background, band, stripe, wave=False, size=(512, 256)):
 
 TEXTURES = {
     "wood.png": lambda: _wood_texture(),
-    "amstel.png": lambda: _can_texture((200, 16, 30), (236, 196, 72), (255, 255, 255)),
+    "amstel.png": lambda: _can_texture((242, 240, 232), (200, 16, 30), (212, 170, 60)),
     "coca_cola.png": lambda: _can_texture((196, 0, 14), (255, 255, 255), (255, 255, 255), wave=True),
 }
 

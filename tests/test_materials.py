@@ -380,3 +380,16 @@ def test_latin1_and_crlf_scripts(tmp_path):
                   "  pass\r\n  {\r\n   diffuse 0.5 0.25 0 1\r\n  }\r\n }\r\n}\r\n".encode("latin-1"))
     m = ogre.parse_file(p).materials["fer/Añejo"]
     assert m.diffuse == (0.5, 0.25, 0, 1) and m.loc.line == 2
+
+
+def test_variables_and_abstract_templates():
+    s = ogre.parse_file(FIX / "variables.material")
+    assert list(s.materials) == ["fer/TintedRed", "fer/TintedDefault"]          # the template is not output
+    red, plain = s.materials["fer/TintedRed"], s.materials["fer/TintedDefault"]
+    assert red.diffuse == (1, 0, 0, 1) and red.specular == (0.5, 0.5, 0.5, 1) and red.shininess == 16
+    assert red.texture == "rojo.png" and red.ambient == (0.2, 0.2, 0.2, 1)
+    assert plain.diffuse == (1, 1, 1, 1) and plain.texture == "blank.png"       # the template's defaults
+    text = (FIX / "variables.material").read_text() + "\nmaterial fer/NoShine : fer/Tinted\n{\n}\n"
+    with pytest.raises(InputError) as ei:
+        ogre.parse_text(text, "v.material")
+    assert ei.value.loc.line == 12 and "variable $shine is not set" in ei.value.message

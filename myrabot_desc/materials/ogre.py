@@ -30,7 +30,8 @@ Grammar covered (Ogre manual, "Material Scripts")::
         }
     }
 
-``//`` and ``/* */`` comments. Inheritance follows Ogre: the child starts from a copy of its
+``abstract material`` templates with ``set $name "value"`` variables (filled in by children; a
+template itself is never output). ``//`` and ``/* */`` comments. Inheritance follows Ogre: the child starts from a copy of its
 parent's techniques; a child technique, pass or texture_unit overrides the parent's one with the
 same name, or, when unnamed, the one at the same position; otherwise it is appended.
 
@@ -133,6 +134,8 @@ class Material:
     explicit: frozenset
     techniques: tuple[Technique, ...]
     loc: Loc | None = None
+    variables: dict = field(default_factory=dict)   # `set $name value`, parents' included
+    abstract: bool = False                          # `abstract material`: a template, not output
 
     def as_dict(self) -> dict:
         return {
@@ -158,6 +161,8 @@ class RawMaterial:
     parent: str | None
     techniques: list          # list[Technique] (child overrides)
     loc: Loc
+    variables: dict = field(default_factory=dict)   # $name -> [tokens]
+    abstract: bool = False
 
 
 @dataclass
@@ -166,6 +171,20 @@ class Script:
     materials: dict[str, Material]        # in file order
     imports: list[str] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)
+
+
+@dataclass(frozen=True)
+class _Var:
+    """A value written with $variables, parsed once the material's variables are known."""
+
+    key: str
+    args: tuple
+    file: str
+    line: int
+
+
+def _has_var(args) -> bool:
+    return any(a.startswith("$") for a in args)
 
 
 # ------------------------------------------------------------------ tokens and blocks
@@ -337,7 +356,9 @@ def _pass(node: _Node, file: str) -> Pass:
             if c.key == "texture_unit":
                 units.append(_texture_unit(c, file))
             continue                       # vertex_program_ref { } and friends: skipped
-        if c.key in ("ambient", "diffuse", "emissive"):
+        if c.key in ("ambient", "diffuse", "emissive", "specular") and _has_var(c.args):
+            props[c.key] = _Var(c.key, tuple(c.args), file, c.line)
+        elif c.key in ("ambient", "diffuse", "emissive"):
             col = _colour(c, file)
             if col is not None:
                 props[c.key] = col
@@ -365,6 +386,18 @@ def _pass(node: _Node, file: str) -> Pass:
 def _technique(node: _Node, file: str) -> Technique:
     passes = [_pass(c, file) for c in node.children or [] if c.key == "pass" and c.children is not None]
     return Technique(name=_name_arg(node), passes=tuple(passes), line=node.line)
+
+
+def _variables(node: _Node, file: str, out: dict) -> dict:
+    """Every `set $name value` in a material, any depth (a simplification of Ogre's scopes)."""
+    for c in node.children or []:
+        if c.key == "set" and c.children is None:
+            if len(c.args) < 2 or not c.args[0].startswith("$"):
+                raise InputError("set takes: set $name value", Loc(file, c.line))
+            out[c.args[0]] = " ".join(c.args[1:]).split()
+        elif c.children is not None:
+            _variables(c, file, out)
+    return out
 
 
 def _split_header(node: _Node, file: str) -> tuple[str, str | None]:
@@ -406,7 +439,8 @@ def parse_raw(text: str, file: str = "<string>", *, max_bytes: int = MAX_BYTES,
     seen: dict[str, int] = {}
     for node in _tree(text, file, max_depth):
         key, args = node.key, node.args
-        if key == "abstract" and args and args[0] == "material":
+        abstract = key == "abstract" and bool(args) and args[0] == "material"
+        if abstract:
             key, args = "material", args[1:]
             node = _Node(key, args, node.line, node.children, node.end_line)
         if key == "import":
@@ -424,7 +458,8 @@ def parse_raw(text: str, file: str = "<string>", *, max_bytes: int = MAX_BYTES,
             seen[name] = node.line
             techs = [_technique(c, file) for c in node.children
                      if c.key == "technique" and c.children is not None]
-            mats.append(RawMaterial(name, parent, techs, Loc(file, node.line)))
+            mats.append(RawMaterial(name, parent, techs, Loc(file, node.line),
+                                    _variables(node, file, {}), abstract))
         elif key in _SKIPPED_TOP or node.children is not None:
             continue
         else:
@@ -474,13 +509,55 @@ def _merge_technique(a: Technique, b: Technique) -> Technique:
     return _replace(a, {"passes": tuple(_merge_list(list(a.passes), b.passes, _merge_pass))})
 
 
-def summarize(name: str, parent: str | None, techniques: tuple[Technique, ...], loc: Loc | None) -> Material:
+def _substitute(techs: tuple[Technique, ...], variables: dict, owner: str) -> tuple[Technique, ...]:
+    """Replace $variables in pass values and texture names (Ogre's `set $x ...`)."""
+
+    def expand(args, file, line):
+        out = []
+        for a in args:
+            if a.startswith("$"):
+                if a not in variables:
+                    raise InputError(f"material {owner!r}: variable {a} is not set (add `set {a} ...` "
+                                     "to the material or its parent)", Loc(file, line))
+                out.extend(variables[a])
+            else:
+                out.append(a)
+        return out
+
+    def fix_pass(p: Pass) -> Pass:
+        props = dict(p.props)
+        for k, v in p.props.items():
+            if not isinstance(v, _Var):
+                continue
+            node = _Node(v.key, expand(v.args, v.file, v.line), v.line)
+            del props[k]
+            if k == "specular":
+                col, shin = _specular(node, v.file)
+                if col is not None:
+                    props["specular"] = col
+                if shin is not None:
+                    props["shininess"] = shin
+            else:
+                col = _colour(node, v.file)
+                if col is not None:
+                    props[k] = col
+        units = tuple(_replace(u, {"texture": expand([u.texture], "", u.line or 0)[0]})
+                      if u.texture and u.texture.startswith("$") and u.texture in variables else u
+                      for u in p.texture_units)
+        return _replace(p, {"props": props, "texture_units": units})
+
+    return tuple(_replace(t, {"passes": tuple(fix_pass(p) for p in t.passes)}) for t in techs)
+
+
+def summarize(name: str, parent: str | None, techniques: tuple[Technique, ...], loc: Loc | None,
+              variables: dict | None = None, abstract: bool = False) -> Material:
     """Flatten techniques into the colour summary (see :class:`Material`)."""
     passes = techniques[0].passes if techniques else ()
     got: dict = {}
     for p in passes:
         for k, v in p.props.items():
-            got.setdefault(k, v)
+            if not isinstance(v, _Var):          # unresolved only in abstract templates
+                got.setdefault(k, v)
     units = [u for p in passes for u in p.texture_units]
     tex_unit = next((u for u in units if u.texture), None)
     manual_colour = next((u.manual_colour for u in units if u.manual_colour is not None), None)
@@ -506,7 +583,8 @@ def summarize(name: str, parent: str | None, techniques: tuple[Technique, ...], 
         texture=tex_unit.texture if tex_unit else None,
         texture_rotate=tex_unit.rotate if tex_unit else 0.0,
         texture_scale=tex_unit.scale if tex_unit else (1.0, 1.0),
-        explicit=frozenset(explicit), techniques=tuple(techniques), loc=loc)
+        explicit=frozenset(explicit), techniques=tuple(techniques), loc=loc,
+        variables=dict(variables or {}), abstract=abstract)
 
 
 def _did_you_mean(name: str, local) -> str:
@@ -534,27 +612,32 @@ def build_materials(raws: list[RawMaterial], external: Callable[[str], Material 
         if raw.name in done:
             return done[raw.name]
         base: tuple[Technique, ...] = ()
+        base_vars: dict = {}
         if raw.parent is not None:
             if raw.parent in chain or raw.parent == raw.name:
                 raise InputError(f"material {raw.name!r}: inheritance cycle "
                                  f"{' -> '.join(chain + (raw.name, raw.parent))}", raw.loc)
             if raw.parent in by_name:
-                base = build(by_name[raw.parent], chain + (raw.name,)).techniques
+                pm = build(by_name[raw.parent], chain + (raw.name,))
+                base, base_vars = pm.techniques, pm.variables
             else:
                 ext = external(raw.parent) if external else None
                 if ext is None:
                     raise InputError(f"material {raw.name!r}: parent {raw.parent!r} is not defined "
                                      "(not in this script, its imports, or Gazebo's stock materials)"
                                      + _did_you_mean(raw.parent, by_name), raw.loc)
-                base = ext.techniques
+                base, base_vars = ext.techniques, ext.variables
         techs = tuple(_merge_list(list(base), raw.techniques, _merge_technique))
-        mat = summarize(raw.name, raw.parent, techs, raw.loc)
+        variables = {**base_vars, **raw.variables}
+        if not raw.abstract:
+            techs = _substitute(techs, variables, raw.name)
+        mat = summarize(raw.name, raw.parent, techs, raw.loc, variables, raw.abstract)
         done[raw.name] = mat
         return mat
 
     out: dict[str, Material] = {}
     for r in raws:
-        if by_name[r.name] is not r:
+        if by_name[r.name] is not r or r.abstract:
             continue
         try:
             out[r.name] = build(r, ())

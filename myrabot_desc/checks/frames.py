@@ -1,0 +1,250 @@
+"""S: sensors and frames (references, optical frames, massless sensor links, sensor parameters)."""
+
+from __future__ import annotations
+
+import math
+
+from myrabot_desc.checks.registry import Finding, rule
+
+FRAME_PARAMS = ("bodyName", "frameName", "frameId", "frame_name", "robotBaseFrame", "robot_base_frame",
+                "gz_frame_id", "ignition_frame_id", "optical_frame_id")
+CAMERA_TYPES = {"camera", "depth", "depth_camera", "rgbd_camera", "rgbd", "multicamera", "wideanglecamera",
+                "thermal_camera", "thermal", "segmentation_camera", "segmentation"}
+RAY_TYPES = {"ray", "gpu_ray", "lidar", "gpu_lidar", "sonar"}
+
+
+def _frame_names(ctx) -> set[str]:
+    return set(ctx.robot.links)
+
+
+def _clean(name: str) -> str:
+    return (name or "").strip().lstrip("/")
+
+
+@rule("S001", "gazebo-reference-exists", "error")
+def gazebo_reference(ctx):
+    """Every `<gazebo reference="X">` names an existing link or joint.
+
+    A reference to nothing is skipped silently by the converter: the friction, the
+    material, the sensor in that block never reach the simulator (for example a
+    misspelt link, or a block emitted for a link whose macro was never called).
+    Fix: the exact link name (did-you-mean is given).
+    """
+    from myrabot_desc.checks.urdf_syntax import suggest
+
+    r = ctx.robot
+    names = set(r.links) | set(r.joints)
+    for g in r.gazebo:
+        if g.reference is not None and g.reference not in names:
+            what = [*(f"sensor {s.name}" for s in g.sensors), *(f"plugin {p.name}" for p in g.plugins),
+                    *sorted(g.properties)]
+            guess = suggest(g.reference, names)
+            yield Finding(f"<gazebo reference=\"{g.reference}\"> names no link or joint; its content is lost"
+                          + (f" ({', '.join(what[:5])})" if what else "")
+                          + (f"; did you mean {guess}?" if guess else ""), g.loc,
+                          {"reference": g.reference, "suggestion": guess, "content": what})
+
+
+@rule("S002", "plugin-frame-exists", "error")
+def plugin_frames(ctx):
+    """Plugin parameters that name a frame (bodyName, frameName, frameId, frame_name, robotBaseFrame...) name an existing link.
+
+    The plugin stamps its messages (or applies its forces) in that frame; a frame that
+    does not exist breaks TF lookups downstream (RViz shows nothing, the IMU plugin
+    fails to find its body). Fix: the exact link name.
+    """
+    from myrabot_desc.checks.urdf_syntax import suggest
+
+    names = _frame_names(ctx)
+    for p in ctx.robot.plugins():
+        for key in FRAME_PARAMS:
+            val = p.params.get(key)
+            if val is None or not _clean(val) or "$" in val:
+                continue
+            if _clean(val) not in names:
+                guess = suggest(_clean(val), names)
+                yield Finding(f"plugin {p.name or p.library}: {key} '{val}' is not a link of this robot"
+                              + (f"; did you mean {guess}?" if guess else ""), p.loc,
+                              {"plugin": p.name, "param": key, "value": val, "suggestion": guess})
+
+
+def _camera_frame(sensor):
+    for p in sensor.plugins:
+        for key in ("frameName", "frame_name", "gz_frame_id", "ignition_frame_id", "optical_frame_id"):
+            if p.params.get(key):
+                return _clean(p.params[key]), f"plugin {key}"
+    for path in (("camera", "optical_frame_id"), ("gz_frame_id",), ("frame_id",)):
+        v = sensor.param(*path)
+        if v:
+            return _clean(v), "/".join(path)
+    return sensor.reference, "the sensor's link"
+
+
+def _is_camera(sensor) -> bool:
+    return sensor.type in CAMERA_TYPES
+
+
+@rule("S003", "camera-optical-frame", "warning")
+def optical_frame(ctx):
+    """Cameras report in a REP-103 optical frame: z forward, x right, y down.
+
+    A Gazebo camera looks along its link's +x, but image consumers (image_geometry,
+    depth_image_proc, RViz) expect the image's frame to have z forward. Stamping images
+    with the x-forward body frame puts point clouds and projections 90° off. Fix: a
+    child frame `<name>_optical` with `rpy="-1.5708 0 -1.5708"` and that frame as the
+    plugin's frameName / frame_name.
+    """
+    import numpy as np
+
+    r = ctx.robot
+    W = ctx.world
+    for s in r.sensors():
+        if not _is_camera(s) or s.reference not in W:
+            continue
+        frame, how = _camera_frame(s)
+        if frame not in W:
+            continue                     # S002 reports unknown frames
+        R = W[s.reference][:3, :3].T @ W[frame][:3, :3]      # frame axes in the sensor link's frame
+        z, x = R[:, 2], R[:, 0]
+        if z @ np.array([1.0, 0, 0]) > 0.98 and x @ np.array([0, -1.0, 0]) > 0.98:
+            continue
+        loc = next((p.loc for p in s.plugins if p.loc), s.loc)
+        yield Finding(f"camera {s.name} stamps images in {frame} ({how}), whose z axis is "
+                      f"({z[0]:.2g} {z[1]:.2g} {z[2]:.2g}) in {s.reference}; the camera looks along {s.reference}'s +x, "
+                      f"so the image frame should be an optical frame (z forward): add a frame with "
+                      f"rpy=\"-1.5708 0 -1.5708\" under {s.reference} and use it (REP-103)", loc,
+                      {"sensor": s.name, "frame": frame, "z_axis": z.tolist(),
+                       "fix": {"parent": s.reference, "rpy": [-math.pi / 2, 0.0, -math.pi / 2]}})
+
+
+@rule("S004", "sensor-on-massless-link", "warning")
+def massless_sensor_link(ctx):
+    """A sensor attached to a massless leaf link can vanish in URDF→SDF conversion.
+
+    A link without mass survives conversion only when its fixed joint is lumped into
+    the parent (then the sensor moves to the parent). If the joint is not fixed, or
+    lumping is disabled for it, the link is dropped with its sensor (sdformat #199);
+    the Electric-era converter ignored massless links altogether. Severity: error when
+    the link will be dropped, warning for the Electric dialect, info when lumping keeps it.
+    Fix: give the sensor link a small inertial (1 g, 1e-6 kg·m²).
+    """
+    r = ctx.robot
+    lump_off = {g.reference for g in r.gazebo
+                if (g.properties.get("preserveFixedJoint", "").lower() in ("true", "1")
+                    or g.properties.get("disableFixedJointLumping", "").lower() in ("true", "1"))}
+    for s in r.sensors():
+        link = r.links.get(s.reference or "")
+        if link is None or link.mass > 0 or r.child_joints(link.name):
+            continue
+        pj = r.parent_joint(link.name)
+        if pj is None:
+            continue
+        if pj.type != "fixed" or pj.name in lump_off:
+            sev, why = "error", ("its joint is not fixed" if pj.type != "fixed" else "fixed-joint lumping is off for it")
+        elif s.dialect == "electric":
+            sev, why = "warning", "the Electric-era converter ignores links without mass"
+        else:
+            sev, why = "info", f"it survives only because fixed-joint lumping moves the sensor onto {pj.parent}"
+        yield Finding(f"sensor {s.name} ({s.type}) sits on massless leaf link {link.name}: {why}",
+                      s.loc, {"sensor": s.name, "link": link.name, "joint": pj.name}, severity=sev)
+
+
+def _num(v):
+    try:
+        return float(v)
+    except (TypeError, ValueError):
+        return None
+
+
+def _ranges(s):
+    """(min, max, label) pairs of a sensor, both dialects."""
+    out = []
+    if s.dialect == "electric":
+        if s.type == "ray":
+            out.append((_num(s.param("minRange")), _num(s.param("maxRange")), "minRange/maxRange"))
+        if s.type == "camera":
+            out.append((_num(s.param("nearClip")), _num(s.param("farClip")), "nearClip/farClip"))
+    else:
+        for root in ("ray", "lidar"):
+            out.append((_num(s.param(root, "range", "min")), _num(s.param(root, "range", "max")), f"{root}/range"))
+        out.append((_num(s.param("camera", "clip", "near")), _num(s.param("camera", "clip", "far")), "camera/clip"))
+    return [(a, b, lab) for a, b, lab in out if a is not None or b is not None]
+
+
+@rule("S005", "sensor-range", "error")
+def sensor_range(ctx):
+    """A sensor's minimum range (near clip) must be below its maximum (far clip), and above 0 for rays.
+
+    min ≥ max leaves nothing to measure. A ray sensor with min range 0 starts its rays
+    inside its own link and can see itself (warning). Fix: the device's datasheet range
+    (hobby sonars: about 0.02–4 m).
+    """
+    for s in ctx.robot.sensors():
+        for lo, hi, label in _ranges(s):
+            if lo is not None and hi is not None and lo >= hi:
+                yield Finding(f"sensor {s.name}: {label} min {lo:g} ≥ max {hi:g}", s.loc,
+                              {"sensor": s.name, "min": lo, "max": hi})
+            elif lo is not None and lo <= 0 and (s.type in RAY_TYPES):
+                yield Finding(f"sensor {s.name}: {label} min {lo:g} m: rays start inside the sensor's own link",
+                              s.loc, {"sensor": s.name, "min": lo}, severity="warning")
+
+
+RADIAN_PARAMS = {"fov": "sensor_msgs/Range.field_of_view"}
+
+
+@rule("S006", "angle-units", "error")
+def angle_units(ctx):
+    """Angles in degrees where radians are expected (sonar `fov 32`, SDF `horizontal_fov 60`).
+
+    SDF sensors and ROS messages use radians; the Electric dialect's `hfov`, `minAngle`
+    and `maxAngle` were degrees, so copied values keep their degree numbers. A sonar
+    `fov` of 32 becomes a 32-radian cone in sensor_msgs/Range. Fix: the value in
+    radians (given: 32° = 0.5585 rad).
+    """
+    for s in ctx.robot.sensors():
+        checks = []
+        if s.dialect == "electric":
+            hf = _num(s.param("hfov"))
+            if hf is not None and not 0 < hf < 180:
+                checks.append(("hfov", hf, "degrees in (0, 180)"))
+        else:
+            hf = _num(s.param("camera", "horizontal_fov"))
+            if hf is not None and not 0 < hf <= 2 * math.pi:
+                checks.append(("camera/horizontal_fov", hf, "radians in (0, 2π]"))
+            for root in ("ray", "lidar"):
+                for axis in ("horizontal", "vertical"):
+                    for k in ("min_angle", "max_angle"):
+                        v = _num(s.param(root, "scan", axis, k))
+                        if v is not None and abs(v) > 2 * math.pi + 1e-6:
+                            checks.append((f"{root}/scan/{axis}/{k}", v, "radians in [-2π, 2π]"))
+        for p in s.plugins:
+            for key, what in RADIAN_PARAMS.items():
+                v = _num(p.params.get(key))
+                if v is not None and v > 2 * math.pi:
+                    checks.append((f"plugin {p.name or p.library} {key}", v, f"radians ({what})"))
+        for label, v, expected in checks:
+            if "degrees" in expected:
+                msg = f"sensor {s.name}: {label} {v:g} is out of range (expected {expected})"
+                fix = None
+            else:
+                fix = math.radians(v)
+                msg = (f"sensor {s.name}: {label} {v:g} looks like degrees; expected {expected}: "
+                       f"{v:g}° = {fix:.4g} rad")
+            yield Finding(msg, next((p.loc for p in s.plugins if p.loc), s.loc),
+                          {"sensor": s.name, "param": label, "value": v, "fix": fix})
+
+
+@rule("S007", "camera-fov-range", "warning")
+def camera_fov(ctx):
+    """A pinhole camera's horizontal field of view should lie between about 0.1 and 3.0 rad.
+
+    Gazebo renders a pinhole camera only up to just under π; wider views need a
+    wide-angle camera type. Fix: the lens's real field of view (a webcam is ~1.0 rad).
+    """
+    for s in ctx.robot.sensors():
+        if s.dialect == "electric" or s.type not in ("camera", "depth", "depth_camera", "rgbd_camera", "multicamera"):
+            continue
+        hf = _num(s.param("camera", "horizontal_fov"))
+        if hf is not None and 0 < hf <= 2 * math.pi and not 0.05 <= hf < math.pi:
+            yield Finding(f"camera {s.name}: horizontal_fov {hf:g} rad ({math.degrees(hf):.0f}°) is outside a pinhole "
+                          "camera's range", s.loc, {"sensor": s.name, "horizontal_fov": hf})

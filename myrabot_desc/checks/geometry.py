@@ -1,0 +1,206 @@
+"""Solid-body facts of URDF geometry: volume, inertia, extents, lowest points.
+
+Primitives use closed forms (trimesh's Cylinder/Sphere primitives ignore density,
+env-notes §5); meshes go through trimesh, imported only when a mesh is loaded.
+Cylinders have their axis along local z (URDF convention). numpy is imported inside
+functions so that importing the checks stays cheap.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+
+@dataclass
+class MassProps:
+    volume: float
+    com: object          # (3,) in the frame the props are expressed in
+    inertia: object      # (3,3) about com, per the given mass
+    mass: float
+
+
+def primitive_volume(g) -> float:
+    if g.kind == "box":
+        return g.size[0] * g.size[1] * g.size[2]
+    if g.kind == "cylinder":
+        return math.pi * g.radius ** 2 * g.length
+    if g.kind == "sphere":
+        return 4.0 / 3.0 * math.pi * g.radius ** 3
+    raise ValueError(g.kind)
+
+
+def primitive_inertia(g, mass: float):
+    """3x3 inertia about the centroid in the geometry frame (closed forms)."""
+    import numpy as np
+
+    if g.kind == "box":
+        x, y, z = g.size
+        d = (y * y + z * z, x * x + z * z, x * x + y * y)
+        return np.diag([mass * v / 12.0 for v in d])
+    if g.kind == "cylinder":
+        r, h = g.radius, g.length
+        a = mass * (3 * r * r + h * h) / 12.0
+        return np.diag([a, a, mass * r * r / 2.0])
+    if g.kind == "sphere":
+        return np.eye(3) * (2.0 / 5.0 * mass * g.radius ** 2)
+    raise ValueError(g.kind)
+
+
+def describe(g) -> str:
+    if g.kind == "box":
+        return "box {:g}×{:g}×{:g} m".format(*g.size)
+    if g.kind == "cylinder":
+        return f"cylinder r {g.radius:g} l {g.length:g} m"
+    if g.kind == "sphere":
+        return f"sphere r {g.radius:g} m"
+    sc = "" if tuple(g.scale) == (1.0, 1.0, 1.0) else " scale {:g} {:g} {:g}".format(*g.scale)
+    return f"mesh {g.filename.rsplit('/', 1)[-1]}{sc}"
+
+
+def load_mesh(g):
+    """Load a mesh file as one trimesh.Trimesh with the URDF scale applied; str on failure."""
+    import trimesh
+
+    try:
+        m = trimesh.load(str(g.path), force="mesh", process=True)
+    except Exception as exc:  # unreadable or unsupported format
+        return f"cannot read {g.path.name}: {type(exc).__name__}: {exc}"
+    if not isinstance(m, trimesh.Trimesh) or len(m.faces) == 0:
+        return f"{g.path.name} holds no triangles"
+    if tuple(g.scale) != (1.0, 1.0, 1.0):
+        import numpy as np
+
+        m.apply_transform(np.diag([*g.scale, 1.0]))
+    return m
+
+
+def shape_props(g, mesh=None):
+    """(volume, com(3,), unit inertia (3,3) per kg about com) in the geometry frame, or None.
+
+    For a mesh, ``mesh`` is the loaded trimesh; only a watertight, outward mesh gives props.
+    """
+    import numpy as np
+
+    if g.kind in ("box", "cylinder", "sphere"):
+        return primitive_volume(g), np.zeros(3), primitive_inertia(g, 1.0)
+    if mesh is None or isinstance(mesh, str) or not mesh.is_volume or mesh.volume <= 0:
+        return None
+    vol = float(mesh.volume)
+    return vol, np.asarray(mesh.center_mass, float), np.asarray(mesh.moment_inertia, float) / vol
+
+
+def combine(parts, mass: float):
+    """Uniform-density solid made of parts [(volume, com, unit_inertia, 4x4 pose)] at total mass.
+
+    Returns MassProps in the link frame (overlaps are counted twice: a fair approximation
+    for the rough check this is).
+    """
+    import numpy as np
+
+    vol = sum(p[0] for p in parts)
+    if vol <= 0:
+        return None
+    coms, ms = [], []
+    for v, c, _, T in parts:
+        coms.append(T[:3, :3] @ c + T[:3, 3])
+        ms.append(mass * v / vol)
+    com = sum(m * c for m, c in zip(ms, coms)) / mass if mass > 0 else sum(coms) / len(coms)
+    inertia = np.zeros((3, 3))
+    for (v, c, Iu, T), m, cw in zip(parts, ms, coms):
+        R = T[:3, :3]
+        d = cw - com
+        inertia += R @ (Iu * m) @ R.T + m * (d @ d * np.eye(3) - np.outer(d, d))
+    return MassProps(vol, com, inertia, mass)
+
+
+def half_extent(g, R, e, mesh=None) -> float | None:
+    """Half-width of the shape along unit direction e (R: the shape's rotation in e's frame)."""
+    import numpy as np
+
+    e = np.asarray(e, float)
+    if g.kind == "box":
+        return float(sum(abs(R[:, i] @ e) * g.size[i] / 2 for i in range(3)))
+    if g.kind == "cylinder":
+        c = abs(R[:, 2] @ e)
+        return float(g.length / 2 * c + g.radius * math.sqrt(max(0.0, 1 - c * c)))
+    if g.kind == "sphere":
+        return float(g.radius)
+    return None
+
+
+def lowest_points(g, T, mesh=None, tol: float = 1e-3):
+    """(min z, [xyz points within tol of it]) of a shape placed by world pose T, or None."""
+    import numpy as np
+
+    R, p = T[:3, :3], T[:3, 3]
+    if g.kind == "sphere":
+        return p[2] - g.radius, [p - [0, 0, g.radius]]
+    if g.kind == "box":
+        sx, sy, sz = (s / 2 for s in g.size)
+        pts = np.array([[a, b, c] for a in (-sx, sx) for b in (-sy, sy) for c in (-sz, sz)]) @ R.T + p
+    elif g.kind == "cylinder":
+        axis = R[:, 2]
+        down = np.array([0.0, 0.0, -1.0]) - axis * (-axis[2])        # -z with the axis part removed
+        n = np.linalg.norm(down)
+        rim = []
+        if n > 1e-9:                                                  # tilted or horizontal: one rim point per cap
+            rim = [down / n * g.radius]
+        else:                                                         # upright: sample the bottom circle
+            u, v = R[:, 0], R[:, 1]
+            rim = [g.radius * (math.cos(t) * u + math.sin(t) * v) for t in np.linspace(0, 2 * math.pi, 16, endpoint=False)]
+        pts = np.array([p + s * axis * g.length / 2 + r for s in (-1, 1) for r in rim])
+    elif mesh is not None and not isinstance(mesh, str):
+        pts = np.asarray(mesh.vertices) @ R.T + p
+    else:
+        return None
+    zmin = float(pts[:, 2].min())
+    return zmin, [q for q in pts if q[2] <= zmin + tol]
+
+
+def aabb_corners(g, mesh=None):
+    """8 corners (or hull points) bounding the shape in its own frame, or None."""
+    import numpy as np
+
+    if g.kind == "box":
+        h = np.array(g.size) / 2
+    elif g.kind == "cylinder":
+        h = np.array([g.radius, g.radius, g.length / 2])
+    elif g.kind == "sphere":
+        h = np.array([g.radius] * 3)
+    elif mesh is not None and not isinstance(mesh, str):
+        lo, hi = mesh.bounds
+        return np.array([[a, b, c] for a in (lo[0], hi[0]) for b in (lo[1], hi[1]) for c in (lo[2], hi[2])])
+    else:
+        return None
+    return np.array([[a, b, c] for a in (-h[0], h[0]) for b in (-h[1], h[1]) for c in (-h[2], h[2])])
+
+
+def contains(g, point, margin: float, mesh=None) -> bool | None:
+    """Is a point (in the shape's frame) inside the shape grown by margin? None if unknown."""
+    import numpy as np
+
+    x, y, z = point
+    if g.kind == "box":
+        return all(abs(c) <= s / 2 + margin for c, s in zip(point, g.size))
+    if g.kind == "cylinder":
+        return math.hypot(x, y) <= g.radius + margin and abs(z) <= g.length / 2 + margin
+    if g.kind == "sphere":
+        return math.sqrt(x * x + y * y + z * z) <= g.radius + margin
+    if mesh is not None and not isinstance(mesh, str):
+        lo, hi = mesh.bounds
+        return bool(np.all(point >= lo - margin) and np.all(point <= hi + margin))
+    return None
+
+
+def size_of(g, mesh=None) -> float | None:
+    """Largest dimension of the shape (m), for relative tolerances."""
+    if g.kind == "box":
+        return max(g.size)
+    if g.kind == "cylinder":
+        return max(2 * g.radius, g.length)
+    if g.kind == "sphere":
+        return 2 * g.radius
+    if mesh is not None and not isinstance(mesh, str):
+        return float(max(mesh.extents))
+    return None

@@ -1,0 +1,159 @@
+"""I: masses and inertia tensors on their own (no geometry needed)."""
+
+from __future__ import annotations
+
+from collections import defaultdict
+
+from myrabot_desc.checks.registry import Finding, rule
+
+TRIANGLE_TOL = 1e-3      # relative: a + b >= c (1 - tol); URDF files round to ~6 digits
+
+
+def _has_geometry(ctx, head: str) -> list[str]:
+    r = ctx.robot
+    return [n for n, h in ctx.body_of.items() if h == head and (r.links[n].visuals or r.links[n].collisions)]
+
+
+@rule("I001", "moving-link-mass", "error")
+def moving_link_mass(ctx):
+    """A link that moves (its parent joint is not fixed) and has geometry needs a positive mass.
+
+    Gazebo's URDF→SDF conversion drops a massless moving link together with everything
+    attached below it; MuJoCo refuses it (mjMINVAL); Pinocchio's dynamics turn NaN when
+    nothing below the joint has mass. Fix: an `<inertial>` with the part's real mass and
+    inertia (`check --inertia --suggest` computes the tensor from the geometry).
+    """
+    r = ctx.robot
+    for head, m in ctx.body_mass.items():
+        pj = r.parent_joint(head)
+        if pj is None or pj.type == "fixed" or m > 0:
+            continue
+        geo = _has_geometry(ctx, head)
+        if geo:
+            yield Finding(f"link {head} moves (joint {pj.name}, {pj.type}) and has geometry but no mass"
+                          + (f" (nor do the links fixed to it: {', '.join(g for g in geo if g != head)})"
+                             if len(geo) > 1 or geo[0] != head else ""),
+                          r.links[head].loc, {"link": head, "joint": pj.name})
+
+
+@rule("I002", "massless-moving-frame", "warning")
+def massless_moving_frame(ctx):
+    """A massless link without geometry on a moving joint: SDF conversion drops it and its subtree.
+
+    Pinocchio accepts it as long as links further down carry mass, but Gazebo's
+    URDF→SDF converter removes a massless link whose parent joint is not fixed, with
+    every link below it (sdformat #199), and MuJoCo refuses it. Fix: give it a small
+    mass and inertia (for instance 1 g and 1e-6 kg·m²), or merge it into its child.
+    """
+    r = ctx.robot
+    for head, m in ctx.body_mass.items():
+        pj = r.parent_joint(head)
+        if pj is None or pj.type == "fixed" or m > 0 or _has_geometry(ctx, head):
+            continue
+        below = [j.child for j in r.child_joints(head)]
+        yield Finding(f"link {head} (joint {pj.name}, {pj.type}) has no mass and no geometry"
+                      + (f"; converting to SDF drops it with its children ({', '.join(below[:4])})" if below else ""),
+                      r.links[head].loc, {"link": head, "joint": pj.name, "children": below})
+
+
+@rule("I003", "mass-positive", "error")
+def mass_positive(ctx):
+    """A declared mass must not be negative (and an inertial with mass 0 but a tensor is contradictory).
+
+    Negative mass passes Pinocchio silently and breaks every simulator. Fix: the real mass.
+    """
+    for link in ctx.robot.links.values():
+        i = link.inertial
+        if i is None:
+            continue
+        if i.mass < 0:
+            yield Finding(f"link {link.name} has mass {i.mass:g} kg", i.loc or link.loc, {"link": link.name, "mass": i.mass})
+        elif i.mass == 0 and any((i.ixx, i.iyy, i.izz)):
+            yield Finding(f"link {link.name} has mass 0 but inertia {i.ixx:g}/{i.iyy:g}/{i.izz:g}",
+                          i.loc or link.loc, {"link": link.name}, severity="warning")
+
+
+def principal(i):
+    import numpy as np
+
+    return np.linalg.eigvalsh(i.tensor())
+
+
+@rule("I004", "inertia-positive-definite", "error")
+def positive_definite(ctx):
+    """An inertia tensor must be positive definite (all principal moments > 0).
+
+    A negative principal moment is physically impossible: sdformat reports "invalid
+    inertia", MuJoCo refuses it, Pinocchio accepts it silently and integrates nonsense.
+    A zero moment (point mass) is a warning: MuJoCo refuses moving bodies with
+    inertia below mjMINVAL. Fix: the solid-body values (`--inertia --suggest`).
+    """
+    for link in ctx.robot.links.values():
+        i = link.inertial
+        if i is None or i.mass <= 0:
+            continue
+        ev = principal(i)
+        scale = max(abs(ev).max(), 1e-300)
+        if ev.min() < -1e-9 * scale:
+            yield Finding(f"link {link.name}: inertia not positive definite, principal moments "
+                          + "/".join(f"{e:.4g}" for e in ev), i.loc or link.loc,
+                          {"link": link.name, "principal": ev.tolist()})
+        elif ev.min() <= 1e-12 * scale or scale <= 1e-300:
+            if ctx.moving(link.name):
+                yield Finding(f"link {link.name} ({i.mass:g} kg) has a zero principal moment of inertia "
+                              f"({'/'.join(f'{e:.3g}' for e in ev)}): a point mass or a rod", i.loc or link.loc,
+                              {"link": link.name, "principal": ev.tolist()}, severity="warning")
+
+
+@rule("I005", "inertia-triangle", "error")
+def triangle(ctx):
+    """The principal moments must satisfy the triangle inequality: A + B ≥ C.
+
+    For any real body the sum of two principal moments is at least the third; a tensor
+    that violates it cannot exist (sdformat "invalid inertia", MuJoCo "A + B >= C",
+    unstable ODE contacts in Gazebo). Example: ixx 1, iyy 10, izz 1. Fix: the solid-body
+    values for the link's shape (`check --inertia --suggest`).
+    """
+    for link in ctx.robot.links.values():
+        i = link.inertial
+        if i is None or i.mass <= 0:
+            continue
+        a, b, c = sorted(principal(i))
+        if a <= 0:
+            continue
+        if a + b < c * (1 - TRIANGLE_TOL):
+            yield Finding(f"link {link.name}: impossible inertia, principal moments {a:.4g} + {b:.4g} = {a + b:.4g} "
+                          f"< {c:.4g} (triangle inequality)", i.loc or link.loc,
+                          {"link": link.name, "principal": [a, b, c], "declared": _decl(i)})
+
+
+@rule("I009", "placeholder-inertia", "warning")
+def placeholder(ctx):
+    """One inertia tensor reused for links of very different mass: a placeholder.
+
+    Inertia scales with mass × size²; the same numbers on a 0.1 g screen and a 100 g
+    plate cannot both be right (usually a `default_inertia` macro). Fix: compute each
+    link's tensor from its geometry (`check --inertia --suggest`).
+    """
+    groups = defaultdict(list)
+    for link in ctx.robot.links.values():
+        i = link.inertial
+        if i is None or i.mass <= 0 or not any((i.ixx, i.iyy, i.izz)):
+            continue
+        key = tuple(float(f"{v:.6g}") for v in (i.ixx, i.ixy, i.ixz, i.iyy, i.iyz, i.izz))
+        groups[key].append(link)
+    for key, links in groups.items():
+        masses = [l.mass for l in links]
+        if len(links) >= 3 and max(masses) >= 10 * min(masses):
+            ixx, _, _, iyy, _, izz = key
+            names = [l.name for l in links]
+            yield Finding(f"the same inertia {ixx:g}/{iyy:g}/{izz:g} is used by {len(links)} links with masses "
+                          f"{min(masses):g}–{max(masses):g} kg ({max(masses) / min(masses):.0f}×): a placeholder "
+                          f"({', '.join(names[:5])}{', ...' if len(names) > 5 else ''})",
+                          links[0].inertial.loc or links[0].loc,
+                          {"tensor": {"ixx": ixx, "iyy": iyy, "izz": izz}, "links": names,
+                           "mass_min": min(masses), "mass_max": max(masses)})
+
+
+def _decl(i) -> dict:
+    return {k: getattr(i, k) for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}

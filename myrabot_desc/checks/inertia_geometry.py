@@ -1,0 +1,276 @@
+"""I: inertia against the link's geometry (solid body of uniform density at the declared mass).
+
+Primitives are always measured (closed forms, cheap). Meshes are measured only when
+mesh files are loaded (`--inertia`), and only when watertight.
+"""
+
+from __future__ import annotations
+
+import math
+from functools import lru_cache
+
+from myrabot_desc.checks import geometry as G
+from myrabot_desc.checks.registry import Finding, rule
+
+RATIO_LIMIT = 10.0
+DENSITY_RANGE = (100.0, 23000.0)    # kg/m³: below balsa-and-foam structures, above osmium
+
+
+class Solid:
+    """A link's geometry as a uniform solid at the declared mass (link frame), or why not."""
+
+    def __init__(self, ctx, link):
+        self.link = link
+        self.source, self.items = ctx.shapes(link, "collision")
+        self.props = None
+        self.why_not = None
+        self.desc = ", ".join(G.describe(it.geometry) for it in self.items[:3]) + (" ..." if len(self.items) > 3 else "")
+        if not self.items:
+            self.why_not = "no geometry"
+            return
+        parts = []
+        for it in self.items:
+            g = it.geometry
+            mesh = None
+            if g.kind == "mesh":
+                if not ctx.opts.load_meshes:
+                    self.why_not = "mesh geometry (measured with --inertia)"
+                    return
+                mesh = ctx.mesh(g)
+                if mesh is None or isinstance(mesh, str):
+                    self.why_not = f"mesh {g.filename} cannot be read" + (f" ({mesh})" if mesh else "")
+                    return
+            sp = G.shape_props(g, mesh)
+            if sp is None:
+                self.why_not = (f"mesh {g.filename.rsplit('/', 1)[-1]} is not watertight"
+                                if mesh is not None and not mesh.is_watertight else
+                                f"mesh {g.filename.rsplit('/', 1)[-1]} has no positive volume (inverted or open)")
+                return
+            parts.append((*sp, it.origin.matrix()))
+        mass = link.inertial.mass if link.inertial else 0.0
+        self.props = G.combine(parts, mass if mass > 0 else 1.0)
+
+    def in_inertial_frame(self):
+        """(com in inertial frame, tensor in inertial axes about the solid's com)."""
+        import numpy as np
+
+        T = self.link.inertial.origin.matrix()
+        R, p = T[:3, :3], T[:3, 3]
+        return R.T @ (self.props.com - p), R.T @ self.props.inertia @ R
+
+
+def solids(ctx) -> dict:
+    cache = getattr(ctx, "_solids", None)
+    if cache is None:
+        cache = {}
+        for link in ctx.robot.links.values():
+            if link.inertial and link.inertial.mass > 0:
+                cache[link.name] = Solid(ctx, link)
+        ctx._solids = cache
+    return cache
+
+
+def fmt(x: float) -> str:
+    return f"{x:.3g}"
+
+
+def inertia_line(t) -> str:
+    return (f'<inertia ixx="{t[0, 0]:.4g}" ixy="{t[0, 1]:.4g}" ixz="{t[0, 2]:.4g}" '
+            f'iyy="{t[1, 1]:.4g}" iyz="{t[1, 2]:.4g}" izz="{t[2, 2]:.4g}"/>').replace('"-0"', '"0"')
+
+
+@rule("I006", "inertia-vs-geometry", "warning")
+def inertia_vs_geometry(ctx):
+    """The inertia differs more than 10× from the solid body of the link's collision geometry.
+
+    We compute the tensor of the collision geometry (visual when there is none) as a
+    uniform solid at the declared mass, about its centroid, in the inertial frame's
+    axes, and compare the diagonal. 10× either way is beyond any real mass
+    distribution: it is a placeholder (ixx=iyy=izz=1 on a 1 kg part is 100× too large)
+    and it makes the body spin too easily or too sluggishly. Fix: the computed values
+    given in the message (`--inertia --suggest` prints the `<inertia/>` line).
+    """
+    import numpy as np
+
+    for name, s in solids(ctx).items():
+        if s.props is None:
+            continue
+        i = s.link.inertial
+        com, comp = s.in_inertial_frame()
+        decl = i.tensor()
+        line = inertia_line(comp)
+        if ctx.opts.suggest:
+            ctx.suggestions.append((name, line))
+        dd, cd = np.diag(decl), np.diag(comp)
+        ratios = []
+        for d, c in zip(dd, cd):
+            if c <= 0 or d <= 0:
+                ratios.append(math.inf if (c <= 0) != (d <= 0) else 1.0)
+            else:
+                ratios.append(d / c)
+        worst = max(max(r, 1 / r) if r > 0 else math.inf for r in ratios)
+        if worst > RATIO_LIMIT:
+            yield Finding(
+                f"link {name}: inertia ixx/iyy/izz {'/'.join(fmt(v) for v in dd)} kg·m², but a solid "
+                f"{s.desc} of {i.mass:g} kg gives {'/'.join(fmt(v) for v in cd)} "
+                f"(ratio {'/'.join(_ratio(r) for r in ratios)}); fix: {line}",
+                i.loc or s.link.loc,
+                {"link": name, "declared": dd.tolist(), "computed": cd.tolist(), "ratios": ratios,
+                 "geometry": s.source, "fix": line, "computed_tensor": comp.tolist(), "computed_com": com.tolist()})
+
+
+def _ratio(r: float) -> str:
+    if math.isinf(r):
+        return "∞"
+    return f"{r:.3g}×" if r >= 1 else f"1/{1 / r:.3g}"
+
+
+@rule("I007", "radius-of-gyration", "warning")
+def radius_of_gyration(ctx):
+    """A radius of gyration √(I/m) larger than the body: no mass distribution inside the shape gives it.
+
+    Every bit of mass lies within the link's geometry, so about any axis through the
+    centre of mass I ≤ m·ρ², with ρ the farthest point of the geometry from that axis.
+    Example: the Roomba base, izz 0.5 at 3.6 kg is √(0.5/3.6) = 0.37 m on a 0.17 m
+    radius disc. Fix: the solid-body values (`--inertia --suggest`).
+    """
+    import numpy as np
+
+    r = ctx.robot
+    for name, s in solids(ctx).items():
+        link = s.link
+        pts = _hull_points(ctx, link)
+        if pts is None:
+            continue
+        i = link.inertial
+        T = i.origin.matrix()
+        local = (pts - T[:3, 3]) @ T[:3, :3]            # points in the inertial frame
+        ev, vec = np.linalg.eigh(i.tensor())
+        worst = None
+        for k in range(3):
+            if ev[k] <= 0:
+                continue
+            u = vec[:, k]
+            reach = float(np.sqrt(np.maximum((local ** 2).sum(1) - (local @ u) ** 2, 0)).max())
+            kg = math.sqrt(ev[k] / i.mass)
+            if kg > 1.1 * reach + 1e-4 and (worst is None or kg / max(reach, 1e-9) > worst[0]):
+                worst = (kg / max(reach, 1e-9), kg, reach, ev[k], u)
+        if worst:
+            _, kg, reach, moment, u = worst
+            yield Finding(f"link {name}: radius of gyration √({moment:.3g}/{i.mass:g}) = {kg:.3g} m about axis "
+                          f"({u[0]:.2g} {u[1]:.2g} {u[2]:.2g}), but no point of the geometry is farther than "
+                          f"{reach:.3g} m from that axis", i.loc or link.loc,
+                          {"link": name, "radius_of_gyration": kg, "reach": reach, "moment": float(moment)})
+
+
+def _hull_points(ctx, link):
+    """Points bounding the link's collision ∪ visual geometry (link frame), None if unknown."""
+    import numpy as np
+
+    out = []
+    items = [c for c in link.collisions if c.geometry is not None] + [v for v in link.visuals if v.geometry is not None]
+    if not items:
+        return None
+    for it in items:
+        g = it.geometry
+        mesh = None
+        if g.kind == "mesh":
+            if not ctx.opts.load_meshes:
+                return None
+            mesh = ctx.mesh(g)
+            if mesh is None or isinstance(mesh, str):
+                return None
+            local = np.asarray(mesh.convex_hull.vertices) if len(mesh.vertices) > 2000 else np.asarray(mesh.vertices)
+        else:
+            local = _primitive_points(g)
+        T = it.origin.matrix()
+        out.append(local @ T[:3, :3].T + T[:3, 3])
+    return np.vstack(out)
+
+
+@lru_cache(maxsize=None)
+def _unit_sphere():
+    import numpy as np
+
+    pts = [(x, y, z) for x in (-1, 0, 1) for y in (-1, 0, 1) for z in (-1, 0, 1) if (x, y, z) != (0, 0, 0)]
+    return np.array(pts, float) / np.linalg.norm(pts, axis=1)[:, None]
+
+
+def _primitive_points(g):
+    import numpy as np
+
+    if g.kind == "box":
+        return G.aabb_corners(g)
+    if g.kind == "sphere":
+        return _unit_sphere() * g.radius
+    t = np.linspace(0, 2 * math.pi, 32, endpoint=False)
+    ring = np.stack([g.radius * np.cos(t), g.radius * np.sin(t), np.zeros_like(t)], 1)
+    return np.vstack([ring + [0, 0, g.length / 2], ring - [0, 0, g.length / 2]])
+
+
+@rule("I008", "density-plausible", "warning")
+def density(ctx):
+    """The mass over the geometry's volume gives an implausible density (< 100 or > 23000 kg/m³).
+
+    Real parts range from foam and hollow shells (a few hundred kg/m³) to steel
+    (7850) and tungsten (19300). 50 g for a 0.27 m wooden disc (44 kg/m³) or 5 kg
+    on a small sphere say the mass or the geometry is wrong. Fix: weigh the part, or
+    use its material's density × volume.
+    """
+    for name, s in solids(ctx).items():
+        if s.props is None or s.props.volume <= 0:
+            continue
+        m = s.link.inertial.mass
+        rho = m / s.props.volume
+        lo, hi = DENSITY_RANGE
+        if rho < lo or rho > hi:
+            yield Finding(f"link {name}: {m:g} kg in {s.desc} ({s.props.volume:.3g} m³) is a density of "
+                          f"{rho:.3g} kg/m³ " + ("(wood is 500–700, aluminium 2700)" if rho < lo else "(denser than any metal)"),
+                          s.link.inertial.loc or s.link.loc,
+                          {"link": name, "mass": m, "volume": s.props.volume, "density": rho, "geometry": s.source})
+
+
+@rule("I010", "inertial-origin-inside", "warning")
+def origin_inside(ctx):
+    """The centre of mass (`<inertial><origin>`) must lie within the link's geometry.
+
+    A body's centre of mass is always inside its convex hull. An origin far outside
+    the visual/collision shapes usually means the inertial was copied from another
+    link or written in the wrong frame. Fix: the geometry's centroid (given), or the
+    CAD's centre of mass.
+    """
+    import numpy as np
+
+    for name, s in solids(ctx).items():
+        pts = _hull_points(ctx, s.link)
+        if pts is None:
+            continue
+        lo, hi = pts.min(0), pts.max(0)
+        size = float((hi - lo).max())
+        margin = 0.1 * size + 0.005
+        p = np.array(s.link.inertial.origin.xyz)
+        gap = np.maximum(np.maximum(lo - margin - p, p - hi - margin), 0)
+        if gap.max() > 0:
+            out = float(np.linalg.norm(np.maximum(np.maximum(lo - p, p - hi), 0)))
+            centroid = s.props.com.tolist() if s.props is not None else ((lo + hi) / 2).tolist()
+            yield Finding(f"link {name}: inertial origin ({' '.join(f'{v:.3g}' for v in p)}) lies {out:.3g} m outside "
+                          f"the box bounding its geometry ({' '.join(f'{v:.3g}' for v in lo)} .. "
+                          f"{' '.join(f'{v:.3g}' for v in hi)}); geometric centroid "
+                          f"({' '.join(f'{v:.3g}' for v in centroid)})",
+                          s.link.inertial.loc or s.link.loc,
+                          {"link": name, "origin": p.tolist(), "distance": out, "centroid": centroid})
+
+
+@rule("I011", "inertia-not-measurable", "info", needs="meshes")
+def not_measurable(ctx):
+    """The link's inertia could not be compared with its geometry (mesh not watertight or unreadable).
+
+    A mesh with holes has no volume, so its solid-body inertia is undefined. Fix:
+    a closed collision mesh (or primitive collision shapes); the inertia itself may be fine.
+    """
+    if not ctx.opts.load_meshes:
+        return
+    for name, s in solids(ctx).items():
+        if s.props is None and s.why_not and s.why_not != "no geometry":
+            yield Finding(f"link {name}: inertia not compared with geometry: {s.why_not}", s.link.loc,
+                          {"link": name, "reason": s.why_not})

@@ -1,0 +1,123 @@
+"""M: mesh files (resolution always; contents only when meshes are loaded: --inertia or --meshes)."""
+
+from __future__ import annotations
+
+from myrabot_desc.checks.registry import Finding, rule
+
+
+def _mesh_uses(ctx):
+    """[(link, 'visual'|'collision', item)] for every mesh geometry."""
+    for link in ctx.robot.links.values():
+        for kind, items in (("collision", link.collisions), ("visual", link.visuals)):
+            for it in items:
+                if it.geometry is not None and it.geometry.kind == "mesh":
+                    yield link, kind, it
+
+
+@rule("M001", "mesh-file-resolves", "error")
+def mesh_resolves(ctx):
+    """Every mesh filename resolves to a file: `package://` to a known package, paths to existing files.
+
+    An unresolved mesh is a missing body in every viewer and simulator (Pinocchio and
+    MuJoCo refuse to load the geometry). Fix: pass the package with `-p NAME=PATH` or
+    `--package-path`, correct the path, or ship the file (the message says which part failed).
+    """
+    from myrabot_desc.packages import split_package_uri
+
+    r = ctx.robot
+    reported = set()
+    for link, kind, it in _mesh_uses(ctx):
+        g = it.geometry
+        if g.path is not None and g.path.is_file():
+            continue
+        if g.filename in reported:
+            continue
+        reported.add(g.filename)
+        parts = split_package_uri(g.filename)
+        if parts and parts[0] not in r.package_roots:
+            why = f"package '{parts[0]}' is not found (give -p {parts[0]}=PATH or --package-path)"
+        elif g.path is not None:
+            why = f"no such file {g.path}"
+        else:
+            why = "the file does not exist"
+        n = sum(1 for _l, _k, i in _mesh_uses(ctx) if i.geometry.filename == g.filename)
+        yield Finding(f"mesh {g.filename} ({kind} of {link.name}{f', used {n}×' if n > 1 else ''}) cannot be "
+                      f"resolved: {why}", it.loc or link.loc,
+                      {"filename": g.filename, "link": link.name, "package": parts[0] if parts else None})
+
+
+def _loaded(ctx, g):
+    if not ctx.opts.load_meshes or g.path is None or not g.path.is_file():
+        return None
+    m = ctx.mesh(g)
+    return None if m is None or isinstance(m, str) else m
+
+
+@rule("M002", "mesh-scale", "warning", needs="meshes")
+def mesh_scale(ctx):
+    """After scale, a mesh's bounding box should lie between 1 mm and 10 m.
+
+    CAD exports in millimetres without `scale="0.001 0.001 0.001"` give a robot a
+    thousand times too large (and the inverse). Fix: the right `scale`, or re-export
+    in metres.
+    """
+    seen = set()
+    for link, kind, it in _mesh_uses(ctx):
+        g = it.geometry
+        m = _loaded(ctx, g)
+        key = (g.filename, tuple(g.scale))
+        if m is None or key in seen:
+            continue
+        seen.add(key)
+        ext = float(max(m.extents))
+        if ext > 10 or ext < 0.001:
+            guess = 0.001 if ext > 10 else 1000
+            yield Finding(f"mesh {g.filename} ({kind} of {link.name}) is {ext:.3g} m across after scale "
+                          f"{' '.join(f'{s:g}' for s in g.scale)}: " + ("millimetres exported as metres?" if ext > 10
+                                                                       else "metres scaled as millimetres?"),
+                          it.loc or link.loc, {"filename": g.filename, "extent": ext, "suggested_scale": guess})
+
+
+@rule("M003", "mesh-watertight", "info", needs="meshes")
+def mesh_watertight(ctx):
+    """A collision mesh should be watertight (closed) to have a volume.
+
+    Engines handle open collision meshes (often via the convex hull), but their volume,
+    mass properties and inside/outside tests are undefined, so inertia cannot be checked
+    against them. Fix: close the mesh (MeshLab: "Close holes") or use primitives.
+    """
+    seen = set()
+    for link, kind, it in _mesh_uses(ctx):
+        g = it.geometry
+        if kind != "collision" or g.filename in seen:
+            continue
+        m = _loaded(ctx, g)
+        if m is None:
+            continue
+        seen.add(g.filename)
+        if not m.is_watertight:
+            yield Finding(f"collision mesh {g.filename} of {link.name} is not watertight "
+                          f"({len(m.faces)} faces): its volume and inertia are undefined", it.loc or link.loc,
+                          {"filename": g.filename, "link": link.name})
+
+
+@rule("M004", "mesh-normals-outward", "warning", needs="meshes")
+def mesh_normals(ctx):
+    """A closed mesh's faces should wind outward (positive volume).
+
+    Inverted winding gives a negative volume and a negative mass in trimesh, renders
+    inside out with back-face culling, and flips contact normals in some engines.
+    Fix: flip the faces (MeshLab "Invert faces orientation", trimesh `mesh.invert()`).
+    """
+    seen = set()
+    for link, kind, it in _mesh_uses(ctx):
+        g = it.geometry
+        if g.filename in seen:
+            continue
+        m = _loaded(ctx, g)
+        if m is None:
+            continue
+        seen.add(g.filename)
+        if m.is_watertight and m.volume < 0:
+            yield Finding(f"mesh {g.filename} ({kind} of {link.name}) is inside out: volume {m.volume:.3g} m³",
+                          it.loc or link.loc, {"filename": g.filename, "volume": float(m.volume)})

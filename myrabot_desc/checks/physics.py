@@ -1,0 +1,259 @@
+"""P: static support on the ground, spawn penetration, dynamics smoke (Pinocchio), mass summary."""
+
+from __future__ import annotations
+
+import math
+
+from myrabot_desc.checks import geometry as G
+from myrabot_desc.checks.registry import Finding, rule
+
+CONTACT_TOL = 0.003      # m: geometry this close to the lowest point touches the ground
+SPAWN_TOL = 0.002        # m: penetration Gazebo resolves without a visible jump
+
+
+def _collision_world(ctx):
+    """[(link, item, world pose 4x4, mesh or None)] for every collision shape we can place."""
+    from myrabot_desc.kinematics import pose_matrix
+
+    out = []
+    W = ctx.world
+    for link in ctx.robot.links.values():
+        if link.name not in W:
+            continue
+        for it in link.collisions:
+            g = it.geometry
+            if g is None:
+                continue
+            mesh = None
+            if g.kind == "mesh":
+                if not ctx.opts.load_meshes or g.path is None:
+                    continue
+                mesh = ctx.mesh(g)
+                if mesh is None or isinstance(mesh, str):
+                    continue
+            out.append((link, it, W[link.name] @ pose_matrix(it.origin), mesh))
+    return out
+
+
+def wheels(ctx) -> list[str]:
+    """Joints that drive or carry wheels: named by a drive plugin, or continuous joints whose
+    child has a collision cylinder about the joint axis (or a sphere)."""
+    from myrabot_desc.checks.plugins import _all, _wheel_radius, drives
+
+    out = []
+    for p, spec in drives(ctx):
+        for k in (*spec.left, *spec.right):
+            out += [n for n in _all(p, k) if n in ctx.robot.joints]
+    for j in ctx.robot.joints.values():
+        if j.type == "continuous" and j.name not in out:
+            rad, item = _wheel_radius(ctx, j)
+            if rad is not None and item is not None and item.geometry.kind == "cylinder":
+                out.append(j.name)
+    return out
+
+
+def is_mobile(ctx) -> bool:
+    return bool(wheels(ctx))
+
+
+def _hull(points):
+    """2-D convex hull (monotone chain), counter-clockwise."""
+    pts = sorted(set((round(float(x), 9), round(float(y), 9)) for x, y in points))
+    if len(pts) <= 2:
+        return pts
+
+    def cross(o, a, b):
+        return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+
+    lower, upper = [], []
+    for p in pts:
+        while len(lower) >= 2 and cross(lower[-2], lower[-1], p) <= 1e-12:
+            lower.pop()
+        lower.append(p)
+    for p in reversed(pts):
+        while len(upper) >= 2 and cross(upper[-2], upper[-1], p) <= 1e-12:
+            upper.pop()
+        upper.append(p)
+    return lower[:-1] + upper[:-1]
+
+
+def _signed_distance(hull, p) -> float:
+    """Distance from p to the polygon's boundary: positive inside, negative outside (2-D)."""
+    def seg_dist(a, b):
+        ax, ay, bx, by = *a, *b
+        dx, dy = bx - ax, by - ay
+        L = dx * dx + dy * dy
+        t = 0 if L == 0 else max(0, min(1, ((p[0] - ax) * dx + (p[1] - ay) * dy) / L))
+        return math.hypot(p[0] - ax - t * dx, p[1] - ay - t * dy)
+
+    if len(hull) == 1:
+        return -math.hypot(p[0] - hull[0][0], p[1] - hull[0][1])
+    edges = list(zip(hull, hull[1:] + hull[:1])) if len(hull) > 2 else [(hull[0], hull[1])]
+    d = min(seg_dist(a, b) for a, b in edges)
+    if len(hull) < 3:
+        return -d
+    inside = all((b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]) >= 0 for a, b in edges)
+    return d if inside else -d
+
+
+def support(ctx):
+    """Ground contacts with the base on the ground at q = 0: (ground z, contacts, hull, com)."""
+    import numpy as np
+
+    from myrabot_desc.kinematics import center_of_mass
+
+    shapes = _collision_world(ctx)
+    low = []
+    for link, it, T, mesh in shapes:
+        lp = G.lowest_points(it.geometry, T, mesh, CONTACT_TOL)
+        if lp is not None:
+            low.append((lp[0], lp[1], link, it))
+    if not low:
+        return None
+    zmin = min(z for z, *_ in low)
+    contacts = [(link, pts) for z, pts, link, it in low if z <= zmin + CONTACT_TOL]
+    pts = [q[:2] for _, ps in contacts for q in ps if q[2] <= zmin + CONTACT_TOL]
+    mass, com = center_of_mass(ctx.robot)
+    if not mass > 0:
+        return None
+    return zmin, contacts, _hull(pts), np.asarray(com), mass
+
+
+@rule("P001", "static-support", "error")
+def static_support(ctx):
+    """A wheeled robot at rest must stand: its centre of mass inside the support polygon of its ground contacts.
+
+    With the joints at zero and the base lowered onto the ground, the collision shapes
+    that touch the ground (wheels, casters, anything else) span a support polygon. A
+    centre of mass outside it (or two wheels and no caster: a line, no area) tips the
+    robot over until the chassis drags, which makes the drive erratic (seed B). Fix: a
+    caster (a small sphere collision on a fixed joint reaching the ground) on the side
+    the robot tips to, or move the wheels under the centre of mass.
+    """
+    if not ctx.tree_ok or not is_mobile(ctx):
+        return
+    s = support(ctx)
+    if s is None:
+        return
+    zmin, contacts, hull, com, mass = s
+    d = _signed_distance(hull, com[:2]) if hull else -math.inf
+    names = sorted({link.name for link, _ in contacts})
+    if d >= 0.005 or (len(hull) >= 3 and d > 0):
+        return
+    data = {"com": com.tolist(), "contacts": names, "polygon": [list(p) for p in hull], "distance": d}
+    if len(hull) <= 2:
+        xs = sorted({round(p[0], 4) for p in hull})
+        line = f" (x {xs[0]:.3g})" if len(xs) == 1 else ""
+        ahead = ""
+        if len(xs) == 1:
+            dx = com[0] - xs[0]
+            ahead = f"; the centre of mass is {abs(dx) * 1000:.1f} mm {'behind' if dx < 0 else 'ahead of'} that line"
+        msg = (f"no static support: the ground contacts ({', '.join(names)}) lie on one line{line}, with no caster"
+               f"{ahead} (centre of mass x {com[0]:.4g} y {com[1]:.3g}); the robot tips until another part drags")
+    else:
+        msg = (f"no static support: the centre of mass (x {com[0]:.4g} y {com[1]:.3g}) is {abs(d) * 1000:.1f} mm "
+               f"{'outside' if d < 0 else 'inside, but too close to the edge of'} the support polygon of "
+               f"{', '.join(names)}")
+    yield Finding(msg, ctx.robot.links[ctx.robot.root].loc if ctx.robot.root else ctx.robot.loc, data,
+                  severity=None if d < 0 else "warning")
+
+
+@rule("P002", "spawn-above-ground", "warning")
+def spawn_penetration(ctx):
+    """Collision geometry below the ground when a wheeled robot is spawned with its root at z = 0.
+
+    Mobile bases put their root (base_footprint) on the floor and are spawned at z = 0;
+    a wheel reaching below it starts inside the ground and Gazebo pushes the model out
+    with a jump. Fix: raise the base joint so the wheels touch z = 0 (the depth is given).
+    """
+    if not ctx.tree_ok or not is_mobile(ctx):
+        return
+    below = []
+    for link, it, T, mesh in _collision_world(ctx):
+        lp = G.lowest_points(it.geometry, T, mesh)
+        if lp is not None and lp[0] < -SPAWN_TOL:
+            below.append((lp[0], link.name))
+    if below:
+        below.sort()
+        depth = -below[0][0]
+        names = sorted({n for _, n in below})
+        yield Finding(f"with {ctx.robot.root} at z 0, collision geometry reaches z {below[0][0]:.3g} m "
+                      f"({', '.join(names)}): the robot spawns {depth * 1000:.0f} mm into the ground",
+                      ctx.robot.links[ctx.robot.root].loc, {"links": names, "min_z": below[0][0],
+                                                            "fix": {"raise_by": depth}})
+
+
+@rule("P003", "dynamics-finite", "error")
+def dynamics_finite(ctx):
+    """Pinocchio's inverse and forward dynamics (RNEA, ABA) stay finite at random configurations.
+
+    A joint whose subtree has no mass (or no inertia about the joint) makes the mass
+    matrix singular: ABA returns NaN and every simulator struggles. Fix: give the links
+    below that joint a mass and inertia.
+    """
+    if not ctx.tree_ok or not ctx.robot.joints:
+        return
+    import numpy as np
+
+    from myrabot_desc.errors import InputError
+
+    try:
+        model = ctx.robot.pinocchio(floating=False)
+    except InputError as exc:
+        yield Finding(f"Pinocchio cannot build the model: {exc.message}", ctx.robot.loc, {"reason": exc.message})
+        return
+    if model.nv == 0:
+        return
+    import pinocchio as pin
+
+    data = model.createData()
+    rng = np.random.default_rng(0)
+    bad = None
+    for _ in range(4):
+        q = pin.integrate(model, pin.neutral(model), rng.uniform(-1, 1, model.nv))
+        v = rng.uniform(-1, 1, model.nv)
+        tau = rng.uniform(-1, 1, model.nv)
+        with np.errstate(all="ignore"):
+            t = pin.rnea(model, data, q, v, np.zeros(model.nv))
+            a = pin.aba(model, data, q, v, tau)
+        if not (np.all(np.isfinite(t)) and np.all(np.isfinite(a))):
+            bad = "RNEA" if not np.all(np.isfinite(t)) else "ABA"
+            break
+    if bad is None:
+        return
+    sub_mass = [0.0] * model.njoints
+    for i in range(model.njoints - 1, 0, -1):
+        sub_mass[i] += model.inertias[i].mass
+        if model.parents[i] > 0:
+            sub_mass[model.parents[i]] += sub_mass[i]
+    massless = [model.names[i] for i in range(1, model.njoints) if sub_mass[i] <= 0]
+    yield Finding(f"{bad} returns NaN at a random configuration"
+                  + (f": nothing below joint(s) {', '.join(massless[:6])} has mass" if massless else
+                     ": the mass matrix is singular"), ctx.robot.loc, {"algorithm": bad, "massless_joints": massless})
+
+
+@rule("P004", "mass-summary", "info")
+def mass_summary(ctx):
+    """Total mass and centre of mass at q = 0 (information).
+
+    For a wheeled robot the height is above the ground contacts; otherwise above the root
+    link's origin. A surprising total (0.59 kg for a wooden structure) points at masses
+    that were never weighed.
+    """
+    if not ctx.tree_ok:
+        return
+    from myrabot_desc.kinematics import center_of_mass
+
+    mass, com = center_of_mass(ctx.robot)
+    if not mass > 0:
+        yield Finding("the robot has no mass at all", ctx.robot.loc, {"mass": 0.0}, severity="warning")
+        return
+    ground = None
+    if is_mobile(ctx):
+        s = support(ctx)
+        ground = s[0] if s else None
+    h = com[2] - (ground or 0.0)
+    where = "above the ground contacts" if ground is not None else f"above {ctx.robot.root}'s origin"
+    yield Finding(f"total mass {mass:.4g} kg; centre of mass ({com[0]:.3g} {com[1]:.3g} {com[2]:.3g}) m in "
+                  f"{ctx.robot.root}, {h:.3g} m {where}", ctx.robot.loc,
+                  {"mass": mass, "com": [float(c) for c in com], "com_height": float(h)})

@@ -1,0 +1,461 @@
+"""G: Gazebo extensions and plugins (diff drives against the URDF, parameters, dialect, materials, topics)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from myrabot_desc.checks.registry import Finding, rule
+
+
+@dataclass(frozen=True)
+class DriveSpec:
+    label: str
+    left: tuple[str, ...]            # parameter names holding left wheel joints
+    right: tuple[str, ...]
+    separation: str
+    diameter: str | None = None
+    radius: str | None = None
+    fixed_ok: tuple[str, ...] = ()   # joint params that may name non-wheel joints (casters)
+    known: frozenset = frozenset()
+
+
+COMMON_CLASSIC = {"robotNamespace"}
+ROS1 = DriveSpec(
+    "gazebo_ros_diff_drive (ROS 1)", ("leftJoint",), ("rightJoint",), "wheelSeparation", "wheelDiameter",
+    known=frozenset(COMMON_CLASSIC | {
+        "leftJoint", "rightJoint", "wheelSeparation", "wheelDiameter", "wheelAcceleration", "wheelTorque",
+        "commandTopic", "odometryTopic", "odometryFrame", "robotBaseFrame", "updateRate", "publishWheelTF",
+        "publishOdomTF", "publishWheelJointState", "odometrySource", "legacyMode", "publishTf", "rosDebugLevel"}))
+ROS2 = DriveSpec(
+    "gazebo_ros_diff_drive (ROS 2)", ("left_joint",), ("right_joint",), "wheel_separation", "wheel_diameter",
+    known=frozenset({
+        "ros", "left_joint", "right_joint", "wheel_separation", "wheel_diameter", "max_wheel_torque",
+        "max_wheel_acceleration", "update_rate", "publish_odom", "publish_odom_tf", "publish_wheel_tf",
+        "odometry_frame", "robot_base_frame", "odometry_source", "covariance_x", "covariance_y",
+        "covariance_yaw", "num_wheel_pairs"}))
+GZ = DriveSpec(
+    "gz-sim DiffDrive", ("left_joint",), ("right_joint",), "wheel_separation", radius="wheel_radius",
+    known=frozenset({
+        "left_joint", "right_joint", "wheel_separation", "wheel_radius", "odom_publish_frequency", "topic",
+        "odom_topic", "tf_topic", "frame_id", "child_frame_id", "min_velocity", "max_velocity",
+        "min_acceleration", "max_acceleration", "min_jerk", "max_jerk", "odom_covariance"}
+        | {f"{m}_{k}_{q}" for m in ("min", "max") for k in ("linear", "angular")
+           for q in ("velocity", "acceleration", "jerk")}))
+CREATE = DriveSpec(
+    "gazebo_ros_create/roomba (Electric)", ("left_wheel_joint",), ("right_wheel_joint",), "wheel_separation",
+    "wheel_diameter", fixed_ok=("front_castor_joint", "rear_castor_joint"),
+    known=frozenset({"alwaysOn", "updateRate", "robotNamespace", "node_namespace", "left_wheel_joint",
+                     "right_wheel_joint", "front_castor_joint", "rear_castor_joint", "wheel_separation",
+                     "wheel_diameter", "base_geom", "torque"}))
+SKID = DriveSpec(
+    "gazebo_ros_skid_steer_drive (ROS 1)", ("leftFrontJoint", "leftRearJoint"), ("rightFrontJoint", "rightRearJoint"),
+    "wheelSeparation", "wheelDiameter",
+    known=frozenset(COMMON_CLASSIC | {
+        "leftFrontJoint", "rightFrontJoint", "leftRearJoint", "rightRearJoint", "wheelSeparation",
+        "wheelDiameter", "torque", "commandTopic", "odometryTopic", "odometryFrame", "robotBaseFrame",
+        "updateRate", "broadcastTF", "covariance_x", "covariance_y", "covariance_yaw"}))
+
+# Parameters every old-style plugin is known to carry but that a given plugin ignores: a hint for G007.
+IGNORED_HINT = {
+    "torque": "ROS 1 gazebo_ros_diff_drive reads wheelTorque",
+    "alwaysOn": "a Gazebo 0.x controller flag; Gazebo classic plugins do not read it",
+    "command_topic": "ROS 2 gazebo_ros_diff_drive subscribes cmd_vel; remap it with <ros><remapping>cmd_vel:=...",
+    "odometry_topic": "ROS 2 gazebo_ros_diff_drive publishes odom; remap it with <ros><remapping>odom:=...",
+    "odom_publisher_frequency": "gz-sim DiffDrive reads odom_publish_frequency (a typo in the migration guide)",
+}
+
+
+def drive_spec(p) -> DriveSpec | None:
+    lib = p.library.lower()
+    name = (p.name or "").lower()
+    if p.dialect == "electric":
+        if "create" in lib or "roomba" in lib or "create" in name or "roomba" in name:
+            return CREATE
+        return None
+    if p.dialect == "gz":
+        return GZ if ("diff-drive" in lib or "diff_drive" in lib or "diffdrive" in name.replace("::", "")) else None
+    if "skid_steer" in lib:
+        return SKID
+    if "diff_drive" in lib:
+        ros1 = any(k in p.params for k in ("leftJoint", "rightJoint", "wheelSeparation", "wheelDiameter"))
+        ros2 = any(k in p.params for k in ("left_joint", "right_joint", "wheel_separation", "wheel_diameter", "ros"))
+        return ROS2 if ros2 and not ros1 else ROS1
+    if "create" in lib or "roomba" in lib:
+        return CREATE
+    return None
+
+
+def _num(v):
+    try:
+        return float(v)
+    except (TypeError, ValueError):
+        return None
+
+
+def _all(p, key) -> list[str]:
+    """Every value of a (repeatable) parameter, in order."""
+    from myrabot_desc.checks.urdf_syntax import local
+
+    vals = [(c.text or c.get("value") or "").strip() for c in p.element if local(c.tag) == key]
+    return [v for v in vals if v]
+
+
+def drives(ctx):
+    """[(plugin, spec)] for every recognised drive plugin."""
+    out = []
+    for p in ctx.robot.plugins():
+        s = drive_spec(p)
+        if s is not None:
+            out.append((p, s))
+    return out
+
+
+def _wheel_radius(ctx, joint):
+    """Radius of the wheel turned by `joint` from its collision geometry (cylinder about the axis, sphere)."""
+    import numpy as np
+
+    from myrabot_desc.kinematics import pose_matrix
+
+    link = ctx.robot.links.get(joint.child)
+    if link is None:
+        return None, None
+    axis = np.asarray(joint.axis, float)
+    if not np.linalg.norm(axis):
+        return None, None
+    axis = axis / np.linalg.norm(axis)
+    _, items = ctx.shapes(link, "collision")
+    for it in items:
+        g = it.geometry
+        if g.kind == "sphere":
+            return g.radius, it
+        if g.kind == "cylinder":
+            cyl_axis = pose_matrix(it.origin)[:3, 2]
+            if abs(cyl_axis @ axis) > 0.95:
+                return g.radius, it
+        if g.kind == "mesh" and ctx.opts.load_meshes:
+            m = ctx.mesh(g)
+            if m is not None and not isinstance(m, str):
+                T = pose_matrix(it.origin)
+                v = np.asarray(m.vertices) @ T[:3, :3].T + T[:3, 3]
+                c = v.mean(0)
+                d = v - c
+                radial = np.sqrt(np.maximum((d ** 2).sum(1) - (d @ axis) ** 2, 0))
+                return float(radial.max()), it
+    return None, None
+
+
+def _wheel_center(ctx, joint, item):
+    """World position of the wheel (its collision centre when known, else the joint origin)."""
+    from myrabot_desc.kinematics import pose_matrix
+
+    W = ctx.world
+    if joint.child in W:
+        T = W[joint.child]
+        if item is not None:
+            T = T @ pose_matrix(item.origin)
+        return T[:3, 3]
+    if joint.parent in W:
+        return (W[joint.parent] @ pose_matrix(joint.origin))[:3, 3]
+    return None
+
+
+def _pair(ctx, p, spec):
+    """(left joint, right joint) objects when both exist."""
+    r = ctx.robot
+    lj = next((r.joints[n] for k in spec.left for n in _all(p, k) if n in r.joints), None)
+    rj = next((r.joints[n] for k in spec.right for n in _all(p, k) if n in r.joints), None)
+    return lj, rj
+
+
+@rule("G001", "drive-wheel-separation", "error")
+def wheel_separation(ctx):
+    """A diff-drive plugin's wheel separation must match the distance between the wheels in the URDF.
+
+    The plugin turns a twist (v, ω) into wheel speeds with its own separation s:
+    ω_L,R = (v ∓ ω·s/2)/r. If s is not the real track, the robot turns at the wrong
+    rate and odometry drifts (seed B: 0.4 vs 0.30 m turns 1.33× too fast). Fix: the
+    distance given (between the wheel centres along the axle).
+    """
+    import numpy as np
+
+    for p, spec in drives(ctx):
+        sep = _num(p.params.get(spec.separation))
+        lj, rj = _pair(ctx, p, spec)
+        if sep is None or lj is None or rj is None:
+            continue
+        _, li = _wheel_radius(ctx, lj)
+        _, ri = _wheel_radius(ctx, rj)
+        pl, pr = _wheel_center(ctx, lj, li), _wheel_center(ctx, rj, ri)
+        if pl is None or pr is None:
+            continue
+        axis = ctx.world[lj.child][:3, :3] @ np.asarray(lj.axis, float) if lj.child in ctx.world else None
+        d = pl - pr
+        if axis is not None and np.linalg.norm(axis) > 0:
+            axis = axis / np.linalg.norm(axis)
+            real = abs(float(d @ axis))
+        else:
+            real = float(np.linalg.norm(d))
+        if abs(sep - real) > max(0.002, 0.02 * real):
+            yield Finding(f"{spec.separation} {sep:.3g} m, but the wheel joints {lj.name} and {rj.name} are "
+                          f"{real:.3g} m apart (y {pl[1]:.3g} and {pr[1]:.3g}): the robot turns at "
+                          f"{sep / real:.3g}× the commanded rate (before any diameter error)", p.loc,
+                          {"plugin": p.name, "param": spec.separation, "value": sep, "urdf": real,
+                           "fix": round(real, 6)})
+
+
+@rule("G002", "drive-wheel-size", "error")
+def wheel_size(ctx):
+    """A diff-drive plugin's wheel diameter (or radius) must match the wheel's collision geometry.
+
+    The plugin converts speeds with its own radius; a wrong value scales every linear
+    speed and the odometry (seed B: diameter 0.2 on 0.16 m wheels drives at 0.8× the
+    command). Fix: the value given from the wheel's collision cylinder.
+    """
+    for p, spec in drives(ctx):
+        key = spec.diameter or spec.radius
+        val = _num(p.params.get(key))
+        if val is None:
+            continue
+        for j in _pair(ctx, p, spec):
+            if j is None:
+                continue
+            rad, _ = _wheel_radius(ctx, j)
+            if rad is None:
+                continue
+            real = 2 * rad if spec.diameter else rad
+            if abs(val - real) > max(0.001, 0.02 * real):
+                word = "diameter" if spec.diameter else "radius"
+                yield Finding(f"{key} {val:.3g} m, but wheel {j.child} (joint {j.name}) has a collision {word} of "
+                              f"{real:.3g} m: the robot drives at {real / val:.3g}× the commanded speed", p.loc,
+                              {"plugin": p.name, "param": key, "value": val, "urdf": real, "fix": round(real, 6)})
+                break
+
+
+@rule("G003", "drive-joints-exist", "error")
+def drive_joints_exist(ctx):
+    """The joints a drive plugin names must exist in the URDF.
+
+    The plugin looks its joints up by name at load; a missing one makes it fail to load
+    (Gazebo logs an error and the robot never moves). Fix: the exact joint name.
+    """
+    from myrabot_desc.checks.urdf_syntax import suggest
+
+    r = ctx.robot
+    for p, spec in drives(ctx):
+        for key in (*spec.left, *spec.right, *spec.fixed_ok):
+            for name in _all(p, key):
+                if name not in r.joints:
+                    guess = suggest(name, r.joints)
+                    yield Finding(f"{spec.label}: {key} '{name}' is not a joint of this robot"
+                                  + (f"; did you mean {guess}?" if guess else ""), p.loc,
+                                  {"plugin": p.name, "param": key, "joint": name, "suggestion": guess})
+        if not any(_all(p, k) for k in spec.left) or not any(_all(p, k) for k in spec.right):
+            yield Finding(f"{spec.label}: no {spec.left[0]}/{spec.right[0]} given", p.loc, {"plugin": p.name})
+
+
+@rule("G004", "drive-joints-continuous", "error")
+def drive_joints_continuous(ctx):
+    """Wheel joints of a drive plugin must be continuous (revolute stops at its limits; fixed is gone).
+
+    A fixed wheel joint is merged away by the URDF→SDF conversion so the plugin cannot
+    find it; a revolute one stops turning at its limit (warning). Joints named as
+    casters by the Create/Roomba plugin are reported as a warning when fixed: the plugin
+    publishes zeros for them. Fix: `type="continuous"`.
+    """
+    r = ctx.robot
+    for p, spec in drives(ctx):
+        for key in (*spec.left, *spec.right, *spec.fixed_ok):
+            for name in _all(p, key):
+                j = r.joints.get(name)
+                if j is None or j.type == "continuous":
+                    continue
+                caster = key in spec.fixed_ok
+                if j.type == "fixed":
+                    sev = "warning" if caster else "error"
+                    why = "fixed joints are merged away in URDF→SDF conversion, so the plugin cannot find it"
+                elif j.type == "revolute":
+                    sev, why = "warning", "a revolute wheel stops at its limits"
+                else:
+                    sev, why = "error", f"a {j.type} joint cannot roll a wheel"
+                yield Finding(f"{spec.label}: {key} {name} is {j.type}: {why}", p.loc,
+                              {"plugin": p.name, "joint": name, "type": j.type}, severity=sev)
+
+
+@rule("G005", "drive-axis-across-travel", "error")
+def drive_axis(ctx):
+    """Drive wheels must turn about an axis across the direction of travel (the base's y).
+
+    The base drives along its x axis (REP-103); a wheel whose axis is along x or z rolls
+    sideways or spins like a turntable. A left wheel on the right (negative y) side
+    swaps the turning direction (warning). Fix: `<axis xyz="0 1 0"/>` (in the wheel
+    joint's frame) and the left wheel at +y.
+    """
+    import numpy as np
+
+    r = ctx.robot
+    W = ctx.world
+    for p, spec in drives(ctx):
+        lj, rj = _pair(ctx, p, spec)
+        for side, j in (("left", lj), ("right", rj)):
+            if j is None or j.parent not in W:
+                continue
+            from myrabot_desc.kinematics import pose_matrix
+
+            T = W[j.parent] @ pose_matrix(j.origin)
+            a = T[:3, :3] @ np.asarray(j.axis, float)
+            n = np.linalg.norm(a)
+            if not n:
+                continue
+            a = a / n
+            if abs(a[1]) < 0.9:
+                yield Finding(f"{spec.label}: {side} wheel joint {j.name} turns about ({a[0]:.2g} {a[1]:.2g} {a[2]:.2g}) "
+                              f"in {r.root}: not across the direction of travel (y)", j.loc,
+                              {"joint": j.name, "axis_world": a.tolist()})
+            y = T[1, 3]
+            if (side == "left" and y < -1e-3) or (side == "right" and y > 1e-3):
+                yield Finding(f"{spec.label}: the {side} wheel joint {j.name} is at y {y:.3g} (the {'right' if y < 0 else 'left'} "
+                              "side): left and right are swapped, the robot turns the wrong way", p.loc,
+                              {"joint": j.name, "y": float(y)}, severity="warning")
+
+
+@rule("G007", "plugin-unknown-parameter", "warning")
+def unknown_params(ctx):
+    """A parameter that the (recognised) plugin does not read.
+
+    Plugins read their parameters by name and ignore the rest silently: a ROS 1 name in a
+    ROS 2 plugin (`wheelSeparation` vs `wheel_separation`), a typo, or a legacy one
+    (`torque` next to `wheelTorque`). Fix: the name the plugin reads (given), or delete it.
+    """
+    from myrabot_desc.checks.urdf_syntax import local, suggest
+
+    for p, spec in drives(ctx):
+        seen = set()
+        for c in p.element:
+            if not isinstance(c.tag, str) or c.tag.startswith("{"):
+                continue
+            k = local(c.tag)
+            if k in spec.known or k in seen:
+                continue
+            seen.add(k)
+            hint = IGNORED_HINT.get(k)
+            guess = suggest(k, spec.known)
+            other = next((o.label for o in (ROS1, ROS2, GZ) if o is not spec and k in o.known), None)
+            msg = f"{spec.label} does not read <{k}>"
+            if hint:
+                msg += f" ({hint})"
+            elif other:
+                msg += f" (it is a {other} parameter)"
+            if guess and not hint:
+                msg += f"; did you mean <{guess}>?"
+            yield Finding(msg, p.loc, {"plugin": p.name, "param": k, "suggestion": guess})
+
+
+@rule("G008", "electric-plugin-attribute", "error")
+def electric_filename(ctx):
+    """An Electric-era `<controller:...>` must name its library with `plugin=`, not `filename=`.
+
+    The Gazebo 0.x controller loader reads `plugin=`; with `filename=` the controller is
+    not loaded and its topics never appear (the seed's webcam). Fix: `plugin="lib....so"`
+    (or run `myrabot-desc convert`, which writes modern `<plugin filename=...>`).
+    """
+    for p in ctx.robot.plugins():
+        if p.dialect == "electric" and p.file_attr == "filename":
+            yield Finding(f"controller {p.name} declares its library with filename=\"{p.filename}\"; the Electric "
+                          "controller loader reads plugin=, so it is never loaded", p.loc,
+                          {"plugin": p.name, "fix": f'plugin="{p.filename}"'})
+
+
+@rule("G009", "material-resolves", "warning")
+def material_resolves(ctx):
+    """A Gazebo material name must resolve: a stock `Gazebo/*` name or a script the model ships.
+
+    Gazebo classic looks the name up in the OGRE scripts on its media path; an unknown
+    name renders the default white/grey (and gz-sim never reads scripts). Searched: the
+    stock table, the model's packages (materials/scripts, Media/materials/scripts) and
+    the folders next to the model. Fix: define the material in a script of the package
+    (and export it) or use a stock name.
+    """
+    from myrabot_desc.materials.resolve import resolver_for
+
+    names = [(g, g.properties.get("material")) for g in ctx.robot.gazebo if g.properties.get("material")]
+    if not names:
+        return
+    res = resolver_for(ctx.robot)
+    reported = set()
+    for g, name in names:
+        if res.lookup(name) is None:
+            key = (name, g.reference)
+            if key in reported:
+                continue
+            reported.add(key)
+            from myrabot_desc.checks.urdf_syntax import suggest
+
+            guess = suggest(name, res.names())
+            yield Finding(f"material {name} (on {g.reference or 'the model'}) is not a stock Gazebo material nor in "
+                          f"any script found ({len(res.scripts)} read)" + (f"; did you mean {guess}?" if guess else ""),
+                          g.loc, {"material": name, "link": g.reference, "scripts": [str(s) for s in res.scripts],
+                                  "suggestion": guess})
+
+
+TOPIC_KEYS = ("topicName", "topic", "imageTopicName", "cameraInfoTopicName", "pointCloudTopicName",
+              "depthImageTopicName", "depthImageCameraInfoTopicName", "odometryTopic", "commandTopic",
+              "odom_topic", "tf_topic")
+
+
+@rule("G010", "topic-unique", "warning")
+def topic_unique(ctx):
+    """Two sensors or plugins publish on the same topic.
+
+    Two publishers of one topic interleave their messages (two LaserScans on /scan from
+    different frames): consumers see both. Fix: distinct topicName values or namespaces.
+    """
+    seen: dict[str, list] = {}
+    for p in ctx.robot.plugins():
+        ns = (p.params.get("robotNamespace") or "").strip("/")
+        for key in TOPIC_KEYS:
+            if key == "commandTopic":
+                continue                      # subscribers may share
+            t = p.params.get(key)
+            if not t or "$" in t:
+                continue
+            full = t if t.startswith("/") else "/" + "/".join(x for x in (ns, t) if x)
+            seen.setdefault(full, []).append((p, key))
+    for t, users in sorted(seen.items()):
+        if len(users) > 1:
+            names = [f"{u.name or u.library} ({k})" for u, k in users]
+            yield Finding(f"topic {t} is published by {len(users)} plugins: {', '.join(names)}", users[1][0].loc,
+                          {"topic": t, "publishers": names})
+
+
+@rule("G011", "electric-dialect", "info")
+def electric_dialect(ctx):
+    """The model uses the pre-SDF Electric dialect (`<controller:…>`, `<sensor:…>`, `<interface:…>`).
+
+    Gazebo classic ≥ 1.0 and gz-sim do not read it; angles are in degrees there. Fix:
+    `myrabot-desc convert` translates it to SDF sensors and plugins.
+    """
+    n_ctrl = sum(1 for p in ctx.robot.plugins() if p.dialect == "electric")
+    n_sens = sum(1 for s in ctx.robot.sensors() if s.dialect == "electric")
+    if n_ctrl or n_sens:
+        first = next((p.loc for p in ctx.robot.plugins() if p.dialect == "electric"), None) or \
+            next((s.loc for s in ctx.robot.sensors() if s.dialect == "electric"), None)
+        yield Finding(f"{n_ctrl} Electric-era controllers and {n_sens} sensors (<controller:…>/<sensor:…>): "
+                      "today's Gazebo ignores them; `myrabot-desc convert` translates them", first,
+                      {"controllers": n_ctrl, "sensors": n_sens})
+
+
+@rule("G012", "drive-parameter-conflict", "warning")
+def drive_conflict(ctx):
+    """Two parameters for the same thing with different values (torque 10 vs wheelTorque 5).
+
+    Only one of them is read, so the other value is a trap for the reader. Fix: keep the
+    one the plugin reads (named in the message).
+    """
+    pairs = [("torque", "wheelTorque")]
+    for p, spec in drives(ctx):
+        for a, b in pairs:
+            va, vb = _num(p.params.get(a)), _num(p.params.get(b))
+            if va is not None and vb is not None and va != vb and spec is ROS1:
+                yield Finding(f"{spec.label}: <{a}> {va:g} and <{b}> {vb:g} disagree; the plugin reads {b} ({vb:g})",
+                              p.loc, {"plugin": p.name, a: va, b: vb})

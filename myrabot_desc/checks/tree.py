@@ -1,0 +1,252 @@
+"""T: the kinematic tree and joint definitions."""
+
+from __future__ import annotations
+
+import math
+from collections import Counter
+
+from myrabot_desc.checks.registry import Finding, rule
+
+
+@rule("T001", "single-root", "error")
+def single_root(ctx):
+    """The links must form one tree with exactly one root link.
+
+    Two roots mean a part floats unattached (urdfdom: "Two root links found"); no root
+    means every link is someone's child (a cycle). Fix: connect the extra root with a
+    joint (often a fixed joint to the base) or remove the stray link.
+    """
+    r = ctx.robot
+    if not r.links:
+        yield Finding("the robot has no links", r.loc)
+        return
+    roots = r.roots
+    if len(roots) > 1:
+        yield Finding(f"{len(roots)} root links ({', '.join(roots[:6])}{'...' if len(roots) > 6 else ''}): "
+                      "a URDF is one tree; connect them with joints", r.links[roots[1]].loc,
+                      {"roots": roots})
+    elif not roots:
+        yield Finding("no root link: every link is the child of a joint (the joints form a cycle)", r.loc)
+
+
+@rule("T002", "no-cycle", "error")
+def no_cycle(ctx):
+    """No link may have two parent joints, and the joints may not form a cycle.
+
+    URDF describes a tree; closed chains need simulator-specific extensions (an SDF
+    `<joint>` inside `<gazebo>`, MuJoCo equality constraints). Fix: keep one parent
+    joint per link and close the loop in the simulator's own format.
+    """
+    r = ctx.robot
+    raw = [j for j in r.root_element.findall("joint")]
+    children = Counter(j.find("child").get("link") for j in raw if j.find("child") is not None)
+    for link, n in sorted(children.items()):
+        if n > 1:
+            js = [j.get("name") for j in raw if j.find("child") is not None and j.find("child").get("link") == link]
+            yield Finding(f"link {link} is the child of {n} joints ({', '.join(js)}): a link has one parent",
+                          ctx.loc_of(raw[[j.get('name') for j in raw].index(js[1])]), {"link": link, "joints": js})
+    # cycles: follow parents upward from every link
+    parent = {j.child: j.parent for j in r.joints.values()}
+    reported = set()
+    for start in r.links:
+        seen, cur = [], start
+        while cur in parent and cur not in seen:
+            seen.append(cur)
+            cur = parent[cur]
+        if cur in seen:
+            cyc = tuple(sorted(seen[seen.index(cur):]))
+            if cyc not in reported:
+                reported.add(cyc)
+                yield Finding(f"the joints form a cycle through links {' -> '.join(seen[seen.index(cur):] + [cur])}",
+                              r.links[cur].loc, {"links": list(cyc)})
+
+
+@rule("T003", "joint-links-exist", "error")
+def joint_links_exist(ctx):
+    """Every joint's parent and child name existing links.
+
+    A misspelt link name breaks the tree (urdfdom: "parent link [x] of joint [j] not
+    found"). Fix: use the exact link name (did-you-mean is given).
+    """
+    from myrabot_desc.checks.urdf_syntax import suggest
+
+    r = ctx.robot
+    for j in r.joints.values():
+        for role, name in (("parent", j.parent), ("child", j.child)):
+            if name not in r.links:
+                guess = suggest(name or "", r.links)
+                yield Finding(f"joint {j.name}: {role} link '{name}' does not exist"
+                              + (f"; did you mean {guess}?" if guess else ""), j.loc,
+                              {"joint": j.name, "role": role, "link": name, "suggestion": guess})
+
+
+@rule("T004", "unique-names", "error")
+def unique_names(ctx):
+    """Link, joint and top-level material names are unique.
+
+    urdfdom refuses the whole file ("link 'x' is not unique", "material 'x' is not
+    unique"); lenient parsers keep one of them silently. Typical cause: a xacro macro
+    instantiated twice without a prefix. Fix: rename, or add a prefix parameter to the macro.
+    """
+    root = ctx.robot.root_element
+    for tag in ("link", "joint", "material"):
+        els = [e for e in root.findall(tag) if e.get("name") is not None]
+        counts = Counter(e.get("name") for e in els)
+        for name, n in sorted(counts.items()):
+            if n > 1:
+                dup = [e for e in els if e.get("name") == name][1]
+                yield Finding(f"{n} top-level <{tag}> elements are named '{name}'", ctx.loc_of(dup),
+                              {"kind": tag, "name": name, "count": n})
+
+
+def _is_limited(j) -> bool:
+    return j.type in ("revolute", "prismatic")
+
+
+@rule("T008", "axis-nonzero", "error")
+def axis_nonzero(ctx):
+    """A moving joint's axis must be a non-zero vector.
+
+    `<axis xyz="0 0 0"/>` gives no direction: Pinocchio's dynamics turn NaN and MuJoCo
+    refuses the model. Fix: a unit vector such as `0 0 1`.
+    """
+    for j in ctx.robot.joints.values():
+        if j.type in ("revolute", "continuous", "prismatic", "planar"):
+            n = math.sqrt(sum(a * a for a in j.axis))
+            if not n > 1e-9:
+                yield Finding(f"joint {j.name} ({j.type}) has axis {_v(j.axis)}: no direction", j.loc,
+                              {"joint": j.name, "axis": list(j.axis)})
+
+
+@rule("T009", "limits-present", "error")
+def limits_present(ctx):
+    """Revolute and prismatic joints need a `<limit>` with effort and velocity.
+
+    urdfdom (and so Pinocchio, check_urdf, Gazebo) rejects a revolute/prismatic joint
+    without `<limit>`, and a `<limit>` without effort or velocity. Fix: add
+    `<limit lower=".." upper=".." effort=".." velocity=".."/>`, or make the joint continuous.
+    """
+    for j in ctx.robot.joints.values():
+        if not _is_limited(j):
+            continue
+        if j.limit is None:
+            yield Finding(f"{j.type} joint {j.name} has no <limit>", j.loc, {"joint": j.name})
+            continue
+        missing = [k for k in ("effort", "velocity") if getattr(j.limit, k) is None]
+        if missing:
+            yield Finding(f"{j.type} joint {j.name}: <limit> has no {' and no '.join(missing)}", j.loc,
+                          {"joint": j.name, "missing": missing})
+
+
+@rule("T015", "limits-ordered", "error")
+def limits_ordered(ctx):
+    """A joint's lower limit must not exceed its upper limit.
+
+    lower > upper leaves no legal position (Pinocchio's random configurations and
+    MuJoCo's ranges break). Fix: swap them.
+    """
+    for j in ctx.robot.joints.values():
+        lim = j.limit
+        if _is_limited(j) and lim and lim.lower is not None and lim.upper is not None and lim.lower > lim.upper:
+            yield Finding(f"joint {j.name}: lower {lim.lower:g} > upper {lim.upper:g}", j.loc,
+                          {"joint": j.name, "lower": lim.lower, "upper": lim.upper,
+                           "fix": {"lower": lim.upper, "upper": lim.lower}})
+
+
+@rule("T011", "limits-positive", "warning")
+def limits_positive(ctx):
+    """Effort and velocity limits should be positive.
+
+    An effort of 0 means no actuator can move the joint in Gazebo (and ros2_control);
+    a negative value is meaningless. A velocity of 0 freezes it in controllers that
+    honour limits. Fix: the actuator's rated torque/force and speed.
+    """
+    for j in ctx.robot.joints.values():
+        lim = j.limit
+        if not lim or j.type == "fixed":
+            continue
+        bad = {k: getattr(lim, k) for k in ("effort", "velocity") if getattr(lim, k) is not None and getattr(lim, k) <= 0}
+        if bad:
+            yield Finding(f"joint {j.name}: " + ", ".join(f"{k} {v:g}" for k, v in bad.items()) + " (must be > 0)",
+                          j.loc, {"joint": j.name, **bad},
+                          severity="error" if any(v < 0 for v in bad.values()) else None)
+
+
+@rule("T012", "mimic-target", "error")
+def mimic_target(ctx):
+    """A `<mimic joint=...>` must name another existing, moving joint.
+
+    A dangling mimic is dropped silently by some parsers and rejected by others
+    (urchin). Fix: the exact name of the driving joint.
+    """
+    from myrabot_desc.checks.urdf_syntax import suggest
+
+    r = ctx.robot
+    for j in r.joints.values():
+        if not j.mimic:
+            continue
+        t = j.mimic.joint
+        if t not in r.joints:
+            guess = suggest(t, r.joints)
+            yield Finding(f"joint {j.name} mimics '{t}', which does not exist" + (f"; did you mean {guess}?" if guess else ""),
+                          j.loc, {"joint": j.name, "target": t, "suggestion": guess})
+        elif t == j.name:
+            yield Finding(f"joint {j.name} mimics itself", j.loc, {"joint": j.name})
+        elif r.joints[t].type == "fixed":
+            yield Finding(f"joint {j.name} mimics {t}, a fixed joint", j.loc, {"joint": j.name, "target": t})
+
+
+@rule("T013", "limits-zero-range", "warning")
+def zero_range(ctx):
+    """A revolute/prismatic joint whose `<limit>` leaves lower = upper cannot move.
+
+    URDF defaults lower and upper to 0, so `<limit effort=".." velocity=".."/>` alone
+    locks the joint (Pinocchio and Gazebo use [0, 0]). Fix: give lower and upper, or
+    make the joint continuous (or fixed, if it is not meant to move).
+    """
+    for j in ctx.robot.joints.values():
+        lim = j.limit
+        if _is_limited(j) and lim:
+            lo = 0.0 if lim.lower is None else lim.lower
+            hi = 0.0 if lim.upper is None else lim.upper
+            if lo == hi:
+                why = " (no lower/upper given: both default to 0)" if lim.lower is None and lim.upper is None else ""
+                yield Finding(f"{j.type} joint {j.name} has range [{lo:g}, {hi:g}]{why}: it cannot move", j.loc,
+                              {"joint": j.name, "lower": lo, "upper": hi})
+
+
+@rule("T014", "axis-normalised", "info")
+def axis_normalised(ctx):
+    """A joint axis should be a unit vector.
+
+    Parsers normalise it, but a non-unit axis usually means a typo (`0 0 10`). Fix:
+    write the unit vector.
+    """
+    for j in ctx.robot.joints.values():
+        if j.type in ("revolute", "continuous", "prismatic"):
+            n = math.sqrt(sum(a * a for a in j.axis))
+            if n > 1e-9 and abs(n - 1) > 1e-3:
+                yield Finding(f"joint {j.name} axis {_v(j.axis)} has length {n:.4g}; parsers normalise it",
+                              j.loc, {"joint": j.name, "norm": n})
+
+
+@rule("T016", "joint-type-known", "error")
+def joint_type_known(ctx):
+    """A joint's type must be one of revolute, continuous, prismatic, fixed, floating, planar.
+
+    urdfdom rejects the file ("has no known type"); MuJoCo reads an unknown type as a
+    ball joint. Fix: one of the six URDF types (did-you-mean is given).
+    """
+    from myrabot_desc.checks.urdf_syntax import suggest
+    from myrabot_desc.model import JOINT_TYPES
+
+    for j in ctx.robot.joints.values():
+        if j.type not in JOINT_TYPES:
+            guess = suggest(j.type, JOINT_TYPES)
+            yield Finding(f"joint {j.name} has type '{j.type}', not a URDF joint type"
+                          + (f"; did you mean {guess}?" if guess else ""), j.loc,
+                          {"joint": j.name, "type": j.type, "suggestion": guess})
+
+
+def _v(v) -> str:
+    return " ".join(f"{x:g}" for x in v)

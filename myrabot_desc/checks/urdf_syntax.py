@@ -1,0 +1,172 @@
+"""T: unknown URDF elements and attributes (typos such as <gaezebo>, fricction=, <box rpy>).
+
+URDF parsers ignore what they do not know, so a typo silently removes a feature.
+We walk the URDF tree against the URDF schema plus the extensions that real models
+use (PyBullet's <contact>, ros2_control, Aldebaran limit extras, ...). <gazebo>,
+<transmission>, <ros2_control> and URDF <sensor> bodies are free-form and not walked.
+"""
+
+from __future__ import annotations
+
+import difflib
+
+from myrabot_desc.checks.registry import Finding, rule
+
+# element -> (allowed attributes, allowed children); None = anything (free-form body)
+SCHEMA: dict[str, tuple[set[str], set[str] | None]] = {
+    "robot": ({"name", "version"}, {"link", "joint", "material", "transmission", "gazebo", "sensor",
+                                    "ros2_control", "mujoco", "klampt", "webots"}),
+    "link": ({"name", "type"}, {"inertial", "visual", "collision", "contact", "collision_checking",
+                                "self_filter", "velocity_decay"}),
+    "inertial": (set(), {"origin", "mass", "inertia"}),
+    "origin": ({"xyz", "rpy"}, set()),
+    "mass": ({"value"}, set()),
+    "inertia": ({"ixx", "ixy", "ixz", "iyy", "iyz", "izz"}, set()),
+    "visual": ({"name"}, {"origin", "geometry", "material"}),
+    "collision": ({"name"}, {"origin", "geometry", "verbose", "material"}),
+    "geometry": ({"name"}, {"box", "cylinder", "sphere", "mesh", "capsule"}),
+    "box": ({"size"}, set()),
+    "cylinder": ({"radius", "length"}, set()),
+    "sphere": ({"radius"}, set()),
+    "capsule": ({"radius", "length"}, set()),
+    "mesh": ({"filename", "scale"}, set()),
+    "material": ({"name"}, {"color", "texture"}),
+    "color": ({"rgba"}, set()),
+    "texture": ({"filename"}, set()),
+    "joint": ({"name", "type", "dont_collapse"}, {"origin", "parent", "child", "axis", "calibration", "dynamics",
+                                                   "limit", "mimic", "safety_controller"}),
+    "parent": ({"link"}, set()),
+    "child": ({"link"}, set()),
+    "axis": ({"xyz"}, set()),
+    "calibration": ({"rising", "falling", "reference_position"}, set()),
+    "dynamics": ({"damping", "friction", "spring_stiffness", "spring_reference",
+                  "D", "K", "mu_coulomb", "mu_viscous"}, set()),
+    "limit": ({"lower", "upper", "effort", "velocity", "command_effort", "current", "gear_velocity"}, set()),
+    "mimic": ({"joint", "multiplier", "offset"}, set()),
+    "safety_controller": ({"soft_lower_limit", "soft_upper_limit", "k_position", "k_velocity"}, set()),
+    # extensions used by real models, accepted as they are
+    "contact": (set(), None), "collision_checking": (set(), None), "self_filter": (set(), None),
+    "velocity_decay": (set(), None), "verbose": ({"value"}, set()),
+    "transmission": (set(), None), "gazebo": (set(), None), "sensor": (set(), None),
+    "ros2_control": (set(), None), "mujoco": (set(), None), "klampt": (set(), None), "webots": (set(), None),
+}
+
+# Where a misplaced thing belongs, for a better hint than a spelling match.
+BELONGS = {
+    ("box", "rpy"): "rpy is not an attribute of <box>; put the rotation on the <origin> of the <visual>/<collision>",
+    ("box", "xyz"): "xyz is not an attribute of <box>; put the offset on the <origin> of the <visual>/<collision>",
+    ("cylinder", "rpy"): "rpy belongs on the <origin> of the <visual>/<collision>",
+    ("sphere", "rpy"): "rpy belongs on the <origin> of the <visual>/<collision>",
+    ("mesh", "rpy"): "rpy belongs on the <origin> of the <visual>/<collision>",
+    ("link", "origin"): "a <link> has no <origin>; put it on the <joint>, <visual>, <collision> or <inertial>",
+    ("link", "gravity"): "link properties for Gazebo go in <gazebo reference=\"LINK\">",
+    ("link", "kinematic"): "link properties for Gazebo go in <gazebo reference=\"LINK\">",
+    ("link", "self_collide"): "link properties for Gazebo go in <gazebo reference=\"LINK\">",
+    ("link", "selfCollide"): "link properties for Gazebo go in <gazebo reference=\"LINK\">",
+    ("link", "mu1"): "friction for Gazebo goes in <gazebo reference=\"LINK\">",
+    ("link", "mu2"): "friction for Gazebo goes in <gazebo reference=\"LINK\">",
+}
+
+
+def local(tag) -> str | None:
+    return tag.rsplit("}", 1)[-1] if isinstance(tag, str) else None
+
+
+def suggest(word: str, choices) -> str | None:
+    m = difflib.get_close_matches(word, sorted(choices), n=1, cutoff=0.6)
+    return m[0] if m else None
+
+
+def _walk(ctx):
+    """Yield (element, parent_tag, problem) for unknown children and attributes."""
+    root = ctx.robot.root_element
+    stack = [root]
+    while stack:
+        el = stack.pop()
+        tag = local(el.tag)
+        attrs, children = SCHEMA.get(tag, (None, None))
+        if attrs is not None:
+            for a in el.attrib:
+                if a.startswith("{") or a in attrs:   # namespaced attributes are extensions
+                    continue
+                yield el, tag, ("attribute", a)
+        if children is None:
+            continue
+        for c in el:
+            if not isinstance(c.tag, str):
+                continue
+            if c.tag.startswith("{"):                # namespaced elements: extensions (Electric, drake:, ...)
+                continue
+            ct = c.tag
+            if ct in children:
+                stack.append(c)
+            else:
+                yield c, tag, ("element", ct)
+    return
+
+
+@rule("T005", "unknown-element", "warning")
+def unknown_element(ctx):
+    """An element URDF does not know (a typo like <gaezebo>): parsers skip it silently.
+
+    Example: `<gaezebo><material>Gazebo/White</material></gaezebo>` at robot level; the
+    material never reaches Gazebo. Fix: correct the spelling (did-you-mean is given) or
+    move the element where it belongs. Extensions in an XML namespace are not reported.
+    """
+    for el, parent, (kind, name) in _walk(ctx):
+        if kind != "element" or (parent == "robot" and name == "ros"):
+            continue
+        allowed = SCHEMA[parent][1] or set()
+        hint = BELONGS.get((parent, name))
+        guess = suggest(name, allowed)
+        msg = f"unknown element <{name}> in <{parent}{_named(el.getparent())}>: URDF parsers ignore it"
+        if hint:
+            msg += f"; {hint}"
+        elif guess:
+            msg += f"; did you mean <{guess}>?"
+        yield Finding(msg, ctx.loc_of(el), {"element": name, "parent": parent, "suggestion": guess})
+
+
+@rule("T006", "unknown-attribute", "warning")
+def unknown_attribute(ctx):
+    """An attribute URDF does not know (fricction=, <box rpy=...>): parsers ignore it.
+
+    Example: `<dynamics damping="0.1" fricction="0.5"/>` leaves the joint without friction;
+    `<box size="0.3 0.24 0.1" rpy="0 0 0"/>` has no effect. Fix: the spelling given as
+    did-you-mean, or move the value to the element where it belongs (rpy goes on <origin>).
+    """
+    for el, tag, (kind, name) in _walk(ctx):
+        if kind != "attribute":
+            continue
+        allowed = SCHEMA[tag][0]
+        hint = BELONGS.get((tag, name))
+        guess = suggest(name, allowed)
+        msg = f"unknown attribute {name}=\"{el.get(name)}\" on <{tag}{_named(el)}>: URDF parsers ignore it"
+        if hint:
+            msg += f"; {hint}"
+        elif guess:
+            msg += f"; did you mean {guess}=?"
+        yield Finding(msg, ctx.loc_of(el), {"attribute": name, "element": tag, "suggestion": guess})
+
+
+@rule("T007", "ros2-block-outside-plugin", "warning")
+def ros_block(ctx):
+    """A ROS 2 `<ros>` block directly under `<robot>`: it only means something inside a ROS 2 plugin.
+
+    gazebo_ros (ROS 2) plugins read `<ros><namespace>/<remapping>` from inside their own
+    `<plugin>`; at robot level nobody reads it, so the namespace and remappings are lost
+    (and in a ROS 1 setup `<ros>` is never read at all). Fix: move it into the `<plugin>`
+    it configures, or delete it (ROS 1: use `robotNamespace` and launch-file remaps).
+    """
+    for el in ctx.robot.root_element:
+        if local(el.tag) == "ros":
+            inner = ", ".join(f"<{local(c.tag)}>{(c.text or '').strip()}" for c in el if isinstance(c.tag, str))
+            yield Finding(f"ROS 2 <ros> block at robot level ({inner}) is read by no one; it belongs inside "
+                          "a ROS 2 gazebo_ros <plugin>", ctx.loc_of(el), {"content": inner})
+
+
+def _named(el) -> str:
+    if el is None:
+        return ""
+    n = el.get("name") or el.get("reference")
+    return f" name=\"{n}\"" if n else ""

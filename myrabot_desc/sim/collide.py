@@ -1,0 +1,176 @@
+"""Collision checks of the arm against the rest of the robot and the scene (Pinocchio + coal).
+
+Pairs: every collision object carried by the arm's joints (the ``base`` joint's
+subtree) against every object that is not (the structure, the Roomba, the
+sensors, and the table and cans when a scene is given). Pairs that already touch
+at the reference (home) pose are contacts by design, such as the base servo
+sitting between its mounting plates; they are left out and listed, as an SRDF
+"disable collisions: Default" would.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+
+@dataclass
+class CollisionReport:
+    checked_configs: int
+    pairs: int
+    ignored: list[tuple[str, str]] = field(default_factory=list)     # touching at rest
+    hits: list[tuple[float, str, str]] = field(default_factory=list)  # (time, arm object, other)
+    min_distance: float | None = None
+    min_pair: tuple[str, str] | None = None
+
+    @property
+    def collided(self) -> bool:
+        return bool(self.hits)
+
+
+class ArmCollider:
+    def __init__(self, arm, scene=()):
+        import coal
+        import numpy as np
+        import pinocchio as pin
+
+        self.arm = arm
+        robot = arm.robot
+        model = arm.model
+        dirs = sorted({str(p.parent) for p in (robot.package_roots or {}).values()})
+        try:
+            gm = pin.buildGeomFromUrdfString(model, robot.urdf_text, pin.GeometryType.COLLISION, None, dirs)
+        except Exception:               # unresolvable meshes: primitives only
+            gm = _primitives_only(model, robot)
+        # scene objects: fixed in the robot's root frame (the base stands still in escoja/seguir)
+        for obj in scene:
+            for name, shape, M in obj.coal_shapes():
+                go = pin.GeometryObject(name, 0, 0, pin.SE3(M[:3, :3], M[:3, 3]), shape)
+                gm.addGeometryObject(go)
+        self.gmodel = gm
+        arm_joints = set()
+        base_jid = arm.jid[0]
+        for jid in range(1, model.njoints):
+            j = jid
+            while j > 0:
+                if j == base_jid:
+                    arm_joints.add(jid)
+                    break
+                j = model.parents[j]
+        self.arm_objs = [i for i, g in enumerate(gm.geometryObjects) if g.parentJoint in arm_joints]
+        others = [i for i, g in enumerate(gm.geometryObjects) if g.parentJoint not in arm_joints]
+        # Bounding spheres: an object farther from the base joint than the arm can reach is never hit.
+        data = model.createData()
+        q = arm.full_q(np.zeros(len(arm.names)))
+        pin.forwardKinematics(model, data, q)
+        gd0 = pin.GeometryData(gm)
+        pin.updateGeometryPlacements(model, data, gm, gd0)
+        centre = data.oMi[base_jid].translation
+
+        def sphere(i):
+            g = gm.geometryObjects[i].geometry
+            g.computeLocalAABB()
+            c = gd0.oMg[i].act(np.asarray(g.aabb_center))
+            return c, float(g.aabb_radius)
+
+        reach = 0.0
+        for i in self.arm_objs:
+            c, r = sphere(i)
+            reach = max(reach, float(np.linalg.norm(c - centre)) + r)
+        self.reach = reach
+        self.other_objs = []
+        for i in others:
+            c, r = sphere(i)
+            if float(np.linalg.norm(c - centre)) - r <= reach + 0.01:
+                self.other_objs.append(i)
+        self.skipped_far = len(others) - len(self.other_objs)
+        for a in self.arm_objs:
+            for b in self.other_objs:
+                gm.addCollisionPair(pin.CollisionPair(a, b))
+        self.gdata = pin.GeometryData(gm)
+        self.np = np
+        self.coal = coal
+
+    def _name(self, i: int) -> str:
+        return self.gmodel.geometryObjects[i].name
+
+    def check(self, times, qarms, q_ref) -> CollisionReport:
+        """Check arm configurations (rows of ``qarms``, at ``times``); q_ref defines resting contacts."""
+        import pinocchio as pin
+
+        np = self.np
+        model, data, gm, gd = self.arm.model, self.arm.data, self.gmodel, self.gdata
+        pin.computeCollisions(model, data, gm, gd, self.arm.full_q(q_ref), False)
+        ignored = []
+        active = []
+        for k, cp in enumerate(gm.collisionPairs):
+            if gd.collisionResults[k].isCollision():
+                ignored.append((self._name(cp.first), self._name(cp.second)))
+                gd.deactivateCollisionPair(k)
+            else:
+                active.append(k)
+        rep = CollisionReport(checked_configs=len(qarms), pairs=len(active), ignored=ignored)
+        best = (np.inf, None)
+        for t, qa in zip(times, qarms):
+            q = self.arm.full_q(qa)
+            pin.computeCollisions(model, data, gm, gd, q, False)
+            for k in active:
+                if gd.collisionResults[k].isCollision():
+                    cp = gm.collisionPairs[k]
+                    rep.hits.append((float(t), self._name(cp.first), self._name(cp.second)))
+            pin.computeDistances(model, data, gm, gd, q)
+            for k in active:
+                d = gd.distanceResults[k].min_distance
+                if d < best[0]:
+                    cp = gm.collisionPairs[k]
+                    best = (d, (self._name(cp.first), self._name(cp.second)))
+        for k in range(len(gm.collisionPairs)):
+            gd.activateCollisionPair(k)
+        if best[1] is not None:
+            rep.min_distance, rep.min_pair = float(best[0]), best[1]
+        return rep
+
+
+def unique_configs(t, q, resolution: float = 0.005, limit: int = 1500):
+    """Distinct arm configurations (quantised to ``resolution`` rad), first time each is seen."""
+    import numpy as np
+
+    key = np.round(q / resolution).astype(np.int64)
+    _, first = np.unique(key, axis=0, return_index=True)
+    first = np.sort(first)
+    if len(first) > limit:
+        first = first[np.linspace(0, len(first) - 1, limit).astype(int)]
+    return t[first], q[first]
+
+
+def _primitives_only(model, robot):
+    """A GeometryModel from the robot's primitive collision shapes (meshes skipped)."""
+    import pinocchio as pin
+
+    gm = pin.GeometryModel()
+    for ln, link in robot.links.items():
+        if not model.existFrame(ln):
+            continue
+        fid = model.getFrameId(ln)
+        f = model.frames[fid]
+        for i, c in enumerate(link.collisions):
+            shape = coal_shape(c.geometry)
+            if shape is None:
+                continue
+            M = f.placement.homogeneous @ c.origin.matrix()
+            gm.addGeometryObject(pin.GeometryObject(f"{ln}_{i}", f.parentJoint, fid,
+                                                    pin.SE3(M[:3, :3], M[:3, 3]), shape))
+    return gm
+
+
+def coal_shape(g):
+    import coal
+
+    if g is None:
+        return None
+    if g.kind == "box":
+        return coal.Box(*g.size)
+    if g.kind == "cylinder":
+        return coal.Cylinder(g.radius, g.length)
+    if g.kind == "sphere":
+        return coal.Sphere(g.radius)
+    return None

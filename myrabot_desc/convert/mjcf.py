@@ -1,0 +1,306 @@
+"""The Robot → MJCF through MuJoCo's own URDF compiler (anchors §5).
+
+MuJoCo reads URDF itself but stumbles on what real descriptions contain: it cannot
+resolve ``package://`` (#1432), strips mesh paths, reads no DAE, discards visuals by
+default, welds a massless root to the world (a REP-105 ``base_footprint`` robot stops
+being mobile) and rejects inertias that break A + B >= C. So we hand it a prepared
+URDF: meshes copied (DAE and others converted to STL with trimesh) into
+``<OUT stem>_meshes/`` next to the output with unique names, explicit rgba from the URDF
+colours and the resolved Gazebo materials, repaired inertias, a placeholder inertial
+for massless moving links, and a free joint for mobile bases. MuJoCo compiles it and
+saves the MJCF; collision geoms go to group 3 (hidden by the viewer's defaults), visuals
+stay in group 1 with their colours.
+"""
+
+from __future__ import annotations
+
+import shutil
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+
+from lxml import etree
+
+from myrabot_desc.convert.common import Notes, local, num, nums
+from myrabot_desc.convert.inertia import describe, repaired
+from myrabot_desc.errors import InputError
+
+TINY_MASS = 1e-3
+TINY_INERTIA = 1e-6
+MUJOCO_MESH_EXT = {".stl", ".obj", ".msh"}
+
+
+@dataclass
+class MjcfResult:
+    text: str
+    notes: Notes
+    nbody: int
+    njnt: int
+    ngeom: int
+    nmesh: int
+    free: bool
+    mesh_dir: str | None
+
+    @property
+    def summary(self) -> str:
+        return (f"{self.nbody} bodies, {self.njnt} joints, {self.ngeom} geoms, {self.nmesh} meshes"
+                f"{', free base' if self.free else ''}")
+
+
+def _parse(text: str):
+    parser = etree.XMLParser(resolve_entities=False, no_network=True, remove_comments=True, huge_tree=False)
+    return etree.fromstring(text.encode("utf-8"), parser)
+
+
+def is_mobile(robot) -> bool:
+    """A drive plugin, or wheels: continuous joints whose child is called *wheel*/*caster*/*castor*."""
+    from myrabot_desc.convert.sensors import plugin_kind
+
+    if any(plugin_kind(p) in ("diff_drive", "skid_steer") for p in robot.plugins()):
+        return True
+    return any(j.type == "continuous" and any(w in j.child.lower() for w in ("wheel", "caster", "castor"))
+               for j in robot.joints.values())
+
+
+class _Prep:
+    def __init__(self, robot, notes, mesh_dirname):
+        self.robot = robot
+        self.notes = notes
+        self.mesh_dirname = mesh_dirname
+        self.meshes: dict[Path, str] = {}            # source file -> file name in the mesh folder
+        self.names: set[str] = set()
+        self.missing: list[str] = []
+        self.converted: list[str] = []
+
+    def mesh_name(self, src: Path) -> str:
+        key = src.resolve()
+        if key in self.meshes:
+            return self.meshes[key]
+        ext = src.suffix.lower()
+        out_ext = ext if ext in MUJOCO_MESH_EXT else ".stl"
+        stem = "".join(ch if ch.isalnum() or ch in "-_" else "_" for ch in src.stem) or "mesh"
+        name, k = f"{stem}{out_ext}", 2
+        while name.lower() in self.names:
+            name, k = f"{stem}_{k}{out_ext}", k + 1
+        self.names.add(name.lower())
+        self.meshes[key] = name
+        if out_ext != ext:
+            self.converted.append(src.name)
+        return name
+
+    def write_meshes(self, folder: Path) -> None:
+        folder.mkdir(parents=True, exist_ok=True)
+        for src, name in sorted(self.meshes.items(), key=lambda kv: kv[1]):
+            dest = folder / name
+            if src.suffix.lower() == dest.suffix.lower():
+                shutil.copyfile(src, dest)
+                continue
+            import trimesh
+
+            try:
+                mesh = trimesh.load(str(src), force="mesh", process=False)
+            except Exception as exc:  # a broken mesh file: say which one
+                raise InputError(f"cannot convert mesh {src} for MuJoCo: {exc}") from None
+            if mesh.is_empty:
+                raise InputError(f"mesh {src} has no triangles")
+            mesh.export(str(dest), file_type="stl")
+
+
+def prepare_urdf(robot, notes: Notes, base: str, mesh_dirname: str):
+    """The URDF MuJoCo gets, and the mesh plan."""
+    from myrabot_desc.convert.appearance import Appearance
+    from myrabot_desc.convert.gazebo import GazeboProps
+
+    root = _parse(robot.urdf_text)
+    prep = _Prep(robot, notes, mesh_dirname)
+    # Gazebo and ROS-only content means nothing to MuJoCo (and the Electric namespaces confuse it)
+    for el in list(root):
+        if not isinstance(el.tag, str) or local(el.tag) in ("gazebo", "transmission") or el.tag.startswith("{"):
+            root.remove(el)
+    props = GazeboProps(robot, Notes())
+    look = Appearance(robot, notes)
+    colours: dict[str, tuple] = {}
+    links_xml = {el.get("name"): el for el in root.findall("link")}
+    for name, link_el in links_xml.items():
+        link = robot.links.get(name)
+        gz_mat = props.get(name).get("material")
+        visuals = link_el.findall("visual")
+        for k, vis in enumerate(visuals):
+            model_vis = link.visuals[k] if link is not None and k < len(link.visuals) else None
+            lk = look.look(model_vis, gz_mat, link.loc if link else None) if model_vis is not None else None
+            for m in vis.findall("material"):
+                vis.remove(m)
+            if lk is not None:
+                rgba = tuple(lk.diffuse[:3]) + (lk.diffuse[3] if len(lk.diffuse) > 3 else 1.0,)
+                mname = colours.setdefault(nums(rgba), f"rgba_{len(colours)}")
+                m = etree.SubElement(vis, "material", name=mname)
+                etree.SubElement(m, "color", rgba=nums(rgba))
+        for part in visuals + link_el.findall("collision"):
+            mesh = part.find("geometry/mesh")
+            if mesh is None:
+                continue
+            fn = mesh.get("filename", "")
+            try:
+                src = robot.resolve_uri(fn)
+            except Exception:
+                src = None
+            if src is None or not Path(src).is_file():
+                prep.missing.append(fn)
+                link_el.remove(part)
+                continue
+            mesh.set("filename", prep.mesh_name(Path(src)))
+        # inertia: repaired like the SDF path, so both simulators see the same body
+        ine_el = link_el.find("inertial")
+        if link is not None and link.inertial is not None and link.inertial.mass > 0 and ine_el is not None:
+            tensor, changed = repaired(link.inertial)
+            if changed:
+                notes.warn(f"link '{name}': inertia breaks A + B >= C, raised {describe(link.inertial, tensor)}",
+                           link.inertial.loc)
+                t = ine_el.find("inertia")
+                if t is None:
+                    t = etree.SubElement(ine_el, "inertia")
+                for key, (a, b) in {"ixx": (0, 0), "ixy": (0, 1), "ixz": (0, 2), "iyy": (1, 1), "iyz": (1, 2),
+                                    "izz": (2, 2)}.items():
+                    t.set(key, num(tensor[a, b]))
+    if prep.missing:
+        shown = ", ".join(sorted(set(prep.missing))[:5])
+        notes.warn(f"{len(prep.missing)} mesh geometry(ies) left out: file not found ({shown})")
+
+    # massless links that move would stop MuJoCo ("mass and inertia of moving bodies ...")
+    tiny = []
+    moving_children = {j.child for j in robot.joints.values() if j.type not in ("fixed",)}
+    world_root = "world" in robot.links and robot.root == "world"
+    free = False
+    roots = [r for r in robot.roots if r != "world"] if not world_root else \
+        [j.child for j in robot.joints.values() if j.parent == "world"]
+    if base == "free" or (base == "auto" and is_mobile(robot)):
+        free = True
+    for r in roots:
+        link = robot.links.get(r)
+        j_world = next((j for j in robot.joints.values() if j.parent == "world" and j.child == r), None)
+        if free:
+            if j_world is not None:
+                j_el = root.find(f"joint[@name='{j_world.name}']")
+                if j_el is not None:
+                    j_el.set("type", "floating")
+            else:
+                _add_world_joint(root, r, "floating")
+            moving_children.add(r)
+        elif base == "fixed":
+            if j_world is not None:
+                j_el = root.find(f"joint[@name='{j_world.name}']")
+                if j_el is not None:
+                    j_el.set("type", "fixed")
+            else:
+                _add_world_joint(root, r, "fixed")
+        elif link is not None and link.mass > 0 and j_world is None:
+            free = True                                 # MuJoCo frees a massive root by itself
+    for name in moving_children:
+        link = robot.links.get(name)
+        if link is not None and link.mass <= 0 and name in links_xml:
+            _tiny_inertial(links_xml[name])
+            tiny.append(name)
+    if tiny:
+        notes.warn(f"{len(tiny)} massless moving link(s) given a placeholder inertial ({TINY_MASS} kg) "
+                   f"for MuJoCo: " + ", ".join(sorted(tiny)))
+
+    mj = root.find("mujoco")
+    if mj is None:
+        mj = etree.Element("mujoco")
+        root.insert(0, mj)
+    comp = mj.find("compiler")
+    if comp is None:
+        comp = etree.SubElement(mj, "compiler")
+    comp.set("discardvisual", "false")
+    comp.set("meshdir", mesh_dirname + "/")
+    comp.set("strippath", "false")
+    comp.set("angle", "radian")
+    return root, prep, free
+
+
+def _add_world_joint(root, child, type_):
+    if root.find("link[@name='world']") is None:
+        root.insert(1, etree.Element("link", name="world"))
+    j = etree.SubElement(root, "joint", name=f"{child}_{'free' if type_ == 'floating' else 'fixed'}_joint",
+                         type=type_)
+    etree.SubElement(j, "parent", link="world")
+    etree.SubElement(j, "child", link=child)
+
+
+def _tiny_inertial(link_el):
+    for old in link_el.findall("inertial"):
+        link_el.remove(old)
+    ine = etree.Element("inertial")
+    etree.SubElement(ine, "mass", value=num(TINY_MASS))
+    etree.SubElement(ine, "inertia", ixx=num(TINY_INERTIA), ixy="0", ixz="0", iyy=num(TINY_INERTIA), iyz="0",
+                     izz=num(TINY_INERTIA))
+    link_el.insert(0, ine)
+
+
+def _postprocess(text: str, robot, mesh_dirname: str, free: bool, version: str) -> str:
+    root = _parse(text)
+    comp = root.find("compiler")
+    if comp is not None:
+        comp.set("meshdir", mesh_dirname + "/")
+    for g in root.iter("geom"):
+        if g.get("group") is None and g.get("contype") is None:
+            # collision geom: hidden by the viewer's default groups; MuJoCo's URDF reader copies the
+            # last visual rgba onto collisions, which would only mislead
+            g.set("group", "3")
+            if "rgba" in g.attrib:
+                del g.attrib["rgba"]
+    src = robot.source.name if robot.source else "URDF"
+    root.insert(0, etree.Comment(f" generated by myrabot-desc convert from {src} through MuJoCo {version}'s URDF "
+                                 f"compiler; visuals in group 1, collisions in group 3"
+                                 f"{'; free base' if free else ''} "))
+    etree.indent(root, space="  ")
+    return etree.tostring(root, encoding="unicode", pretty_print=True)
+
+
+def convert_mjcf(robot, output: str, base: str = "auto") -> MjcfResult:
+    try:
+        import mujoco
+    except ImportError:
+        raise InputError("MJCF needs the mujoco package: pip install mujoco") from None
+    from myrabot_desc.output import OutputDir, write_output
+
+    notes = Notes()
+    out = Path(output) if output != "-" else None
+    mesh_dirname = f"{out.stem}_meshes" if out else "meshes"
+    urdf_root, prep, free = prepare_urdf(robot, notes, base, mesh_dirname)
+    if out is None and prep.meshes:
+        raise InputError(f"this model has {len(prep.meshes)} mesh file(s): MJCF to stdout cannot carry them, "
+                         "give -o OUT.xml")
+    urdf_text = etree.tostring(urdf_root, encoding="unicode")
+
+    def compile_in(folder: Path) -> tuple[str, object]:
+        prep.write_meshes(folder / mesh_dirname)
+        tmp_urdf = folder / ".robot.urdf"
+        tmp_urdf.write_text(urdf_text, encoding="utf-8")
+        tmp_xml = folder / ".robot.xml"
+        try:
+            model = mujoco.MjModel.from_xml_path(str(tmp_urdf))
+            mujoco.mj_saveLastXML(str(tmp_xml), model)
+        except ValueError as exc:
+            msg = str(exc).strip().splitlines()
+            raise InputError(f"MuJoCo rejected the model: {' '.join(m.strip() for m in msg if m.strip())}",
+                             robot.loc) from None
+        finally:
+            tmp_urdf.unlink(missing_ok=True)
+        text = tmp_xml.read_text(encoding="utf-8")
+        tmp_xml.unlink()
+        return _postprocess(text, robot, mesh_dirname, free, mujoco.__version__), model
+
+    if out is None:
+        with tempfile.TemporaryDirectory() as d:
+            text, model = compile_in(Path(d))
+        write_output("-", text)
+    else:
+        with OutputDir(out.parent if str(out.parent) else ".") as stage:
+            text, model = compile_in(stage)
+            (stage / out.name).write_text(text, encoding="utf-8")
+        if prep.converted:
+            notes.warn(f"{len(prep.converted)} mesh(es) converted to STL for MuJoCo (it reads STL, OBJ, MSH); "
+                       "their embedded colours are replaced by the URDF/Gazebo colour")
+    return MjcfResult(text, notes, model.nbody, model.njnt, model.ngeom, model.nmesh, free,
+                      str(out.parent / mesh_dirname) if out and prep.meshes else None)

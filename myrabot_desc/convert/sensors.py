@@ -1,0 +1,398 @@
+"""Gazebo sensors → gz-sim sensors (anchors §6.3), the Electric dialect included.
+
+Electric (``<sensor:camera>``, ``<sensor:ray>`` with ``<controller:...>`` inside) writes
+angles in degrees; SDF wants radians. Classic SDF sensors (``<sensor type="ray">``
+with ROS plugins inside) are upgraded in place: ``ray`` → ``gpu_lidar`` (``<ray>`` →
+``<lidar>``), ``depth`` → ``depth_camera``; the ROS plugins disappear (gz-sim sensors
+publish on ``<topic>`` themselves) and their topic and frame are carried over.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+from dataclasses import dataclass, field
+
+from lxml import etree
+
+from myrabot_desc.convert.common import (comment, local, num, sub, to_bool, to_float, to_floats, transform,
+                                         xml_text)
+
+SONAR_NOTE = ("gz-sim has no sonar sensor: this is a narrow gpu_lidar with the seed's rays; the old plugin "
+              "published sensor_msgs/Range = the minimum over its rays, so take min(ranges) downstream")
+
+
+@dataclass
+class SensorOut:
+    link: str                       # the URDF link it is attached to
+    T: object                       # 4x4 pose in that link's frame
+    element: object                 # the <sensor> element
+    comments: list[str] = field(default_factory=list)
+    source: str = ""                # 'electric' | 'sdf' | 'controller'
+
+
+def plugin_kind(p) -> str:
+    """A short kind for a plugin/controller: 'openni_kinect', 'camera', 'laser', 'sonar', 'imu',
+    'diff_drive', 'skid_steer', 'joint_state', 'ros_control', 'gz', or 'unknown'."""
+    key = _plugin_key(p)
+    table = [
+        ("openni_kinect", ("gazebo_ros_openni_kinect", "gazebo_ros_kinect")),
+        ("depth_camera", ("gazebo_ros_depth_camera",)),
+        ("camera", ("gazebo_ros_camera", "gazebo_ros_prosilica", "gazebo_ros_multicamera")),
+        ("laser", ("gazebo_ros_laser", "gazebo_ros_gpu_laser", "gazebo_ros_ray_sensor", "gazebo_ros_block_laser",
+                   "gazebo_ros_head_hokuyo")),
+        ("sonar", ("gazebo_ros_sonar", "gazebo_ros_range", "hector_gazebo_ros_sonar")),
+        ("imu", ("gazebo_ros_imu", "gazebo_ros_imu_sensor", "hector_gazebo_ros_imu")),
+        ("diff_drive", ("gazebo_ros_roomba", "gazebo_ros_create", "gazebo_ros_diff_drive", "gazebo_ros_kobuki",
+                        "gazebo_ros_diffdrive", "diff_drive_controller", "gz-sim-diff-drive-system",
+                        "ignition-gazebo-diff-drive-system", "diffdrive")),
+        ("skid_steer", ("gazebo_ros_skid_steer_drive",)),
+        ("joint_state", ("gazebo_ros_joint_state_publisher", "gz-sim-joint-state-publisher-system",
+                         "ignition-gazebo-joint-state-publisher-system", "jointstatepublisher")),
+        ("ros_control", ("gazebo_ros_control", "gazebo_ros_controller_manager", "gazebo_ros2_control", "gz_ros2_control",
+                         "ign_ros2_control", "gz_ros2_control-system", "ign_ros2_control-system")),
+    ]
+    for kind, keys in table:
+        if key in keys:
+            return kind
+    if key.startswith(("gz-sim-", "ignition-gazebo-")) or (p.name or "").startswith(("gz::sim", "ignition::gazebo")):
+        return "gz"
+    return "unknown"
+
+
+def _plugin_key(p) -> str:
+    lib = (p.filename or "").rsplit("/", 1)[-1]
+    if lib.startswith("lib"):
+        lib = lib[3:]
+    for ext in (".so", ".dylib", ".dll"):
+        if lib.endswith(ext):
+            lib = lib[: -len(ext)]
+    if lib:
+        return lib.lower()
+    if p.dialect == "electric" and p.element is not None:
+        return local(p.element.tag).lower()
+    name = (p.name or "").rsplit("::", 1)[-1]
+    return name.lower()
+
+
+# ---------------------------------------------------------------- small readers
+def eparam(el, *names):
+    """Text (or value=) of the first direct child with one of these local names."""
+    for c in el:
+        if isinstance(c.tag, str) and local(c.tag) in names:
+            t = (c.text or "").strip()
+            return t if t else c.get("value")
+    return None
+
+
+def pparam(p, *names):
+    for n in names:
+        v = p.params.get(n)
+        if v not in (None, ""):
+            return v.strip()
+    return None
+
+
+def ros_remap(p, *froms):
+    """ROS 2 ``<ros><remapping>~/out:=scan</remapping>`` target for one of ``froms``."""
+    if p.element is None:
+        return None
+    for r in p.element.iter():
+        if isinstance(r.tag, str) and local(r.tag) in ("remapping", "argument") and r.text and ":=" in r.text:
+            a, b = r.text.strip().split(":=", 1)
+            if a.strip() in froms:
+                return b.strip()
+    return None
+
+
+def ros_namespace(p):
+    if p.element is None:
+        return None
+    for r in p.element.iter():
+        if isinstance(r.tag, str) and local(r.tag) == "namespace" and r.text and r.text.strip() not in ("", "/"):
+            return r.text.strip()
+    return None
+
+
+def join_topic(ns, name):
+    if not name:
+        return None
+    if not ns or name.startswith("/"):
+        return name
+    return ns.rstrip("/") + "/" + name
+
+
+def noise_el(parent, stddev, attr=False):
+    """Gaussian noise; IMU axes take the type as an attribute (SDF 1.9), lidar/camera as a child."""
+    n = sub(parent, "noise", type_="gaussian" if attr else None)
+    if not attr:
+        sub(n, "type", "gaussian")
+    sub(n, "mean", 0.0)
+    sub(n, "stddev", stddev)
+    return n
+
+
+def _header(name, type_, always_on=True, rate=None, visualize=None, topic=None, frame=None):
+    s = etree.Element("sensor", name=name, type=type_)
+    sub(s, "always_on", bool(always_on))
+    if rate is not None:
+        sub(s, "update_rate", rate)
+    if visualize is not None:
+        sub(s, "visualize", bool(visualize))
+    if topic:
+        sub(s, "topic", topic)
+    if frame:
+        sub(s, "gz_frame_id", frame)
+    return s
+
+
+# ---------------------------------------------------------------- Electric dialect
+def _electric_camera(sensor, notes):
+    el = sensor.element
+    ctrl = sensor.plugins[0] if sensor.plugins else None
+    kind = plugin_kind(ctrl) if ctrl else None
+    comments = []
+    size = to_floats(eparam(el, "imageSize")) or [to_float(eparam(el, "imageWidth"), 320),
+                                                   to_float(eparam(el, "imageHeight"), 240)]
+    hfov_deg = to_float(eparam(el, "hfov"), 60.0)
+    near, far = to_float(eparam(el, "nearClip"), 0.1), to_float(eparam(el, "farClip"), 100.0)
+    rate = to_float(eparam(el, "updateRate"))
+    fmt = eparam(el, "imageFormat") or "R8G8B8"
+    type_ = "camera"
+    topic = frame = None
+    if ctrl is not None:
+        rate = to_float(pparam(ctrl, "updateRate"), rate)
+        image_topic = pparam(ctrl, "imageTopicName")
+        cam_name = pparam(ctrl, "cameraName")
+        frame = pparam(ctrl, "frameName")
+        loaded = not (ctrl.dialect == "electric" and ctrl.file_attr == "filename")
+        if kind == "openni_kinect" and loaded:
+            type_ = "rgbd_camera"
+            base = image_topic.rsplit("/", 1)[0] if image_topic and "/" in image_topic.strip("/") else cam_name
+            topic = base or sensor.name
+            comments.append(f"openni_kinect controller '{ctrl.name}' -> rgbd_camera: "
+                            f"gz-sim publishes {topic}/image, {topic}/depth_image, {topic}/points, "
+                            f"{topic}/camera_info; the seed's ROS topics were "
+                            + ", ".join(v for v in (image_topic, pparam(ctrl, "pointCloudTopicName"),
+                                                    pparam(ctrl, "cameraInfoTopicName")) if v)
+                            + " (map them with ros_gz_bridge)")
+        else:
+            topic = join_topic(cam_name, image_topic) if image_topic else cam_name
+            if kind == "openni_kinect" and not loaded:
+                comments.append(f"controller '{ctrl.name}' was written with filename= instead of plugin=, so "
+                                "Gazebo 1.0 never loaded it (no depth): converted as a plain camera on its "
+                                f"image topic {image_topic}")
+                notes.warn(f"Electric controller '{ctrl.name}' uses filename= (ignored by Gazebo 1.0): "
+                           "sensor converted as a plain camera", ctrl.loc)
+        dist = {k: to_float(pparam(ctrl, f"distortion_{k}"), 0.0) for k in ("k1", "k2", "k3", "t1", "t2")}
+    else:
+        dist = {}
+    s = _header(sensor.name or "camera", type_, True, rate, None, topic, frame)
+    cam = sub(s, "camera")
+    sub(cam, "horizontal_fov", math.radians(hfov_deg))
+    img = sub(cam, "image")
+    sub(img, "width", int(size[0]))
+    sub(img, "height", int(size[1]))
+    sub(img, "format", fmt)
+    clip = sub(cam, "clip")
+    sub(clip, "near", near)
+    sub(clip, "far", far)
+    if any(dist.values()):
+        d = sub(cam, "distortion")
+        for k, tag in (("k1", "k1"), ("k2", "k2"), ("k3", "k3"), ("t1", "p1"), ("t2", "p2")):
+            sub(d, tag, dist[k])
+    if frame:
+        sub(cam, "optical_frame_id", frame)
+    comments.insert(0, f"from Electric <sensor:camera name=\"{sensor.name}\">: hfov {num(hfov_deg)} deg = "
+                       f"{num(math.radians(hfov_deg))} rad")
+    T = transform(to_floats(eparam(el, "origin")) or (0, 0, 0))
+    return s, comments, T
+
+
+def _electric_ray(sensor, notes):
+    el = sensor.element
+    ctrl = sensor.plugins[0] if sensor.plugins else None
+    kind = plugin_kind(ctrl) if ctrl else None
+    rays = int(to_float(eparam(el, "rayCount"), 1))
+    ranges = int(to_float(eparam(el, "rangeCount"), rays))
+    amin, amax = to_float(eparam(el, "minAngle"), 0.0), to_float(eparam(el, "maxAngle"), 0.0)
+    vrays = to_float(eparam(el, "verticalRayCount"))
+    vmin, vmax = to_float(eparam(el, "verticalMinAngle"), 0.0), to_float(eparam(el, "verticalMaxAngle"), 0.0)
+    rmin, rmax = to_float(eparam(el, "minRange"), 0.0), to_float(eparam(el, "maxRange"), 10.0)
+    rres = to_float(eparam(el, "resRange"), 0.01)
+    rate = to_float(eparam(el, "updateRate"))
+    vis = eparam(el, "displayRays")
+    comments = []
+    topic = frame = noise = None
+    if ctrl is not None:
+        rate = to_float(pparam(ctrl, "updateRate"), rate)
+        topic = pparam(ctrl, "topicName")
+        frame = pparam(ctrl, "frameName", "frameId")
+        noise = to_float(pparam(ctrl, "gaussianNoise"))
+    sonar = kind == "sonar"
+    if ctrl is None:
+        topic = sensor.name
+        comments.append(f"Electric <sensor:ray name=\"{sensor.name}\"> had no controller (the base plugin read "
+                        "it by name); published here on its own topic")
+    s = _header(sensor.name or "ray", "gpu_lidar", to_bool(eparam(el, "alwaysActive"), True), rate,
+                vis not in (None, "false", "0"), topic, frame)
+    lidar = sub(s, "lidar")
+    scan = sub(lidar, "scan")
+    h = sub(scan, "horizontal")
+    sub(h, "samples", rays)
+    sub(h, "resolution", ranges / rays if rays else 1)
+    sub(h, "min_angle", math.radians(amin))
+    sub(h, "max_angle", math.radians(amax))
+    if vrays is not None:
+        v = sub(scan, "vertical")
+        sub(v, "samples", int(vrays))
+        sub(v, "resolution", 1)
+        sub(v, "min_angle", math.radians(vmin))
+        sub(v, "max_angle", math.radians(vmax))
+    rng = sub(lidar, "range")
+    sub(rng, "min", rmin)
+    sub(rng, "max", rmax)
+    sub(rng, "resolution", rres)
+    if noise:
+        noise_el(lidar, noise)
+    what = f"{rays}x{int(vrays) if vrays else 1} rays, {num(amin)}..{num(amax)} deg"
+    if vrays is not None:
+        what += f" by {num(vmin)}..{num(vmax)} deg"
+    comments.insert(0, f"from Electric <sensor:ray name=\"{sensor.name}\">: {what} (radians below)")
+    if sonar:
+        comments.append(SONAR_NOTE + (f"; plugin fov {pparam(ctrl, 'fov')}, radiation {pparam(ctrl, 'radiation')}"
+                                      if pparam(ctrl, 'fov') else ""))
+    T = transform(to_floats(eparam(el, "origin")) or (0, 0, 0))
+    return s, comments, T
+
+
+# ---------------------------------------------------------------- SDF/classic dialect
+_TYPE_MAP = {"ray": "gpu_lidar", "gpu_ray": "gpu_lidar", "lidar": "gpu_lidar", "depth": "depth_camera",
+             "gps": "navsat", "multicamera": "camera", "sonar": "gpu_lidar"}
+
+
+def _sdf_sensor(sensor, notes):
+    src = sensor.element
+    s = copy.deepcopy(src)
+    etree.strip_attributes(s, "reference")
+    old_type = (s.get("type") or "").strip()
+    new_type = _TYPE_MAP.get(old_type, old_type)
+    if new_type != old_type:
+        s.set("type", new_type)
+    comments = []
+    pose = None
+    for child in list(s):
+        if not isinstance(child.tag, str):
+            continue
+        tag = local(child.tag)
+        if tag == "pose":
+            pose = to_floats(child.text) or [0] * 6
+            s.remove(child)
+        elif tag == "ray":
+            child.tag = "lidar"
+        elif tag == "plugin":
+            s.remove(child)
+    if old_type == "sonar":
+        son = s.find("sonar")
+        rmin = to_float(son.findtext("min"), 0.0) if son is not None else 0.0
+        rmax = to_float(son.findtext("max"), 5.0) if son is not None else 5.0
+        radius = to_float(son.findtext("radius"), 0.1) if son is not None else 0.1
+        half = math.atan2(radius, rmax)
+        if son is not None:
+            s.remove(son)
+        lidar = sub(s, "lidar")
+        scan = sub(lidar, "scan")
+        for axis in ("horizontal", "vertical"):
+            a = sub(scan, axis)
+            sub(a, "samples", 5)
+            sub(a, "resolution", 1)
+            sub(a, "min_angle", -half)
+            sub(a, "max_angle", half)
+        r = sub(lidar, "range")
+        sub(r, "min", rmin)
+        sub(r, "max", rmax)
+        sub(r, "resolution", 0.01)
+        comments.append(SONAR_NOTE + f"; cone radius {num(radius)} m at {num(rmax)} m")
+    if old_type == "multicamera":
+        cams = s.findall("camera")
+        for extra in cams[1:]:
+            s.remove(extra)
+        if len(cams) > 1:
+            notes.warn(f"multicamera '{sensor.name}': gz-sim has no multicamera, only its first camera is kept",
+                       sensor.loc)
+    if new_type != old_type:
+        comments.append(f"classic type '{old_type}' -> '{new_type}'")
+    topic = frame = None
+    for p in sensor.plugins:
+        kind = plugin_kind(p)
+        ns = ros_namespace(p) or pparam(p, "robotNamespace")
+        if kind in ("camera", "openni_kinect", "depth_camera"):
+            cam_name = pparam(p, "cameraName", "camera_name")
+            image = pparam(p, "imageTopicName", "image_topic_name") or ros_remap(p, "image_raw", "~/image_raw")
+            topic = topic or join_topic(ns, join_topic(cam_name, image or "image_raw"))
+            frame = frame or pparam(p, "frameName", "frame_name")
+        elif kind in ("laser", "sonar", "imu"):
+            t = pparam(p, "topicName", "topic_name") or ros_remap(p, "~/out", "out")
+            topic = topic or join_topic(ns, t)
+            frame = frame or pparam(p, "frameName", "frame_name", "frameId")
+            if kind == "imu":
+                frame = frame or pparam(p, "bodyName")
+        comments.append(f"ROS plugin '{p.name}' ({p.library}) dropped: gz-sim sensors publish themselves; "
+                        "its topic and frame are used here")
+    if topic and s.find("topic") is None:
+        sub(s, "topic", topic.lstrip("~/") if topic.startswith("~/") else topic)
+    if frame and s.find("gz_frame_id") is None:
+        sub(s, "gz_frame_id", frame)
+        cam = s.find("camera")
+        if cam is not None and cam.find("optical_frame_id") is None:
+            sub(cam, "optical_frame_id", frame)
+    T = transform(pose[:3], pose[3:6]) if pose and len(pose) >= 6 else transform()
+    return s, comments, T
+
+
+# ---------------------------------------------------------------- controllers that are sensors
+def imu_from_plugin(p, robot, notes) -> SensorOut | None:
+    """gazebo_ros_imu (Electric controller or classic model plugin): an ``imu`` sensor on bodyName."""
+    body = pparam(p, "bodyName", "body_name", "frameName", "frame_name") or p.reference
+    if body not in robot.links:
+        notes.warn(f"IMU plugin '{p.name}': body '{body}' is not a link; IMU not converted", p.loc)
+        return None
+    rate = to_float(pparam(p, "updateRate", "update_rate"))
+    topic = join_topic(pparam(p, "robotNamespace") if pparam(p, "robotNamespace") != "/" else None,
+                       pparam(p, "topicName", "topic_name") or "imu")
+    s = _header(f"{p.name or 'imu'}", "imu", True, rate, None, topic, pparam(p, "frameName", "frame_name") or body)
+    noise = to_float(pparam(p, "gaussianNoise"))
+    if noise:
+        imu = sub(s, "imu")
+        for group in ("angular_velocity", "linear_acceleration"):
+            g = sub(imu, group)
+            for axis in "xyz":
+                noise_el(sub(g, axis), noise, attr=True)
+    xyz = to_floats(pparam(p, "xyzOffsets", "xyzOffset")) or [0, 0, 0]
+    rpy = to_floats(pparam(p, "rpyOffsets", "rpyOffset")) or [0, 0, 0]
+    if p.dialect == "electric":
+        rpy = [math.radians(a) for a in rpy]
+    comments = [f"from {'Electric controller' if p.dialect == 'electric' else 'plugin'} '{p.name}' "
+                f"({_plugin_key(p)}) on {body}; gaussianNoise used as the stddev, as the plugin did"]
+    return SensorOut(body, transform(xyz, rpy), s, comments, "controller")
+
+
+def translate_sensor(sensor, robot, notes) -> SensorOut | None:
+    link = sensor.reference
+    if link not in robot.links:
+        notes.warn(f"sensor '{sensor.name}' refers to '{link}', which is not a link; not converted", sensor.loc)
+        return None
+    if sensor.dialect == "electric":
+        if sensor.type == "camera":
+            s, comments, T = _electric_camera(sensor, notes)
+        elif sensor.type == "ray":
+            s, comments, T = _electric_ray(sensor, notes)
+        else:
+            notes.warn(f"Electric sensor type '{sensor.type}' has no gz-sim equivalent; kept as a comment",
+                       sensor.loc)
+            return SensorOut(link, transform(), None, [f"not converted: {xml_text(sensor.element)}"], "electric")
+        for p in sensor.plugins[1:]:
+            comments.append(f"extra controller not converted: {xml_text(p.element)}")
+        return SensorOut(link, T, s, comments, "electric")
+    s, comments, T = _sdf_sensor(sensor, notes)
+    return SensorOut(link, T, s, comments, "sdf")

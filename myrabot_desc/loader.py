@@ -281,7 +281,8 @@ def _read(root, text, src: Path, locations, package_roots, build_warnings, from_
 
     return Robot(name=root.get("name", ""), links=links, joints=joints, materials=materials, gazebo=gazebo,
                  transmissions=transmissions, root_element=root, source=src, urdf_text=text, loc=r.loc(root),
-                 package_roots=roots, build_warnings=build_warnings, from_xacro=from_xacro, load_issues=r.issues)
+                 package_roots=roots, build_warnings=build_warnings, from_xacro=from_xacro, load_issues=r.issues,
+                 element_locs=r.loc_of, _elements=r._keep)
 
 
 # ---------------------------------------------------------------- gazebo extensions

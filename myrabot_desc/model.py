@@ -260,6 +260,13 @@ class Robot:
     from_xacro: bool = False
     # Problems found while reading (bad numbers, unknown joint types...) that checks report.
     load_issues: list = field(default_factory=list)
+    # id(lxml element of root_element) -> Loc, for consumers that walk the raw XML (check's T005/T006).
+    element_locs: dict = field(default_factory=dict, repr=False)
+    _elements: list = field(default_factory=list, repr=False)      # keeps those lxml proxies (and ids) alive
+
+    def loc_of(self, el) -> Loc | None:
+        """Source location of an element of ``root_element`` (None when unknown)."""
+        return self.element_locs.get(id(el))
 
     # -------------------------------------------------------- tree helpers
     def child_joints(self, link: str) -> list[Joint]:

@@ -415,3 +415,14 @@ def test_sdf_blocks_pass_the_sdformat_validator(tmp_path):
                    "</model></sdf>\n")
     r = subprocess.run([ign, "sdf", "-k", str(sdf)], capture_output=True, text=True, timeout=120)
     assert r.returncode == 0 and "Valid" in r.stdout, r.stdout + r.stderr
+
+
+def test_search_dirs_stay_inside_the_model_folder_without_a_package(tmp_path):
+    model = tmp_path / "a" / "b" / "robot.urdf"
+    model.parent.mkdir(parents=True)
+    (tmp_path / "a" / "evil.material").write_text("material x { }\n")
+    robot = SimpleNamespace(package_roots={}, source=model)
+    assert search_dirs_for(robot) == [model.parent.resolve()]
+    (tmp_path / "a" / "package.xml").write_text("<package/>")
+    assert search_dirs_for(robot) == [model.parent.resolve(), (tmp_path / "a").resolve()]
+    assert "Gazebo/Grey" in resolver_for(robot).names(include_stock=True)

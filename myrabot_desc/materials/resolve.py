@@ -99,6 +99,8 @@ class MaterialResolver:
                         seen.add(key)
                         out.append(f)
                         if len(out) >= MAX_SCRIPTS:
+                            self.warnings.append(f"more than {MAX_SCRIPTS} material scripts under the "
+                                                 f"search dirs; read the first {MAX_SCRIPTS} only")
                             return out
         return out
 
@@ -143,9 +145,14 @@ class MaterialResolver:
         stock = stock_material(name)
         return resolved(stock) if stock is not None else None
 
-    def names(self) -> list[str]:
-        """Names defined by the loaded scripts (not the stock table), sorted."""
-        return sorted(self._load())
+    def names(self, include_stock: bool = False) -> list[str]:
+        """Names defined by the loaded scripts (plus the stock table if asked), sorted."""
+        found = set(self._load())
+        if include_stock:
+            from myrabot_desc.materials.stock import names as stock_names
+
+            found.update(stock_names())
+        return sorted(found)
 
 
 def _package_root_of(d: Path) -> bool:
@@ -153,7 +160,12 @@ def _package_root_of(d: Path) -> bool:
 
 
 def search_dirs_for(robot) -> list[Path]:
-    """Package roots the build resolved, then the model's folder and its parents up to its package."""
+    """Package roots the build resolved, then the model's folder and its parents up to its package.
+
+    Without a package root (package.xml / manifest.xml, or a resolved root) above the model
+    within 8 levels, only the model's own folder is searched: we read files under the input's
+    folder and the resolved package roots, never elsewhere.
+    """
     dirs: list[Path] = []
 
     def add(p: Path):
@@ -167,11 +179,14 @@ def search_dirs_for(robot) -> list[Path]:
     src = getattr(robot, "source", None)
     if src is not None:
         d = Path(src).resolve().parent
-        for _ in range(8):                   # never wander far up the tree
-            add(d)
-            if d in roots or _package_root_of(d) or d.parent == d:
-                break
-            d = d.parent
+        chain = [d]
+        while len(chain) < 8 and not (chain[-1] in roots or _package_root_of(chain[-1])) \
+                and chain[-1].parent != chain[-1]:
+            chain.append(chain[-1].parent)
+        if not (chain[-1] in roots or _package_root_of(chain[-1])):
+            chain = chain[:1]                # no package above: the model's folder only
+        for c in chain:
+            add(c)
     return dirs
 
 

@@ -426,3 +426,10 @@ def test_search_dirs_stay_inside_the_model_folder_without_a_package(tmp_path):
     (tmp_path / "a" / "package.xml").write_text("<package/>")
     assert search_dirs_for(robot) == [model.parent.resolve(), (tmp_path / "a").resolve()]
     assert "Gazebo/Grey" in resolver_for(robot).names(include_stock=True)
+
+
+def test_similar_names_for_the_seed_defects():
+    r = MaterialResolver([OBJETOS])
+    assert r.similar("material_fer/CocaCola")[0] == "Gazebo/CocaCola"     # lata_cola.xacro vs the script
+    assert r.similar("Gazebo/Gris") and "Gazebo/Grey" in r.similar("Gazebo/Gris", n=3)
+    assert r.similar("Gazebo/LightWood")[0] == "Gazebo/Wood"              # mesa.xacro: the nearest stock wood

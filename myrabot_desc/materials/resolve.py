@@ -155,6 +155,19 @@ class MaterialResolver:
         return sorted(found)
 
 
+    def similar(self, name: str, n: int = 2) -> list[str]:
+        """Likely intended names for an unresolved ``name``: same last part first
+        (``material_fer/CocaCola`` -> ``Gazebo/CocaCola``), then close spellings."""
+        import difflib
+
+        pool = self.names(include_stock=True)
+        tail = name.rsplit("/", 1)[-1].lower()
+        same_tail = [c for c in pool if c != name and c.rsplit("/", 1)[-1].lower() == tail]
+        close = difflib.get_close_matches(name, pool, n=n + len(same_tail), cutoff=0.75)
+        out = same_tail + [c for c in close if c not in same_tail and c != name]
+        return out[:n]
+
+
 def _package_root_of(d: Path) -> bool:
     return (d / "package.xml").is_file() or (d / "manifest.xml").is_file()
 

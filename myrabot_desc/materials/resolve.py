@@ -11,6 +11,8 @@ Usage::
     m = res.lookup("Gazebo/Grey")          # ResolvedMaterial | None
     m.diffuse, m.source                    # (0.7, 0.7, 0.7, 1.0), 'stock'
     res.errors                             # scripts that could not be read (InputError each)
+    res.similar("material_fer/CocaCola")   # ['Gazebo/CocaCola']: hints for an unresolved name
+    stock.gz_sim_values("Gazebo/Grey")     # what gz-sim's substring lookup would show instead
 
 Scripts are searched, for each search dir D, in ``D``, ``D/materials/scripts``, ``D/materials``,
 ``D/Media/materials/scripts`` and ``D/media/materials/scripts`` (ROS 1 ``gazebo_media_path``

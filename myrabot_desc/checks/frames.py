@@ -13,8 +13,11 @@ CAMERA_TYPES = {"camera", "depth", "depth_camera", "rgbd_camera", "rgbd", "multi
 RAY_TYPES = {"ray", "gpu_ray", "lidar", "gpu_lidar", "sonar"}
 
 
+WORLD_FRAMES = {"world", "map", "odom", "earth"}    # frames outside the robot that plugins may name
+
+
 def _frame_names(ctx) -> set[str]:
-    return set(ctx.robot.links)
+    return set(ctx.robot.links) | WORLD_FRAMES
 
 
 def _clean(name: str) -> str:
@@ -28,6 +31,7 @@ def gazebo_reference(ctx):
     A reference to nothing is skipped silently by the converter: the friction, the
     material, the sensor in that block never reach the simulator (for example a
     misspelt link, or a block emitted for a link whose macro was never called).
+    Severity: error when the block holds a sensor or plugin, warning for properties only.
     Fix: the exact link name (did-you-mean is given).
     """
     from myrabot_desc.checks.urdf_syntax import suggest
@@ -39,10 +43,11 @@ def gazebo_reference(ctx):
             what = [*(f"sensor {s.name}" for s in g.sensors), *(f"plugin {p.name}" for p in g.plugins),
                     *sorted(g.properties)]
             guess = suggest(g.reference, names)
+            sev = None if (g.sensors or g.plugins) else "warning"
             yield Finding(f"<gazebo reference=\"{g.reference}\"> names no link or joint; its content is lost"
                           + (f" ({', '.join(what[:5])})" if what else "")
                           + (f"; did you mean {guess}?" if guess else ""), g.loc,
-                          {"reference": g.reference, "suggestion": guess, "content": what})
+                          {"reference": g.reference, "suggestion": guess, "content": what}, severity=sev)
 
 
 @rule("S002", "plugin-frame-exists", "error")
@@ -110,7 +115,7 @@ def optical_frame(ctx):
             continue
         loc = next((p.loc for p in s.plugins if p.loc), s.loc)
         yield Finding(f"camera {s.name} stamps images in {frame} ({how}), whose z axis is "
-                      f"({z[0]:.2g} {z[1]:.2g} {z[2]:.2g}) in {s.reference}; the camera looks along {s.reference}'s +x, "
+                      f"({_r(z[0])} {_r(z[1])} {_r(z[2])}) in {s.reference}; the camera looks along {s.reference}'s +x, "
                       f"so the image frame should be an optical frame (z forward): add a frame with "
                       f"rpy=\"-1.5708 0 -1.5708\" under {s.reference} and use it (REP-103)", loc,
                       {"sensor": s.name, "frame": frame, "z_axis": z.tolist(),
@@ -147,6 +152,11 @@ def massless_sensor_link(ctx):
             sev, why = "info", f"it survives only because fixed-joint lumping moves the sensor onto {pj.parent}"
         yield Finding(f"sensor {s.name} ({s.type}) sits on massless leaf link {link.name}: {why}",
                       s.loc, {"sensor": s.name, "link": link.name, "joint": pj.name}, severity=sev)
+
+
+def _r(x: float) -> str:
+    v = round(float(x), 2)
+    return f"{v + 0.0:g}"
 
 
 def _num(v):

@@ -7,6 +7,7 @@ from collections import defaultdict
 from myrabot_desc.checks.registry import Finding, rule
 
 TRIANGLE_TOL = 1e-3      # relative: a + b >= c (1 - tol); URDF files round to ~6 digits
+ZERO_MOMENT = 1e-12      # kg·m²: below this a moment is rounding noise (1 g at 0.03 mm); MuJoCo's mjMINVAL is 1e-15
 
 
 def _has_geometry(ctx, head: str) -> list[str]:
@@ -94,11 +95,11 @@ def positive_definite(ctx):
             continue
         ev = principal(i)
         scale = max(abs(ev).max(), 1e-300)
-        if ev.min() < -1e-9 * scale:
+        if ev.min() < -1e-9 * scale and -ev.min() > ZERO_MOMENT:
             yield Finding(f"link {link.name}: inertia not positive definite, principal moments "
                           + "/".join(f"{e:.4g}" for e in ev), i.loc or link.loc,
                           {"link": link.name, "principal": ev.tolist()})
-        elif ev.min() <= 1e-12 * scale or scale <= 1e-300:
+        elif ev.min() <= max(1e-12 * scale, ZERO_MOMENT):
             if ctx.moving(link.name):
                 yield Finding(f"link {link.name} ({i.mass:g} kg) has a zero principal moment of inertia "
                               f"({'/'.join(f'{e:.3g}' for e in ev)}): a point mass or a rod", i.loc or link.loc,
@@ -119,7 +120,7 @@ def triangle(ctx):
         if i is None or i.mass <= 0:
             continue
         a, b, c = sorted(principal(i))
-        if a <= 0:
+        if a <= 0 or c <= ZERO_MOMENT:
             continue
         if a + b < c * (1 - TRIANGLE_TOL):
             yield Finding(f"link {link.name}: impossible inertia, principal moments {a:.4g} + {b:.4g} = {a + b:.4g} "

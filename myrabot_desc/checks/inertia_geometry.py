@@ -13,6 +13,7 @@ from myrabot_desc.checks import geometry as G
 from myrabot_desc.checks.registry import Finding, rule
 
 RATIO_LIMIT = 10.0
+MARKER_SIZE = 0.005                 # m: geometry smaller than this is a frame marker; findings drop to info
 DENSITY_RANGE = (100.0, 23000.0)    # kg/m³: below balsa-and-foam structures, above osmium
 
 
@@ -24,6 +25,7 @@ class Solid:
         self.source, self.items = ctx.shapes(link, "collision")
         self.props = None
         self.why_not = None
+        self.marker = False
         self.desc = ", ".join(G.describe(it.geometry) for it in self.items[:3]) + (" ..." if len(self.items) > 3 else "")
         if not self.items:
             self.why_not = "no geometry"
@@ -49,6 +51,14 @@ class Solid:
             parts.append((*sp, it.origin.matrix()))
         mass = link.inertial.mass if link.inertial else 0.0
         self.props = G.combine(parts, mass if mass > 0 else 1.0)
+        sizes = [G.size_of(it.geometry, ctx.mesh(it.geometry) if it.geometry.kind == "mesh" else None)
+                 for it in self.items]
+        self.marker = all(sz is not None and sz < MARKER_SIZE for sz in sizes)
+
+    @property
+    def severity(self):
+        """info for frame markers (a 1 mm box on a sensor frame), else the rule's default."""
+        return "info" if self.marker else None
 
     def in_inertial_frame(self):
         """(com in inertial frame, tensor in inertial axes about the solid's com)."""
@@ -56,7 +66,9 @@ class Solid:
 
         T = self.link.inertial.origin.matrix()
         R, p = T[:3, :3], T[:3, 3]
-        return R.T @ (self.props.com - p), R.T @ self.props.inertia @ R
+        t = R.T @ self.props.inertia @ R
+        t[abs(t) < 1e-9 * abs(t).max()] = 0.0          # rotation round-off (rpy 1.570796) is not a product of inertia
+        return R.T @ (self.props.com - p), t
 
 
 def solids(ctx) -> dict:
@@ -116,13 +128,16 @@ def inertia_vs_geometry(ctx):
                 f"(ratio {'/'.join(_ratio(r) for r in ratios)}); fix: {line}",
                 i.loc or s.link.loc,
                 {"link": name, "declared": dd.tolist(), "computed": cd.tolist(), "ratios": ratios,
-                 "geometry": s.source, "fix": line, "computed_tensor": comp.tolist(), "computed_com": com.tolist()})
+                 "geometry": s.source, "fix": line, "computed_tensor": comp.tolist(), "computed_com": com.tolist()},
+                severity=s.severity)
 
 
 def _ratio(r: float) -> str:
     if math.isinf(r):
         return "∞"
-    return f"{r:.3g}×" if r >= 1 else f"1/{1 / r:.3g}"
+    x = r if r >= 1 else 1 / r
+    txt = f"{x:.0f}" if x >= 10 else f"{x:.2g}"
+    return f"{txt}×" if r >= 1 else f"1/{txt}"
 
 
 @rule("I007", "radius-of-gyration", "warning")
@@ -160,7 +175,8 @@ def radius_of_gyration(ctx):
             yield Finding(f"link {name}: radius of gyration √({moment:.3g}/{i.mass:g}) = {kg:.3g} m about axis "
                           f"({u[0]:.2g} {u[1]:.2g} {u[2]:.2g}), but no point of the geometry is farther than "
                           f"{reach:.3g} m from that axis", i.loc or link.loc,
-                          {"link": name, "radius_of_gyration": kg, "reach": reach, "moment": float(moment)})
+                          {"link": name, "radius_of_gyration": kg, "reach": reach, "moment": float(moment)},
+                          severity=s.severity)
 
 
 def _hull_points(ctx, link):
@@ -227,7 +243,8 @@ def density(ctx):
             yield Finding(f"link {name}: {m:g} kg in {s.desc} ({s.props.volume:.3g} m³) is a density of "
                           f"{rho:.3g} kg/m³ " + ("(wood is 500–700, aluminium 2700)" if rho < lo else "(denser than any metal)"),
                           s.link.inertial.loc or s.link.loc,
-                          {"link": name, "mass": m, "volume": s.props.volume, "density": rho, "geometry": s.source})
+                          {"link": name, "mass": m, "volume": s.props.volume, "density": rho, "geometry": s.source},
+                          severity=s.severity)
 
 
 @rule("I010", "inertial-origin-inside", "warning")

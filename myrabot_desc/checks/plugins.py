@@ -382,20 +382,20 @@ def material_resolves(ctx):
     if not names:
         return
     res = resolver_for(ctx.robot)
-    reported = set()
+    from myrabot_desc.checks.urdf_syntax import suggest
+
+    missing: dict[str, list] = {}
     for g, name in names:
         if res.lookup(name) is None:
-            key = (name, g.reference)
-            if key in reported:
-                continue
-            reported.add(key)
-            from myrabot_desc.checks.urdf_syntax import suggest
-
-            guess = suggest(name, res.names())
-            yield Finding(f"material {name} (on {g.reference or 'the model'}) is not a stock Gazebo material nor in "
-                          f"any script found ({len(res.scripts)} read)" + (f"; did you mean {guess}?" if guess else ""),
-                          g.loc, {"material": name, "link": g.reference, "scripts": [str(s) for s in res.scripts],
-                                  "suggestion": guess})
+            missing.setdefault(name, []).append(g)
+    for name, blocks in missing.items():
+        links = sorted({g.reference or "the model" for g in blocks})
+        guess = suggest(name, res.names())
+        yield Finding(f"material {name} (on {', '.join(links[:4])}{', ...' if len(links) > 4 else ''}) is not a stock "
+                      f"Gazebo material nor in any script found ({len(res.scripts)} read)"
+                      + (f"; did you mean {guess}?" if guess else ""),
+                      blocks[0].loc, {"material": name, "links": links, "scripts": [str(s) for s in res.scripts],
+                                      "suggestion": guess})
 
 
 TOPIC_KEYS = ("topicName", "topic", "imageTopicName", "cameraInfoTopicName", "pointCloudTopicName",

@@ -69,6 +69,10 @@ EXTERNAL = {
     "X001": ("legacy-upgraded", "info", "Electric/Fuerte xacro syntax was upgraded during the build."),
     "X002": ("unexpanded-macro-call", "warning", "A tag looks like a macro call that xacro passed through unexpanded."),
     "X003": ("macro-only-file", "warning", "The top-level file defines macros but instantiates none (empty robot)."),
+    "X004": ("package-resolves", "warning", "A package:// URI names a package that cannot be found."),
+    "X005": ("expression-refused", "error", "A ${} expression was refused by the safe evaluator."),
+    "X006": ("path-outside-allowed", "error", "An include or load_yaml reaches outside the allowed folders."),
+    "X000": ("input-unprocessable", "error", "The file could not be processed (exit code 2)."),
     "T010": ("value-parses", "error", "A number or vector in the URDF cannot be read (the reader used the default)."),
 }
 

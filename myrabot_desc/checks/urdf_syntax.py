@@ -85,7 +85,7 @@ def _walk(ctx):
         el = stack.pop()
         tag = local(el.tag)
         attrs, children = SCHEMA.get(tag, (None, None))
-        if attrs is not None:
+        if attrs is not None and children is not None:     # free-form bodies keep their own attributes
             for a in el.attrib:
                 if a.startswith("{") or a in attrs:   # namespaced attributes are extensions
                     continue
@@ -113,9 +113,13 @@ def unknown_element(ctx):
     material never reaches Gazebo. Fix: correct the spelling (did-you-mean is given) or
     move the element where it belongs. Extensions in an XML namespace are not reported.
     """
+    import re
+
+    unexpanded = {m for d in ctx.robot.build_warnings if d.code == "X002"
+                  for m in re.findall(r"<([\w.-]+)>", d.message)}
     for el, parent, (kind, name) in _walk(ctx):
-        if kind != "element" or (parent == "robot" and name == "ros"):
-            continue
+        if kind != "element" or (parent == "robot" and name == "ros") or name in unexpanded:
+            continue                                   # <ros>: T007; unexpanded macro calls: X002
         allowed = SCHEMA[parent][1] or set()
         hint = BELONGS.get((parent, name))
         guess = suggest(name, allowed)

@@ -181,3 +181,125 @@ def drive_cmd(inputs, duration, rate, as_json, csv_path, plot_path, progress, wh
         finally:
             close()
         _finish(res, as_json, csv_path, plot_path)
+
+
+def _pointing_options(f):
+    opts = [
+        click.option("--layout", "layout_path", metavar="YAML", default=None,
+                     help="Scene file (default: the bundled layouts/<program>.yaml)."),
+        click.option("--object", "which", default="1", show_default=True, metavar="N|NAME",
+                     help="Object to point at, like the seed's selected_object: 1, 2, … in spawn order "
+                          "among the objects above the floor, or a model name."),
+        click.option("--select-at", type=click.FloatRange(min=0), default=0.5, show_default=True,
+                     metavar="SECONDS", help="When the object is selected."),
+        click.option("--speed", "speed_units", type=click.IntRange(0, 1023), default=400, show_default=True,
+                     help="Servo speed register (AX-12 units of 0.111 rpm; 0 = full speed)."),
+        click.option("--standoff", type=click.FloatRange(min=0), default=0.05, show_default=True, metavar="M",
+                     help="Distance kept between the gripper tip and the object's surface."),
+        click.option("--tolerance", type=click.FloatRange(min=0), default=5.0, show_default=True, metavar="DEG",
+                     help="Largest pointing error that passes."),
+        click.option("--units", "units_mode", type=click.Choice(["nearest", "lab"]), default="nearest",
+                     show_default=True,
+                     help="Angle -> servo units: the unit nearest the angle, or the lab's truncating "
+                          "conversion (up to ~1.3° low per joint)."),
+    ]
+    for o in reversed(opts):
+        f = o(f)
+    return f
+
+
+def _layout(name, path):
+    from pathlib import Path
+
+    from myrabot_desc.loader import data_root
+    from myrabot_desc.sim.scene import load_layout
+
+    return load_layout(Path(path) if path else data_root() / "layouts" / f"{name}.yaml")
+
+
+@sim_cmd.command("escoja")
+@input_options()
+@_outputs
+@_pointing_options
+@click.option("--hold", type=click.FloatRange(min=0), default=2.0, show_default=True, metavar="SECONDS",
+              help="How long the arm points before it returns home.")
+def escoja_cmd(inputs, duration, rate, as_json, csv_path, plot_path, progress, layout_path, which, select_at,
+               speed_units, standoff, tolerance, units_mode, hold):
+    """The seed's "escoja": point at the chosen can, hold, return home.
+
+    \b
+    The table and the two cans stand where the seed's myrabot_latas.launch put
+    them (layouts/escoja.yaml): object 1 is the cola can (the robot's right),
+    object 2 the beer can (its left). The arm aims its gripper axis (the
+    forearm's line through the wrist) at the can's centre, keeping the tip
+    --standoff from it. Verdict: pointing error in degrees, the return home,
+    and no collision with the robot, the table or the cans.
+
+    \b
+    Examples:
+      myrabot-desc sim escoja --object 2
+      myrabot-desc sim escoja --object lata_amstel --units lab --json
+      myrabot-desc sim escoja --plot out/escoja.png
+    """
+    from myrabot_desc.sim import pointing
+
+    with guarded():
+        robot = inputs.load()
+        objects = _layout("escoja", layout_path)
+        prog, close = _runner(duration, progress)
+        try:
+            res = pointing.run_escoja(robot, objects, which=which, rate=rate, duration=duration,
+                                      select_at=select_at, hold=hold, speed_units=speed_units,
+                                      standoff=standoff, tolerance=tolerance, units_mode=units_mode,
+                                      progress=prog)
+        finally:
+            close()
+        _finish(res, as_json, csv_path, plot_path)
+
+
+@sim_cmd.command("seguir")
+@input_options()
+@_outputs
+@_pointing_options
+@click.option("--keys", default=None, metavar="SCRIPT",
+              help="mover_objetos key presses, e.g. 'D*16 w*30': C/D move x ±0.005 m, w/s y, A/B z "
+                   "(a d e q tilt). Default: 'D*16 w*30 C*16 s*60 w*30'.")
+@click.option("--move-at", type=click.FloatRange(min=0), default=2.0, show_default=True, metavar="SECONDS",
+              help="When the first key press moves the can (then one step per 0.1 s).")
+@click.option("--track-rate", type=click.FloatRange(min=0.1, max=1000), default=10.0, show_default=True,
+              metavar="HZ", help="How often the arm re-aims at the can.")
+def seguir_cmd(inputs, duration, rate, as_json, csv_path, plot_path, progress, layout_path, which, select_at,
+               speed_units, standoff, tolerance, units_mode, keys, move_at, track_rate):
+    """The seed's "seguir": the arm follows a can moved like mover_objetos moves it.
+
+    \b
+    One beer can on the table (layouts/seguir.yaml). From --move-at it is
+    moved in 0.005 m steps, one per 0.1 s (mover_objetos' retardo), along a
+    key script; the arm re-aims at --track-rate. Verdict: tracking error (the
+    pointing error while the can moves) and no collision.
+
+    \b
+    Examples:
+      myrabot-desc sim seguir
+      myrabot-desc sim seguir --keys 'C*20 A*10 B*10 D*20' --csv out/seguir.csv
+      myrabot-desc sim seguir --track-rate 2 --plot out/seguir.png
+    """
+    from myrabot_desc.sim import pointing
+
+    try:
+        if keys is not None:
+            pointing.parse_keys(keys)
+    except ValueError as exc:
+        raise click.BadParameter(str(exc), param_hint="--keys") from None
+    with guarded():
+        robot = inputs.load()
+        objects = _layout("seguir", layout_path)
+        prog, close = _runner(duration, progress)
+        try:
+            res = pointing.run_seguir(robot, objects, which=which, keys=keys or pointing.DEFAULT_KEYS, rate=rate,
+                                      duration=duration, select_at=select_at, move_at=move_at,
+                                      track_rate=track_rate, speed_units=speed_units, standoff=standoff,
+                                      tolerance=tolerance, units_mode=units_mode, progress=prog)
+        finally:
+            close()
+        _finish(res, as_json, csv_path, plot_path)

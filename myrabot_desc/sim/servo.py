@@ -52,6 +52,21 @@ def rad_to_units(q: float) -> int:
     return int(((q + OFFSET) * 180 / PI) * 1023 / 300)
 
 
+def units_for_angle(q: float, mode: str = "nearest") -> int:
+    """Units to command for a joint angle.
+
+    ``lab``: the lab's own conversion (``controlador_moveit.cpp``), the truncating
+    feedback formula; through the truncating command formula the joint then
+    ends up to ~1.3° low. ``nearest``: the unit value whose commanded angle is
+    nearest to ``q`` (at most 0.5° off: the command resolution is 1°).
+    """
+    u0 = rad_to_units(q)
+    if mode == "lab":
+        return u0
+    best = min(range(u0 - 4, u0 + 5), key=lambda u: (abs(units_to_rad(u) - q), u))
+    return max(0, min(UNITS_MAX, best))
+
+
 def speed_rad_s(velocidad: int, urdf_limit: float | None = None) -> float:
     """Servo speed for a ``velocidad`` register value, capped by the URDF limit."""
     v = int(velocidad)

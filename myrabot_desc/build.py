@@ -129,7 +129,7 @@ class _Build:
             data = path.read_bytes()
         except OSError as exc:
             raise InputError(f"cannot read {path}: {exc.strerror}", asked_at) from None
-        root = parse_xml_bytes(data, str(path))
+        root = parse_xml_bytes(data, display(path))
         self.trees[key] = root
         return root
 
@@ -148,7 +148,7 @@ class _Build:
 
         for name in lg.macro_names(root):
             self.macro_names.add(name)
-            self.macro_files.setdefault(name, str(path))
+            self.macro_files.setdefault(name, display(path))
         for spec, _line in lg.include_filenames(root):
             target = self._guess_include(spec, path)
             if target is not None:
@@ -178,9 +178,13 @@ class _Build:
 
         from myrabot_desc import legacy as lg
 
-        root = self.read_tree(path, asked_at)
+        original = self.read_tree(path, asked_at)
         # The prescan cache is shared; work on a copy so a file included twice is fresh.
-        root = _copy_tree(root)
+        root = _copy_tree(original)
+        # Comments and PIs around the root element belong to the document too (xacro keeps them).
+        before = "".join(etree.tostring(s, encoding="unicode") for s in
+                         reversed(list(original.itersiblings(preceding=True))))
+        after = "".join(etree.tostring(s, encoding="unicode") for s in original.itersiblings())
         if self.legacy != "off" and lg.needs_upgrade(root, self.macro_names):
             root, kinds = lg.upgrade(root, self.macro_names)
             for kind, (count, line) in sorted(kinds.items()):
@@ -188,9 +192,9 @@ class _Build:
                 times = f" ({count} times)" if count > 1 else ""
                 self.diagnostics.append(Diagnostic(
                     "X001", "warning", f"legacy {kind} upgraded to <{new}>{times}; xacro 2.x would copy it "
-                    "into the URDF unexpanded", Loc(str(path), line)))
+                    "into the URDF unexpanded", Loc(display(path), line)))
         uri = lg.xacro_uri(root)
-        fname = str(path)
+        fname = display(path)
         for el in root.iter():
             if not isinstance(el.tag, str):
                 continue
@@ -200,7 +204,7 @@ class _Build:
                 el.set("{%s}mdsrc" % uri, str(idx))
             else:
                 el.set(SRC_ATTR, str(idx))
-        text = etree.tostring(root, encoding="unicode")
+        text = before + etree.tostring(root, encoding="unicode", with_tail=False) + after
         try:
             return xml.dom.minidom.parseString(text)
         except Exception as exc:  # pragma: no cover - lxml already validated
@@ -216,8 +220,13 @@ class _Build:
             xacro.all_includes = []
             self.check_include(self.src, None)
             doc = self.load_dom(self.src, None)
+            import contextlib
+            import io
+
+            chatter = io.StringIO()  # xacro prints its own warnings; we report them as X007
             try:
-                xacro.process_doc(doc, mappings=dict(self.mappings), verbosity=0)
+                with contextlib.redirect_stderr(chatter), contextlib.redirect_stdout(chatter):
+                    xacro.process_doc(doc, mappings=dict(self.mappings), verbosity=1)
             except InputError:
                 raise
             except xacro.XacroException as exc:
@@ -230,11 +239,23 @@ class _Build:
             except (NameError, TypeError, ValueError, KeyError, AttributeError, ZeroDivisionError) as exc:
                 raise InputError(f"{type(exc).__name__}: {exc}", self.last_loc, self._stack()) from None
             self.deps = [str(self.src)] + [d for d in dict.fromkeys(xacro.all_includes)]
+        self._xacro_warnings(chatter.getvalue())
         locations = self.finish(doc)
         text = self.render(doc)
         self.check_unexpanded(text, locations)
         return BuildResult(text=text, locations=locations, diagnostics=self.diagnostics, deps=self.deps,
                            source=self.src, package_roots=dict(self.resolver.used))
+
+    def _xacro_warnings(self, text: str) -> None:
+        counts: dict[str, int] = {}
+        for line in text.splitlines():
+            line = line.strip()
+            if line.lower().startswith("warning:"):
+                msg = line.split(":", 1)[1].strip()
+                counts[msg] = counts.get(msg, 0) + 1
+        for msg, n in counts.items():
+            times = f" ({n} times)" if n > 1 else ""
+            self.diagnostics.append(Diagnostic("X007", "warning", f"xacro: {msg}{times}", Loc(display(self.src))))
 
     def check_include(self, path: Path, asked_at: Loc | None) -> None:
         import xacro
@@ -337,7 +358,7 @@ class _Build:
             shown = ", ".join(names[:5]) + (", ..." if len(names) > 5 else "")
             self.diagnostics.append(Diagnostic(
                 "X003", "warning", f"this file defines {len(names)} macro(s) ({shown}) and instantiates none: "
-                "the URDF has no links", Loc(str(self.src), 1)))
+                "the URDF has no links", Loc(display(self.src), 1)))
         from myrabot_desc.packages import split_package_uri
 
         seen = set()
@@ -351,6 +372,18 @@ class _Build:
                 self.diagnostics.append(Diagnostic(
                     "X004", "warning", f"package '{parts[0]}' of {uri} cannot be found (give -p "
                     f"{parts[0]}=PATH or --package-path)", loc_of.get(id(el))))
+
+
+def display(path) -> str:
+    """A path as users like to read it: relative to the working folder when inside it."""
+    import os
+
+    p = Path(path)
+    try:
+        rel = os.path.relpath(p.resolve(), Path.cwd())
+    except ValueError:
+        return str(p)
+    return rel if not rel.startswith("..") else str(p.resolve())
 
 
 def _inside(el, tag: str) -> bool:
@@ -436,7 +469,8 @@ class _Hooks:
             (xacro, "grab_macro"): xacro.grab_macro, (xacro, "grab_property"): xacro.grab_property,
             (xacro, "replace_node"): xacro.replace_node,
             (xacro, "remove_previous_comments"): xacro.remove_previous_comments,
-            (xacro, "safe_eval"): xacro.safe_eval, (sa, "_eval_find"): sa._eval_find,
+            (xacro, "safe_eval"): xacro.safe_eval, (xacro, "eval_text"): xacro.eval_text,
+            (sa, "_eval_find"): sa._eval_find,
             (sa, "_eval_env"): sa._eval_env, (sa, "_eval_optenv"): sa._eval_optenv, (sa, "_eval"): sa._eval,
         }
         self.saved_dict = dict(sa._eval_dict)
@@ -451,7 +485,6 @@ class _Hooks:
         orig_check_attrs = xacro.check_attrs
         orig_grab_macro = xacro.grab_macro
         orig_grab_property = xacro.grab_property
-        orig_load_yaml = self.saved_yaml[1] or self.saved_yaml[0]
 
         def loc_of(node, attr):
             if node.nodeType != node.ELEMENT_NODE or not node.hasAttribute(attr):
@@ -523,7 +556,7 @@ class _Hooks:
                                  "--package-path DIR)", b.last_loc, b._stack())
             return str(path)
 
-        def refuse_env(name, *args):
+        def refuse_env(name, *args, **kwargs):
             raise InputError(f"$(env {name}) / $(optenv {name}) is refused by --no-env", b.last_loc, b._stack())
 
         def refuse(expr, reason):
@@ -544,7 +577,13 @@ class _Hooks:
                                      b._stack(), code="X005") from None
             return str(eval(s, {"__builtins__": {}}, sa._DictWrapper(context["arg"], functions)))
 
-        def load_yaml(filename):
+        def guarded_yaml(orig_load_yaml):
+            def load_yaml(filename):
+                check_yaml(filename)
+                return orig_load_yaml(filename)
+            return load_yaml
+
+        def check_yaml(filename):
             spec = xacro.abs_filename_spec(filename)
             p = Path(spec)
             if not b.allowed(p):
@@ -552,8 +591,11 @@ class _Hooks:
                                  "(use --allow-path DIR to allow it)", b.last_loc, b._stack(), code="X006")
             if p.is_file() and p.stat().st_size > b.limits.max_input_bytes:
                 raise InputError(f"{p} is over the {b.limits.max_input_bytes}-byte limit", b.last_loc)
-            return orig_load_yaml(filename)
 
+        if self.saved_yaml[0] is not None:
+            dict.__setitem__(g["xacro"], "load_yaml", guarded_yaml(self.saved_yaml[0]))
+        if self.saved_yaml[1] is not None:
+            dict.__setitem__(g, "load_yaml", guarded_yaml(self.saved_yaml[1]))
         xacro.parse = parse
         xacro.eval_all = eval_all
         xacro.handle_macro_call = handle_macro_call
@@ -562,6 +604,8 @@ class _Hooks:
         xacro.grab_property = grab_property
         xacro.replace_node = xacro_fast.replace_node
         xacro.remove_previous_comments = xacro_fast.remove_previous_comments
+        xacro.eval_text = xacro_fast.make_eval_text()
+        xacro_fast.install_clone()
         if not b.unsafe_eval:
             xacro.safe_eval = safe_eval.make_safe_eval(self.saved[(xacro, "safe_eval")], refuse)
         sa._eval_find = eval_find
@@ -572,10 +616,6 @@ class _Hooks:
             sa._eval_optenv = refuse_env
             sa._eval_dict["env"] = refuse_env
             sa._eval_dict["optenv"] = refuse_env
-        if "xacro" in g:
-            dict.__setitem__(g["xacro"], "load_yaml", load_yaml)
-        if "load_yaml" in g:
-            dict.__setitem__(g, "load_yaml", load_yaml)
         return self
 
     def __exit__(self, *exc):
@@ -594,6 +634,7 @@ class _Hooks:
         if "load_yaml" in g and self.saved_yaml[1] is not None:
             dict.__setitem__(g, "load_yaml", self.saved_yaml[1])
         sys.setrecursionlimit(self.saved_recursion)
+        xacro_fast.uninstall_clone()
         xacro_fast.reset()
         xacro.substitution_args_context["arg"] = {}
         return False

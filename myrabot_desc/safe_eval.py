@@ -148,21 +148,32 @@ def make_safe_eval(original_safe_eval, refuse):
     genuine = _genuine_callables(None)
     genuine_ns = {ns: xacro._global_symbols[ns] for ns in NAMESPACES if ns in xacro._global_symbols}
 
+    cache: dict[str, tuple] = {}
+
+    def prepare(expr):
+        """Vet and compile once per expression text; remember which helpers it calls."""
+        tree = check_expression(expr)
+        calls = []
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Call):
+                f = node.func
+                calls.append(("name", f.id) if isinstance(f, ast.Name) else ("ns", f.value.id))
+        code = compile(ast.fix_missing_locations(_Bound().visit(tree)), "<expression>", "eval")
+        return code, tuple(calls)
+
     def safe_eval(expr, globals, locals=None):
         try:
-            tree = check_expression(expr)
-            for node in ast.walk(tree):
-                if isinstance(node, ast.Call):
-                    f = node.func
-                    if isinstance(f, ast.Name):
-                        val = _lookup(locals, f.id) if locals and f.id in locals else _lookup(globals, f.id)
-                        if val is not genuine.get(f.id):
-                            raise RefusedExpression(f"{f.id!r} was redefined; only the genuine helper may be called")
-                    else:
-                        ns = f.value.id
-                        if _lookup(globals, ns) is not genuine_ns.get(ns):
-                            raise RefusedExpression(f"namespace {ns!r} was redefined")
-            code = compile(ast.fix_missing_locations(_Bound().visit(tree)), "<expression>", "eval")
+            entry = cache.get(expr)
+            if entry is None:
+                entry = cache[expr] = prepare(expr)
+            code, calls = entry
+            for kind, name in calls:
+                if kind == "name":
+                    val = _lookup(locals, name) if locals and name in locals else _lookup(globals, name)
+                    if val is not genuine.get(name):
+                        raise RefusedExpression(f"{name!r} was redefined; only the genuine helper may be called")
+                elif _lookup(globals, name) is not genuine_ns.get(name):
+                    raise RefusedExpression(f"namespace {name!r} was redefined")
         except RefusedExpression as exc:
             refuse(expr, str(exc))
             raise  # pragma: no cover  (refuse raises)

@@ -143,3 +143,127 @@ def remove_previous_comments(node):
                 i = _insert_before(node.parentNode, empty, nxt)
                 _singleton_pos[0], _singleton_pos[1] = node.parentNode, i
             return
+
+
+# Token lists of attribute/text strings: the same strings recur in every macro
+# expansion, and xacro re-lexes them with regexes each time.
+_tokens: dict[str, tuple] = {}
+_MAX_CACHE = 200_000
+
+
+def make_eval_text():
+    """Drop-in for xacro.eval_text with cached lexing and a no-'$' fast path."""
+    import os
+
+    import xacro
+
+    lexer = xacro.LEXER
+    EXPR, EXT, TEXT, DDB = lexer.EXPR, lexer.EXTENSION, lexer.TEXT, lexer.DOLLAR_DOLLAR_BRACE
+
+    def tokens(text):
+        t = _tokens.get(text)
+        if t is None:
+            lex = xacro.QuickLexer(lexer)
+            lex.lex(text)
+            out = []
+            while lex.peek():
+                out.append(lex.next())
+            t = tuple(out)
+            if len(_tokens) < _MAX_CACHE:
+                _tokens[text] = t
+        return t
+
+    def eval_text(text, symbols):
+        if "$" not in text:
+            return text
+        results = []
+        for kind, s in tokens(text):
+            if kind == EXPR:
+                expr = s[2:-1]
+                try:
+                    results.append(xacro.safe_eval(eval_text(expr, symbols), symbols))
+                except Exception as e:
+                    raise xacro.XacroException(exc=e, suffix=os.linesep + "when evaluating expression '%s'" % expr)
+            elif kind == EXT:
+                results.append(xacro.eval_extension("$(%s)" % eval_text(s[2:-1], symbols)))
+            elif kind == TEXT:
+                results.append(s)
+            elif kind == DDB:
+                results.append(s[1:])
+        if len(results) == 1:
+            return results[0]
+        return "".join(map(str, results))
+
+    return eval_text
+
+
+def clone_node(node, deep, doc):
+    """Drop-in for minidom._clone_node for the node kinds xacro clones (macro bodies, blocks).
+
+    Same result as minidom's, without its per-attribute lookups and per-child
+    appendChild bookkeeping; other node kinds go to minidom's own function.
+    """
+    from xml.dom import minidom
+
+    t = node.nodeType
+    if t == ELEMENT:
+        qn = node.nodeName
+        clone = minidom.Element(qn, node.namespaceURI, minidom._nssplit(qn)[0])
+        clone.ownerDocument = doc
+        src = node._attrs
+        if src:
+            attrs, attrs_ns = {}, {}
+            for attr in src.values():
+                aq = attr.nodeName
+                prefix, local = minidom._nssplit(aq)
+                a = minidom.Attr(aq, attr.namespaceURI, local, prefix)
+                a.value = attr.value
+                a.ownerDocument = doc
+                a.ownerElement = clone
+                a.specified = attr.specified
+                attrs[aq] = a
+                attrs_ns[(attr.namespaceURI, local)] = a
+            clone._attrs, clone._attrsNS = attrs, attrs_ns
+        if deep and node.childNodes:
+            kids = clone.childNodes
+            prev = None
+            for child in node.childNodes:
+                c = clone_node(child, deep, doc)
+                c.parentNode = clone
+                c.previousSibling = prev
+                if prev is not None:
+                    prev.nextSibling = c
+                kids.append(c)
+                prev = c
+            prev.nextSibling = None
+        return clone
+    if t == TEXT:
+        c = minidom.Text()
+        c.data = node.data
+        c.ownerDocument = doc
+        return c
+    if t == COMMENT:
+        c = minidom.Comment(node.data)
+        c.ownerDocument = doc
+        return c
+    return _orig_clone(node, deep, doc)
+
+
+ELEMENT = xml.dom.Node.ELEMENT_NODE
+_orig_clone = None
+
+
+def install_clone():
+    global _orig_clone
+    from xml.dom import minidom
+
+    if _orig_clone is None:
+        _orig_clone = minidom._clone_node
+    minidom._clone_node = clone_node
+
+
+def uninstall_clone():
+    from xml.dom import minidom
+
+    if _orig_clone is not None:
+        minidom._clone_node = _orig_clone

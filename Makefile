@@ -1,0 +1,50 @@
+# myrabot-desc: `make demo` sets up and runs the main job on the bundled MYRAbot;
+# `make test` sets up and runs the tests. Everything installs from here.
+PYTHON ?= python3
+VENV   := .venv
+BIN    := $(VENV)/bin
+STAMP  := $(VENV)/.installed
+OUT    := out
+# Debian peers used by tests and benchmarks: ign sdf -k / -p, check_urdf.
+DEBS   := ignition-tools libsdformat-dev liburdfdom-tools
+
+.PHONY: install demo test bench fuzz clean system-tools
+
+install: $(STAMP)
+
+$(STAMP): pyproject.toml
+	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install -q --upgrade pip
+	$(BIN)/python -m pip install -q -e '.[test]'
+	$(MAKE) --no-print-directory system-tools
+	touch $(STAMP)
+
+# Install the Debian peer tools when missing and when we may (root + apt-get).
+system-tools:
+	@if command -v ign >/dev/null 2>&1 && ign sdf --versions >/dev/null 2>&1 && command -v check_urdf >/dev/null 2>&1; then \
+	  echo "system tools: ign sdf and check_urdf present"; \
+	elif command -v apt-get >/dev/null 2>&1 && [ "$$(id -u)" = 0 ]; then \
+	  echo "system tools: installing $(DEBS)"; \
+	  apt-get update -qq >/dev/null && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $(DEBS) >/dev/null; \
+	else \
+	  echo "system tools: cannot install $(DEBS) (need root and apt-get); tests that need them are skipped"; \
+	fi
+
+demo: install
+	mkdir -p $(OUT)
+	$(BIN)/myrabot-desc build -o $(OUT)/myrabot.urdf
+	$(BIN)/myrabot-desc info --no-tree
+	$(BIN)/myrabot-desc check --inertia
+	$(BIN)/myrabot-desc convert --to sdf -o $(OUT)/myrabot.sdf
+	$(BIN)/myrabot-desc convert --to world --layout escoja -o $(OUT)/escoja.sdf
+	$(BIN)/myrabot-desc sim vuelta --plot $(OUT)/vuelta.png --json > $(OUT)/vuelta.json
+	@echo "demo outputs in $(OUT)/"
+
+test: install
+	$(BIN)/python -m pytest -q
+
+bench: install
+	@for b in bench/bench_*.py; do echo "== $$b"; $(BIN)/python $$b || exit 1; done
+
+clean:
+	rm -rf $(OUT) .pytest_cache

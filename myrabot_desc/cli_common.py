@@ -129,6 +129,13 @@ def guarded():
         sys.exit(2)
     except (click.exceptions.Exit, click.exceptions.Abort, click.ClickException, SystemExit, KeyboardInterrupt):
         raise
+    except BrokenPipeError:  # `... | head` closed the pipe: not an error of ours
+        try:
+            devnull = os.open(os.devnull, os.O_WRONLY)
+            os.dup2(devnull, sys.stdout.fileno())
+        except OSError:
+            pass
+        sys.exit(0)
     except RecursionError:
         click.echo("error: input nests too deeply (recursion limit reached)", err=True)
         sys.exit(2)

@@ -17,7 +17,7 @@ class Check:
     detail: str = ""
 
     def as_dict(self) -> dict:
-        return {"name": self.name, "passed": self.passed, "value": _plain(self.value), "unit": self.unit,
+        return {"name": self.name, "passed": bool(self.passed), "value": _plain(self.value), "unit": self.unit,
                 "expected": self.expected, "detail": self.detail}
 
 
@@ -54,7 +54,7 @@ class SimResult:
 
     @property
     def passed(self) -> bool:
-        return all(c.passed for c in self.checks)
+        return bool(all(c.passed for c in self.checks))
 
     # ------------------------------------------------------------ text
     def summary(self) -> str:

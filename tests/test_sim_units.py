@@ -1,0 +1,98 @@
+"""sim building blocks: the lab's servo units, the servo motion, exact diff-drive arcs."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from myrabot_desc.sim import servo as sv
+
+
+def test_servo_conversion_table_of_arm_facts():
+    """arm-facts.md §8.1: the 'code q' column, integer truncation included."""
+    table = {0: -2.62, 205: -1.5728, 304: -1.0667, 480: -0.1765, 511: -0.0195, 512: -0.0020,
+             680: 0.8532, 718: 1.0452, 818: 1.5513, 1023: 2.6160}
+    for u, q in table.items():
+        assert sv.units_to_rad(u) == pytest.approx(q, abs=5e-5), u
+    assert sv.units_to_rad_exact(511) == pytest.approx(-0.0046, abs=5e-5)
+    # reverse mapping: q = 0 -> 511, ±π/2 -> 204 / 818, ±2.62 -> 0 / 1023
+    assert sv.rad_to_units(0.0) == 511
+    assert sv.rad_to_units(-math.pi / 2) == 204 and sv.rad_to_units(math.pi / 2) == 818
+    assert sv.rad_to_units(-2.62) == 0 and sv.rad_to_units(2.62) == 1023
+
+
+def test_round_trip_quirk():
+    """Commanding u and reading it back loses units: 511 -> 508, 718 -> 716, 304 -> 303."""
+    assert [sv.rad_to_units(sv.units_to_rad(u)) for u in (511, 718, 304)] == [508, 716, 303]
+
+
+@given(st.integers(min_value=0, max_value=1023))
+def test_command_is_whole_degrees_and_low(u):
+    q = sv.units_to_rad(u)
+    deg = (q + sv.OFFSET) * 180 / sv.PI
+    assert abs(deg - round(deg)) < 1e-9                      # whole degrees
+    assert 0 <= sv.units_to_rad_exact(u) - q < math.radians(1.0) + 1e-12   # truncated, never high
+
+
+@given(st.floats(min_value=-2.5, max_value=2.5))
+def test_nearest_units_within_half_a_degree(q):
+    u = sv.units_for_angle(q, "nearest")
+    assert abs(sv.units_to_rad(u) - q) <= math.radians(0.5) + 1e-9
+    lab = sv.units_for_angle(q, "lab")
+    assert abs(sv.units_to_rad(u) - q) <= abs(sv.units_to_rad(lab) - q) + 1e-12
+
+
+def test_servo_speed():
+    assert sv.speed_rad_s(400) == pytest.approx(400 * 0.111 * 2 * math.pi / 60)    # 4.65 rad/s
+    assert sv.speed_rad_s(400, 3.0) == 3.0
+    assert sv.speed_rad_s(0) == pytest.approx(1023 * 0.111 * 2 * math.pi / 60)     # 0 = full speed
+
+
+def test_servo_motion_piecewise_linear():
+    s = sv.Servo(0.0, 2.0)
+    s.command(0.0, 1.0)
+    s.command(0.25, -1.0)                    # turn back midway, from 0.5
+    t = np.array([0.0, 0.1, 0.25, 0.5, 1.0, 2.0])
+    assert s.positions(t) == pytest.approx([0.0, 0.2, 0.5, 0.0, -1.0, -1.0])
+    assert s.arrival() == pytest.approx(0.25 + 1.5 / 2.0)
+
+
+def test_exact_arcs_match_the_closed_form():
+    """A constant twist for 10 s: the integrated pose equals the circle's, to rounding."""
+    from myrabot_desc.sim.diffdrive import Drive, UrdfDrive, Wheel, integrate
+
+    wl = Wheel("l", "l", 0.13, (0.0, 0.13), 0.033, 1.0)
+    wr = Wheel("r", "r", -0.13, (0.0, -0.13), 0.033, 1.0)
+    d = Drive(urdf=UrdfDrive(wl, wr), plugin=None, wheels="urdf")
+    v, w, T = 0.1, 0.3, 10.0
+    for rate in (1000, 10):                  # exact at any step: no Euler drift
+        tr = integrate(d, [(0, v, w)], int(T * rate), 1 / rate)
+        th = w * T
+        assert tr.x[-1] == pytest.approx(v / w * math.sin(th), abs=1e-12)
+        assert tr.y[-1] == pytest.approx(v / w * (1 - math.cos(th)), abs=1e-12)
+        assert tr.yaw[-1] == pytest.approx(th, abs=1e-12)
+
+
+def test_base_origin_off_the_axle():
+    """A base whose origin is behind the axle still turns about the axle midpoint."""
+    from myrabot_desc.sim.diffdrive import Drive, UrdfDrive, Wheel, integrate
+
+    wl = Wheel("l", "l", 0.15, (0.1, 0.15), 0.08, 1.0)
+    wr = Wheel("r", "r", -0.15, (0.1, -0.15), 0.08, 1.0)
+    d = Drive(urdf=UrdfDrive(wl, wr), plugin=None, wheels="urdf")
+    tr = integrate(d, [(0, 0.0, 1.0)], 1000, math.pi / 1000)     # spin in place by π
+    assert (tr.axle_x[-1], tr.axle_y[-1]) == pytest.approx((0.1, 0.0), abs=1e-12)
+    assert (tr.x[-1], tr.y[-1]) == pytest.approx((0.2, 0.0), abs=1e-12)
+
+
+def test_support_polygon_and_margin():
+    from myrabot_desc.sim.stability import Support, margin
+
+    sup = Support(polygon=[(0.13, 0), (0, 0.13), (-0.13, 0), (0, -0.13)], ground_z=0.0, links=[], notes=[])
+    assert margin(sup, (0, 0, 0.2)) == pytest.approx(0.13 / math.sqrt(2))
+    # a lateral 1 g pushes the loaded point 0.2 m outward: out of the diamond
+    assert margin(sup, (0, 0, 0.2), (0, 9.81)) == pytest.approx((0.13 - 0.2) / math.sqrt(2))

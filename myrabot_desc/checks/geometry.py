@@ -58,8 +58,24 @@ def describe(g) -> str:
     return f"mesh {g.filename.rsplit('/', 1)[-1]}{sc}"
 
 
+_MESHES: dict = {}          # (path, mtime, scale) -> mesh: robots in one run share mesh files
+_MAX_CACHED = 512
+
+
 def load_mesh(g):
-    """Load a mesh file as one trimesh.Trimesh with the URDF scale applied; str on failure."""
+    """Load a mesh file as one trimesh.Trimesh with the URDF scale applied; str on failure (cached)."""
+    try:
+        key = (str(g.path), g.path.stat().st_mtime_ns, tuple(g.scale))
+    except OSError as exc:
+        return f"cannot read {g.path}: {exc.strerror}"
+    if key not in _MESHES:
+        if len(_MESHES) >= _MAX_CACHED:
+            _MESHES.pop(next(iter(_MESHES)))
+        _MESHES[key] = _load_mesh(g)
+    return _MESHES[key]
+
+
+def _load_mesh(g):
     import trimesh
 
     try:

@@ -67,7 +67,7 @@ class Solid:
         T = self.link.inertial.origin.matrix()
         R, p = T[:3, :3], T[:3, 3]
         t = R.T @ self.props.inertia @ R
-        t[abs(t) < 1e-9 * abs(t).max()] = 0.0          # rotation round-off (rpy 1.570796) is not a product of inertia
+        t[abs(t) < 1e-6 * abs(t).max()] = 0.0          # rotation round-off (rpy 1.570796) is not a product of inertia
         return R.T @ (self.props.com - p), t
 
 

@@ -6,6 +6,7 @@ import math
 
 import click
 
+from myrabot_desc.build import display
 from myrabot_desc.cli_common import guarded, input_options
 
 
@@ -30,7 +31,7 @@ def summarize(robot) -> dict:
                                                               "velocity": j.limit.velocity}})
     return {
         "name": robot.name,
-        "source": str(robot.source) if robot.source else None,
+        "source": display(robot.source) if robot.source else None,
         "links": len(robot.links),
         "joints": len(robot.joints),
         "roots": robot.roots,
@@ -63,26 +64,28 @@ def _tree_order(robot) -> list[str]:
 
 
 def tree_lines(robot) -> list[str]:
+    """The link tree, drawn with box characters; each child shows the joint that carries it."""
     children: dict[str, list] = {}
     for j in robot.joints.values():
         children.setdefault(j.parent, []).append(j)
     lines, seen = [], set()
-
-    def walk(link, depth, via):
-        if link in seen:
-            lines.append("  " * depth + f"{link} (cycle)")
-            return
-        seen.add(link)
-        if via is None:
-            lines.append(link)
-        else:
-            ax = "" if via.type == "fixed" else " axis " + " ".join(f"{a:g}" for a in via.axis)
-            lines.append("  " * depth + f"└─ {link}  [{via.name}: {via.type}{ax}]")
-        for j in children.get(link, []):
-            walk(j.child, depth + 1, j)
-
     for root in robot.roots or list(robot.links)[:1]:
-        walk(root, 0, None)
+        stack = [(root, "", None, True)]          # iterative: chains can be thousands deep
+        while stack:
+            link, prefix, via, last = stack.pop()
+            label = link
+            if via is not None:
+                ax = "" if via.type == "fixed" else " axis " + " ".join(f"{a:g}" for a in via.axis)
+                label = f"{link}  [{via.name}: {via.type}{ax}]"
+            if link in seen:
+                lines.append(prefix + ("└─ " if last else "├─ ") + label + "  (cycle!)")
+                continue
+            seen.add(link)
+            lines.append(prefix + ("" if via is None else ("└─ " if last else "├─ ")) + label)
+            kids = children.get(link, [])
+            inner = prefix + ("" if via is None else ("   " if last else "│  "))
+            for i, j in reversed(list(enumerate(kids))):
+                stack.append((j.child, inner, j, i == len(kids) - 1))
     return lines
 
 

@@ -7,7 +7,9 @@ Roomba has ``ixx = iyy = 0.01, izz = 0.5``. We keep the mass, the centre of mass
 and the principal axes, and *raise* the two smaller principal moments by the
 same factor until A + B = C: no moment decreases, so the body gets no easier to
 spin than its author wrote (lowering moments makes a simulation stiffer).
-``check --inertia`` explains the finding; the converter warns and repairs.
+An all-zero tensor on a mass (a point mass, which no simulator accepts) becomes the
+inertia of a solid sphere of water of that mass. ``check --inertia`` explains the
+finding; the converter warns and repairs.
 """
 
 from __future__ import annotations
@@ -20,6 +22,10 @@ def repaired(ine):
     I = ine.tensor()
     if ine.mass <= 0:
         return I, False
+    if abs(I).max() <= 1e-12:
+        # a point mass: give it the inertia of a solid sphere of water of that mass
+        r = (3 * ine.mass / (4 * np.pi * 1000.0)) ** (1 / 3)
+        return np.eye(3) * 0.4 * ine.mass * r * r, True
     w, V = np.linalg.eigh(I)
     order = np.argsort(w)
     w, V = w[order], V[:, order]

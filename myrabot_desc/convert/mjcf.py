@@ -14,6 +14,7 @@ stay in group 1 with their colours.
 
 from __future__ import annotations
 
+import contextlib
 import shutil
 import tempfile
 from dataclasses import dataclass
@@ -28,6 +29,7 @@ from myrabot_desc.errors import InputError
 TINY_MASS = 1e-3
 TINY_INERTIA = 1e-6
 MUJOCO_MESH_EXT = {".stl", ".obj", ".msh"}
+STL_MAX_FACES = 200000
 
 
 @dataclass
@@ -63,47 +65,76 @@ def is_mobile(robot) -> bool:
 
 
 class _Prep:
+    """Which mesh files MuJoCo gets, under which unique names (it keys meshes by file stem)."""
+
     def __init__(self, robot, notes, mesh_dirname):
         self.robot = robot
         self.notes = notes
         self.mesh_dirname = mesh_dirname
-        self.meshes: dict[Path, str] = {}            # source file -> file name in the mesh folder
+        self.meshes: dict[Path, str | None] = {}     # source file -> file name in the mesh folder (None: unusable)
+        self.loaded: dict[Path, object] = {}         # converted meshes (trimesh), by source
         self.names: set[str] = set()
         self.missing: list[str] = []
+        self.empty: list[str] = []
         self.converted: list[str] = []
 
-    def mesh_name(self, src: Path) -> str:
+    def mesh_name(self, src: Path) -> str | None:
         key = src.resolve()
         if key in self.meshes:
             return self.meshes[key]
         ext = src.suffix.lower()
-        out_ext = ext if ext in MUJOCO_MESH_EXT else ".stl"
+        mesh = None
+        if ext not in MUJOCO_MESH_EXT or (ext == ".stl" and not _binary_stl_ok(key)):
+            import trimesh
+
+            try:
+                mesh = trimesh.load(str(key), force="mesh", process=False)
+            except Exception as exc:  # unreadable: leave the geometry out, say which file
+                self.notes.warn(f"mesh {src} cannot be read ({type(exc).__name__}: {exc}); geometry left out")
+                mesh = None
+            if mesh is None or mesh.is_empty or len(mesh.faces) == 0:
+                self.empty.append(src.name)
+                self.meshes[key] = None
+                return None
+            # MuJoCo's STL reader takes binary files of at most 200000 faces; OBJ has no such limit
+            out_ext = ".stl" if len(mesh.faces) <= STL_MAX_FACES else ".obj"
+            self.loaded[key] = mesh
+            self.converted.append(src.name)
+        else:
+            out_ext = ext
         stem = "".join(ch if ch.isalnum() or ch in "-_" else "_" for ch in src.stem) or "mesh"
         name, k = f"{stem}{out_ext}", 2
         while name.lower() in self.names:
             name, k = f"{stem}_{k}{out_ext}", k + 1
         self.names.add(name.lower())
         self.meshes[key] = name
-        if out_ext != ext:
-            self.converted.append(src.name)
         return name
 
     def write_meshes(self, folder: Path) -> None:
         folder.mkdir(parents=True, exist_ok=True)
-        for src, name in sorted(self.meshes.items(), key=lambda kv: kv[1]):
+        for src, name in sorted(((s, n) for s, n in self.meshes.items() if n), key=lambda kv: kv[1]):
             dest = folder / name
-            if src.suffix.lower() == dest.suffix.lower():
+            mesh = self.loaded.get(src)
+            if mesh is None:
                 shutil.copyfile(src, dest)
-                continue
-            import trimesh
+            elif dest.suffix == ".obj":
+                dest.write_text(mesh.export(file_type="obj", include_normals=False, include_texture=False))
+            else:
+                mesh.export(str(dest), file_type="stl")
 
-            try:
-                mesh = trimesh.load(str(src), force="mesh", process=False)
-            except Exception as exc:  # a broken mesh file: say which one
-                raise InputError(f"cannot convert mesh {src} for MuJoCo: {exc}") from None
-            if mesh.is_empty:
-                raise InputError(f"mesh {src} has no triangles")
-            mesh.export(str(dest), file_type="stl")
+
+def _binary_stl_ok(path: Path) -> bool:
+    """A binary STL MuJoCo can read: size = 84 + 50 n with 1 <= n <= 200000."""
+    try:
+        size = path.stat().st_size
+        with open(path, "rb") as fh:
+            head = fh.read(84)
+    except OSError:
+        return False
+    if len(head) < 84:
+        return False
+    n = int.from_bytes(head[80:84], "little")
+    return size == 84 + 50 * n and 1 <= n <= STL_MAX_FACES
 
 
 def prepare_urdf(robot, notes: Notes, base: str, mesh_dirname: str):
@@ -148,7 +179,11 @@ def prepare_urdf(robot, notes: Notes, base: str, mesh_dirname: str):
                 prep.missing.append(fn)
                 link_el.remove(part)
                 continue
-            mesh.set("filename", prep.mesh_name(Path(src)))
+            name = prep.mesh_name(Path(src))
+            if name is None:
+                link_el.remove(part)
+                continue
+            mesh.set("filename", name)
         # inertia: repaired like the SDF path, so both simulators see the same body
         ine_el = link_el.find("inertial")
         if link is not None and link.inertial is not None and link.inertial.mass > 0 and ine_el is not None:
@@ -165,6 +200,8 @@ def prepare_urdf(robot, notes: Notes, base: str, mesh_dirname: str):
     if prep.missing:
         shown = ", ".join(sorted(set(prep.missing))[:5])
         notes.warn(f"{len(prep.missing)} mesh geometry(ies) left out: file not found ({shown})")
+    if prep.empty:
+        notes.warn(f"{len(prep.empty)} mesh file(s) with no triangles left out: {', '.join(sorted(set(prep.empty)))}")
 
     # massless links that move would stop MuJoCo ("mass and inertia of moving bodies ...")
     tiny = []
@@ -249,12 +286,69 @@ def _postprocess(text: str, robot, mesh_dirname: str, free: bool, version: str) 
             g.set("group", "3")
             if "rgba" in g.attrib:
                 del g.attrib["rgba"]
+    for ine in root.iter("inertial"):
+        # mj_saveLastXML prints 6 digits: a tensor with A + B == C (a thin rod, or our repair) can
+        # print as A + B < C and then not load again; nudge such rounding-level cases back
+        d = ine.get("diaginertia")
+        if d:
+            a, b, c = sorted(float(x) for x in d.split())
+            vals = [float(x) for x in d.split()]
+            if a + b < c * (1 + 1e-5):
+                f = c * (1 + 2e-5) / (a + b) if a + b > 0 else 1.0
+                big = vals.index(c)
+                vals = [v if i == big else v * f for i, v in enumerate(vals)]
+                ine.set("diaginertia", " ".join(f"{v:.9g}" for v in vals))
     src = robot.source.name if robot.source else "URDF"
     root.insert(0, etree.Comment(f" generated by myrabot-desc convert from {src} through MuJoCo {version}'s URDF "
                                  f"compiler; visuals in group 1, collisions in group 3"
                                  f"{'; free base' if free else ''} "))
     etree.indent(root, space="  ")
     return etree.tostring(root, encoding="unicode", pretty_print=True)
+
+
+@contextlib.contextmanager
+def _c_stdout_to(notes):
+    """MuJoCo's C code prints warnings ("joint 'j' has equal lower and upper limits") on stdout,
+    which would corrupt ``-o -``: catch file descriptor 1 and turn the lines into warnings."""
+    import os
+    import sys
+
+    sys.stdout.flush()
+    saved = os.dup(1)
+    with tempfile.TemporaryFile() as tmp:
+        os.dup2(tmp.fileno(), 1)
+        try:
+            yield
+        finally:
+            sys.stdout.flush()
+            os.dup2(saved, 1)
+            os.close(saved)
+            tmp.seek(0)
+            for line in tmp.read().decode("utf-8", "replace").splitlines():
+                line = line.strip()
+                if line:
+                    notes.warn("MuJoCo: " + line.removeprefix("WARNING: "))
+
+
+def _compile(mujoco, spec, notes):
+    """Compile; a mesh too thin to have a volume (a decal, a flat nub) gets shell inertia and we retry."""
+    import re
+
+    shelled = []
+    while True:
+        try:
+            model = spec.compile()
+            break
+        except ValueError as exc:
+            m = re.search(r"mesh volume is too small: (\S+?)\s*\.", str(exc))
+            mesh = next((x for x in spec.meshes if m and x.name == m.group(1)), None)
+            if mesh is None or mesh.inertia == mujoco.mjtMeshInertia.mjMESH_INERTIA_SHELL or len(shelled) > 1000:
+                raise
+            mesh.inertia = mujoco.mjtMeshInertia.mjMESH_INERTIA_SHELL
+            shelled.append(mesh.name)
+    if shelled:
+        notes.warn(f"{len(shelled)} mesh(es) too thin for a volume use shell inertia in MuJoCo: {', '.join(shelled)}")
+    return model
 
 
 def convert_mjcf(robot, output: str, base: str = "auto") -> MjcfResult:
@@ -277,18 +371,17 @@ def convert_mjcf(robot, output: str, base: str = "auto") -> MjcfResult:
         prep.write_meshes(folder / mesh_dirname)
         tmp_urdf = folder / ".robot.urdf"
         tmp_urdf.write_text(urdf_text, encoding="utf-8")
-        tmp_xml = folder / ".robot.xml"
         try:
-            model = mujoco.MjModel.from_xml_path(str(tmp_urdf))
-            mujoco.mj_saveLastXML(str(tmp_xml), model)
+            with _c_stdout_to(notes):
+                spec = mujoco.MjSpec.from_file(str(tmp_urdf))
+                model = _compile(mujoco, spec, notes)
+                text = spec.to_xml()
         except ValueError as exc:
             msg = str(exc).strip().splitlines()
             raise InputError(f"MuJoCo rejected the model: {' '.join(m.strip() for m in msg if m.strip())}",
                              robot.loc) from None
         finally:
             tmp_urdf.unlink(missing_ok=True)
-        text = tmp_xml.read_text(encoding="utf-8")
-        tmp_xml.unlink()
         return _postprocess(text, robot, mesh_dirname, free, mujoco.__version__), model
 
     if out is None:

@@ -38,4 +38,4 @@ def test_installed_wheel_builds_the_bundled_robot_from_another_folder(installed,
     # meshes and materials travelled with the wheel
     share = installed / "myrabot_desc" / "share" / "myrabot_description"
     assert (share / "package.xml").is_file() and any((share / "meshes").glob("*.stl"))
-    assert (share / "materials" / "myrabot.material").is_file() and (share / "layouts").is_dir()
+    assert (share / "materials" / "scripts" / "myrabot.material").is_file() and (share / "layouts").is_dir()

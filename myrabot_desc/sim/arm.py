@@ -134,7 +134,6 @@ class Arm:
         starts over the base yaw and shoulder bend, keeping the best.
         """
         import numpy as np
-        from scipy.optimize import least_squares
 
         target = np.asarray(target, dtype=float)
         q_home = np.asarray(q_home, dtype=float)
@@ -161,11 +160,11 @@ class Arm:
                     starts.append(np.clip(s, lo, hi))
         best = None
         for s in starts:
-            r = least_squares(res, s, bounds=(lo, hi), xtol=1e-10, ftol=1e-12, gtol=1e-12, max_nfev=200)
-            if best is None or r.cost < best.cost:
-                best = r
+            x, cost = _levenberg_marquardt(res, s, lo, hi)
+            if best is None or cost < best[1]:
+                best = (x, cost)
         q = q_home.copy()
-        q[free] = best.x
+        q[free] = best[0]
         return q
 
     # ------------------------------------------------------------ mass
@@ -187,6 +186,41 @@ def whole_com(model, data, q):
         acc += I.mass * (M.rotation @ I.lever + M.translation)
         m_tot += I.mass
     return acc / m_tot if m_tot > 0 else acc
+
+
+def _levenberg_marquardt(res, x0, lo, hi, iters: int = 100):
+    """Small box-projected Levenberg-Marquardt (4 unknowns: scipy's overhead would dominate)."""
+    import numpy as np
+
+    x = np.clip(np.asarray(x0, dtype=float), lo, hi)
+    r = res(x)
+    cost = float(r @ r)
+    lam = 1e-3
+    h = 1e-7
+    for _ in range(iters):
+        J = np.empty((len(r), len(x)))
+        for i in range(len(x)):
+            xp = x.copy()
+            xp[i] += h if xp[i] + h <= hi[i] else -h
+            J[:, i] = (res(xp) - r) / (xp[i] - x[i])
+        A = J.T @ J
+        g = J.T @ r
+        improved = False
+        while lam < 1e10:
+            dx = np.linalg.solve(A + lam * np.diag(np.diag(A) + 1e-12), -g)
+            xn = np.clip(x + dx, lo, hi)
+            rn = res(xn)
+            cn = float(rn @ rn)
+            if cn < cost:
+                step = float(np.abs(xn - x).max())
+                x, r, cost = xn, rn, cn
+                lam = max(lam / 10, 1e-12)
+                improved = True
+                break
+            lam *= 10
+        if not improved or step < 1e-10:
+            break
+    return x, 0.5 * cost
 
 
 def _lim(joint, attr, default):

@@ -11,6 +11,7 @@ sitting between its mounting plates; they are left out and listed, as an SRDF
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from pathlib import Path
 
 
 @dataclass
@@ -36,11 +37,16 @@ class ArmCollider:
         self.arm = arm
         robot = arm.robot
         model = arm.model
-        dirs = sorted({str(p.parent) for p in (robot.package_roots or {}).values()})
+        # package:// URIs -> absolute paths (a package's folder need not carry its name)
+        text = robot.urdf_text
+        for name, root in sorted((robot.package_roots or {}).items()):
+            text = text.replace(f"package://{name}/", f"{Path(root).resolve()}/")
+        self.notes = []
         try:
-            gm = pin.buildGeomFromUrdfString(model, robot.urdf_text, pin.GeometryType.COLLISION, None, dirs)
+            gm = pin.buildGeomFromUrdfString(model, text, pin.GeometryType.COLLISION, None, [])
         except Exception:               # unresolvable meshes: primitives only
             gm = _primitives_only(model, robot)
+            self.notes.append("some collision meshes could not be loaded; checked primitives only")
         # scene objects: fixed in the robot's root frame (the base stands still in escoja/seguir)
         for obj in scene:
             for name, shape, M in obj.coal_shapes():
@@ -110,19 +116,27 @@ class ArmCollider:
                 active.append(k)
         rep = CollisionReport(checked_configs=len(qarms), pairs=len(active), ignored=ignored)
         best = (np.inf, None)
-        for t, qa in zip(times, qarms):
+        # distances (the closest approach, informative) cost ten times a collision test: take
+        # ~40 evenly spread poses plus each joint's extremes, where the arm reaches farthest
+        qa_all = np.asarray(qarms)
+        probe = set(np.linspace(0, len(qa_all) - 1, min(40, len(qa_all))).astype(int).tolist())
+        if len(qa_all):
+            probe |= set(qa_all.argmin(axis=0).tolist()) | set(qa_all.argmax(axis=0).tolist())
+        for i, (t, qa) in enumerate(zip(times, qarms)):
             q = self.arm.full_q(qa)
-            pin.computeCollisions(model, data, gm, gd, q, False)
-            for k in active:
-                if gd.collisionResults[k].isCollision():
-                    cp = gm.collisionPairs[k]
-                    rep.hits.append((float(t), self._name(cp.first), self._name(cp.second)))
-            pin.computeDistances(model, data, gm, gd, q)
-            for k in active:
-                d = gd.distanceResults[k].min_distance
-                if d < best[0]:
-                    cp = gm.collisionPairs[k]
-                    best = (d, (self._name(cp.first), self._name(cp.second)))
+            if pin.computeCollisions(model, data, gm, gd, q, False):     # True if any active pair hits
+                for k in active:
+                    if gd.collisionResults[k].isCollision():
+                        cp = gm.collisionPairs[k]
+                        rep.hits.append((float(t), self._name(cp.first), self._name(cp.second)))
+            if i in probe:
+                pin.computeDistances(model, data, gm, gd, q)
+                ds = [gd.distanceResults[k].min_distance for k in active]
+                if ds:
+                    j = int(np.argmin(ds))
+                    if ds[j] < best[0]:
+                        cp = gm.collisionPairs[active[j]]
+                        best = (ds[j], (self._name(cp.first), self._name(cp.second)))
         for k in range(len(gm.collisionPairs)):
             gd.activateCollisionPair(k)
         if best[1] is not None:
@@ -131,12 +145,23 @@ class ArmCollider:
 
 
 def unique_configs(t, q, resolution: float = 0.005, limit: int = 1500):
-    """Distinct arm configurations (quantised to ``resolution`` rad), first time each is seen."""
+    """Distinct arm configurations (quantised to ``resolution`` rad), first time each is seen.
+
+    Trajectories are continuous, so only the samples where the quantised pose
+    changes are candidates; those are then de-duplicated (a swing revisits the
+    same poses every cycle).
+    """
     import numpy as np
 
     key = np.round(q / resolution).astype(np.int64)
-    _, first = np.unique(key, axis=0, return_index=True)
-    first = np.sort(first)
+    change = np.r_[True, np.any(key[1:] != key[:-1], axis=1)]
+    cand = np.nonzero(change)[0]
+    k = key[cand] - key[cand].min(axis=0)
+    code = np.zeros(len(cand), dtype=np.int64)
+    for col in range(k.shape[1]):          # mixed-radix code of a row (ranges are small)
+        code = code * (int(k[:, col].max()) + 1) + k[:, col]
+    _, first = np.unique(code, return_index=True)
+    first = np.sort(cand[first])
     if len(first) > limit:
         first = first[np.linspace(0, len(first) - 1, limit).astype(int)]
     return t[first], q[first]

@@ -258,19 +258,19 @@ def wheel_radius(robot, link_name: str, axis_world, T_link) -> float:
     return best
 
 
-def _geometry_points(robot, g, loc):
-    """Surface points of a primitive or mesh (for extents; cylinders/spheres densely sampled)."""
+def _geometry_points(robot, g, loc, n: int = 720):
+    """Surface points of a primitive or mesh (for extents; cylinders/spheres sampled n around)."""
     import numpy as np
 
     if g.kind == "box":
         sx, sy, sz = (s / 2 for s in g.size)
         return np.array([[x, y, z] for x in (-sx, sx) for y in (-sy, sy) for z in (-sz, sz)])
     if g.kind == "cylinder":
-        a = np.linspace(0, 2 * np.pi, 721)[:-1]
+        a = np.linspace(0, 2 * np.pi, n + 1)[:-1]
         ring = np.stack([g.radius * np.cos(a), g.radius * np.sin(a)], axis=1)
         return np.vstack([np.column_stack([ring, np.full(len(a), z)]) for z in (-g.length / 2, g.length / 2)])
     if g.kind == "sphere":
-        a = np.linspace(0, 2 * np.pi, 361)[:-1]
+        a = np.linspace(0, 2 * np.pi, n // 2 + 1)[:-1]
         c, s = np.cos(a), np.sin(a)
         r = g.radius
         return np.vstack([np.column_stack([r * c, r * s, 0 * a]), np.column_stack([r * c, 0 * a, r * s]),

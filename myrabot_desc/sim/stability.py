@@ -54,7 +54,7 @@ def support_polygon(robot, drive) -> Support:
             if c.geometry is None:
                 continue
             try:
-                p = _geometry_points(robot, c.geometry, c.loc)
+                p = _geometry_points(robot, c.geometry, c.loc, n=180)
             except Exception:
                 continue
             M = tf[ln] @ c.origin.matrix()
@@ -64,7 +64,7 @@ def support_polygon(robot, drive) -> Support:
                 lowest = (zmin, ln)
             near = w[w[:, 2] <= ground + GROUND_TOL]
             if len(near):
-                pts.extend(map(tuple, near[:, :2]))
+                pts.extend(near[:, :2].tolist())
                 links.append(ln)
     if lowest[1] is not None and lowest[0] < ground - GROUND_TOL:
         notes.append(f"{lowest[1]} reaches {ground - lowest[0]:.3f} m below the wheels' contact line")

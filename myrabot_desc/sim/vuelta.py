@@ -208,7 +208,9 @@ def _verdict(res, robot, drive, arm, segments, commands, swing_cmds, dt, check_c
 
 
 def footprint(robot):
-    """Convex outline (root frame, xy) of the robot's collision geometry at the zero pose."""
+    """Convex outline (root frame, xy) of the robot's primitive collision geometry at the zero pose."""
+    import numpy as np
+
     from myrabot_desc.kinematics import world_transforms
     from myrabot_desc.sim.diffdrive import _geometry_points
     from myrabot_desc.sim.stability import _hull
@@ -219,8 +221,7 @@ def footprint(robot):
         for c in link.collisions:
             if c.geometry is None or c.geometry.kind == "mesh":
                 continue
-            p = _geometry_points(robot, c.geometry, c.loc)
+            p = _geometry_points(robot, c.geometry, c.loc, n=72)
             M = tf[ln] @ c.origin.matrix()
-            w = p @ M[:3, :3].T + M[:3, 3]
-            pts.extend(map(tuple, w[:, :2]))
-    return _hull(pts)
+            pts.append((p @ M[:3, :3].T + M[:3, 3])[:, :2])
+    return _hull(np.vstack(pts)) if pts else []

@@ -1,0 +1,138 @@
+"""Benchmark of ``myrabot-desc sim``: simulated seconds per wall second.
+
+    .venv/bin/python bench/bench_sim.py [--seconds 60] [--repeat 5] [--json]
+
+Measures, on the bundled MYRAbot at a 1 kHz fixed step:
+
+* ``vuelta`` for --seconds simulated (goal: 60 s in under 1 s of wall time),
+  the full run (state machine, servos, exact arcs, verdict with the collision
+  check and the tip-over margin) and the simulation alone (--no-collisions);
+  cold (first call in the process, imports included) and warm (median);
+* ``escoja`` and ``seguir`` at their default lengths;
+* MuJoCo stepping the bundled model's MJCF (``myrabot-desc convert --to mjcf``)
+  for the same simulated time at the same 1 ms step: full rigid-body dynamics
+  with contacts, no controller, for scale.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def timed(fn, repeat):
+    walls = []
+    out = None
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        out = fn()
+        walls.append(time.perf_counter() - t0)
+    return statistics.median(walls), min(walls), out
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--seconds", type=float, default=60.0)
+    ap.add_argument("--repeat", type=int, default=5)
+    ap.add_argument("--json", action="store_true")
+    ap.add_argument("--no-mujoco", action="store_true")
+    a = ap.parse_args(argv)
+    S = a.seconds
+    res = {"simulated_s": S, "rate_hz": 1000}
+
+    t0 = time.perf_counter()
+    from myrabot_desc.loader import data_root, load_robot
+    from myrabot_desc.sim import pointing, scene, vuelta
+
+    robot = load_robot(None)
+    res["load_bundled_s"] = round(time.perf_counter() - t0, 3)
+
+    t0 = time.perf_counter()
+    r = vuelta.run(robot, duration=S)
+    cold = time.perf_counter() - t0
+    assert r.passed, r.summary()
+    res["vuelta_cold_s"] = round(cold, 3)
+    med, best, r = timed(lambda: vuelta.run(robot, duration=S), a.repeat)
+    res["vuelta_full_s"] = round(med, 4)
+    res["vuelta_full_sim_per_wall"] = round(S / med, 1)
+    med2, _, _ = timed(lambda: vuelta.run(robot, duration=S, check_collisions=False), a.repeat)
+    res["vuelta_no_collisions_s"] = round(med2, 4)
+    res["vuelta_no_collisions_sim_per_wall"] = round(S / med2, 1)
+    res["vuelta_goal_met"] = med < 1.0
+
+    esc = scene.load_layout(data_root() / "layouts" / "escoja.yaml")
+    seg = scene.load_layout(data_root() / "layouts" / "seguir.yaml")
+    med3, _, e = timed(lambda: pointing.run_escoja(robot, esc, which="1"), max(1, a.repeat // 2))
+    res["escoja_s"] = round(med3, 3)
+    res["escoja_simulated_s"] = e.duration
+    med4, _, s = timed(lambda: pointing.run_seguir(robot, seg), max(1, a.repeat // 2))
+    res["seguir_s"] = round(med4, 3)
+    res["seguir_simulated_s"] = s.duration
+
+    if not a.no_mujoco:
+        res.update(bench_mujoco(S))
+
+    if a.json:
+        print(json.dumps(res, indent=2))
+    else:
+        print(f"sim benchmark: bundled MYRAbot, {S:g} s simulated at 1 kHz ({int(S * 1000)} steps)")
+        print(f"  load (build xacro + read)         {res['load_bundled_s']:.3f} s")
+        print(f"  vuelta, first call (imports)      {res['vuelta_cold_s']:.3f} s")
+        print(f"  vuelta, full verdict              {res['vuelta_full_s']:.4f} s  "
+              f"= {res['vuelta_full_sim_per_wall']:g} simulated s per wall s "
+              f"({'meets' if res['vuelta_goal_met'] else 'misses'} the 60 s < 1 s goal)")
+        print(f"  vuelta, no collision check        {res['vuelta_no_collisions_s']:.4f} s  "
+              f"= {res['vuelta_no_collisions_sim_per_wall']:g} simulated s per wall s")
+        print(f"  escoja ({res['escoja_simulated_s']:g} s simulated)          {res['escoja_s']:.3f} s")
+        print(f"  seguir ({res['seguir_simulated_s']:g} s simulated)         {res['seguir_s']:.3f} s")
+        if "mujoco_step_s" in res:
+            print(f"  MuJoCo {res['mujoco_version']}, MJCF of the bundled model ({res['mujoco_nbody']} bodies, "
+                  f"nq {res['mujoco_nq']}), {S:g} s at 1 ms:")
+            print(f"    mj_step x {int(S * 1000)} (one call, nstep)    {res['mujoco_step_s']:.3f} s  "
+                  f"= {res['mujoco_sim_per_wall']:g} simulated s per wall s")
+            print(f"    Python loop of mj_step              {res['mujoco_loop_s']:.3f} s")
+        elif "mujoco_error" in res:
+            print(f"  MuJoCo: {res['mujoco_error']}")
+    return 0
+
+
+def bench_mujoco(S):
+    out = {}
+    try:
+        import mujoco
+    except ImportError as exc:
+        return {"mujoco_error": f"not installed ({exc})"}
+    with tempfile.TemporaryDirectory() as d:
+        xml = Path(d) / "myrabot.xml"
+        p = subprocess.run([sys.executable, "-m", "myrabot_desc", "convert", "--to", "mjcf", "-o", str(xml)],
+                           capture_output=True, text=True, cwd=ROOT)
+        if p.returncode != 0 or not xml.is_file():
+            return {"mujoco_error": f"convert --to mjcf failed: {p.stderr.strip()[:200]}"}
+        m = mujoco.MjModel.from_xml_path(str(xml))
+    m.opt.timestep = 0.001
+    n = int(round(S / m.opt.timestep))
+    dd = mujoco.MjData(m)
+    t0 = time.perf_counter()
+    mujoco.mj_step(m, dd, nstep=n)
+    one = time.perf_counter() - t0
+    dd = mujoco.MjData(m)
+    t0 = time.perf_counter()
+    for _ in range(n):
+        mujoco.mj_step(m, dd)
+    loop = time.perf_counter() - t0
+    out.update(mujoco_version=mujoco.__version__, mujoco_nbody=m.nbody, mujoco_nq=m.nq,
+               mujoco_step_s=round(one, 3), mujoco_loop_s=round(loop, 3),
+               mujoco_sim_per_wall=round(S / one, 1), mujoco_final_time=round(dd.time, 3))
+    return out
+
+
+if __name__ == "__main__":
+    sys.exit(main())

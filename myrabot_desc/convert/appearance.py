@@ -22,6 +22,7 @@ class Look:
     emissive: tuple = (0.0, 0.0, 0.0, 1.0)
     texture: str | None = None        # resolved file path or URI of the albedo map
     lighting: bool = True
+    transparency: float = 0.0         # 0 opaque .. 1 invisible (goes on the <visual>)
     source: str = ""                  # for comments: 'urdf:white', 'gazebo:Gazebo/Grey'
 
 
@@ -74,7 +75,8 @@ class Appearance:
                     specular=_rgba(getattr(m, "specular", None), (0.0, 0.0, 0.0, 1.0)),
                     emissive=_rgba(getattr(m, "emissive", None), (0.0, 0.0, 0.0, 1.0)),
                     texture=str(tex) if tex else None,
-                    lighting=bool(getattr(m, "lighting", True)), source=f"gazebo:{name}")
+                    lighting=bool(getattr(m, "lighting", True)),
+                    transparency=float(getattr(m, "transparency", 0.0) or 0.0), source=f"gazebo:{name}")
 
     def finish(self) -> None:
         if self._unresolved:

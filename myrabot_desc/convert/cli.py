@@ -23,8 +23,9 @@ from myrabot_desc.cli_common import guarded, input_options
 @click.option("--layout", type=click.Choice(["escoja", "seguir"]), default="escoja", show_default=True,
               help="World only: the seed demo whose table and cans to place.")
 @click.option("--base", type=click.Choice(["auto", "free", "fixed"]), default="auto", show_default=True,
-              help="MJCF only: give the root a free joint (auto: for mobile bases, i.e. a drive plugin or "
-                   "wheels, and roots MuJoCo would free anyway).")
+              help="MJCF only: free = the root gets a free joint; fixed = welded to the world; auto = free for "
+                   "mobile bases (a drive plugin or wheel joints), else what MuJoCo's URDF reader does (it welds "
+                   "the root). Use free for legged robots.")
 @click.option("-q", "--quiet", is_flag=True, help="Do not print warnings.")
 def convert_cmd(inputs, target, output, lump, uri_style, layout, base, quiet):
     """Convert a robot for today's simulators: gz-sim (SDF) or MuJoCo (MJCF).

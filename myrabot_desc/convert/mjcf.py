@@ -230,8 +230,6 @@ def prepare_urdf(robot, notes: Notes, base: str, mesh_dirname: str):
                     j_el.set("type", "fixed")
             else:
                 _add_world_joint(root, r, "fixed")
-        elif link is not None and link.mass > 0 and j_world is None:
-            free = True                                 # MuJoCo frees a massive root by itself
     for name in moving_children:
         link = robot.links.get(name)
         if link is not None and link.mass <= 0 and name in links_xml:
@@ -308,21 +306,26 @@ def _postprocess(text: str, robot, mesh_dirname: str, free: bool, version: str) 
 
 @contextlib.contextmanager
 def _c_stdout_to(notes):
-    """MuJoCo's C code prints warnings ("joint 'j' has equal lower and upper limits") on stdout,
-    which would corrupt ``-o -``: catch file descriptor 1 and turn the lines into warnings."""
+    """MuJoCo's C code prints warnings ("joint 'j' has equal lower and upper limits") straight on
+    the process's stdout/stderr: catch both descriptors and turn the lines into our warnings."""
     import os
     import sys
 
     sys.stdout.flush()
-    saved = os.dup(1)
+    sys.stderr.flush()
+    saved = os.dup(1), os.dup(2)
     with tempfile.TemporaryFile() as tmp:
         os.dup2(tmp.fileno(), 1)
+        os.dup2(tmp.fileno(), 2)
         try:
             yield
         finally:
             sys.stdout.flush()
-            os.dup2(saved, 1)
-            os.close(saved)
+            sys.stderr.flush()
+            os.dup2(saved[0], 1)
+            os.dup2(saved[1], 2)
+            os.close(saved[0])
+            os.close(saved[1])
             tmp.seek(0)
             for line in tmp.read().decode("utf-8", "replace").splitlines():
                 line = line.strip()
@@ -395,5 +398,6 @@ def convert_mjcf(robot, output: str, base: str = "auto") -> MjcfResult:
         if prep.converted:
             notes.warn(f"{len(prep.converted)} mesh(es) converted to STL for MuJoCo (it reads STL, OBJ, MSH); "
                        "their embedded colours are replaced by the URDF/Gazebo colour")
+    free = bool((model.jnt_type == mujoco.mjtJoint.mjJNT_FREE).any())
     return MjcfResult(text, notes, model.nbody, model.njnt, model.ngeom, model.nmesh, free,
                       str(out.parent / mesh_dirname) if out and prep.meshes else None)

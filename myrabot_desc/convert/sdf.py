@@ -228,6 +228,8 @@ def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = Non
                 _geometry_el(ve, v.geometry, uris)
                 lk = look.look(v, gz_mat, m.loc)
                 if lk is not None:
+                    if lk.transparency > 0:
+                        sub(ve, "transparency", lk.transparency)
                     material_element(ve, lk, uris)
                 props.apply_visual(ve, m.name)
             for k, c in enumerate(m.collisions):

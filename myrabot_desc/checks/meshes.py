@@ -38,8 +38,16 @@ def mesh_resolves(ctx):
             why = f"package '{parts[0]}' is not found (give -p {parts[0]}=PATH or --package-path)"
         elif g.path is not None:
             why = f"no such file {g.path}"
+        elif parts:
+            why = f"no such file {r.package_roots[parts[0]] / parts[1]}"
         else:
-            why = "the file does not exist"
+            from pathlib import Path
+
+            raw = g.filename[len("file://"):] if g.filename.startswith("file://") else g.filename
+            p = Path(raw)
+            if not p.is_absolute() and r.source is not None:
+                p = r.source.parent / p
+            why = f"no such file {p}"
         n = sum(1 for _l, _k, i in _mesh_uses(ctx) if i.geometry.filename == g.filename)
         yield Finding(f"mesh {g.filename} ({kind} of {link.name}{f', used {n}×' if n > 1 else ''}) cannot be "
                       f"resolved: {why}", it.loc or link.loc,

@@ -88,6 +88,17 @@ def test_vuelta_collision_and_tip_over(vuelta):
     assert "rear_wheel_link" in tip["detail"] and "front_wheel_link" in tip["detail"]
 
 
+def test_vuelta_on_the_seed_files_as_written():
+    """The Electric-era seed (legacy xacro, gazebo_ros_roomba 0.26/0.066, box arm) passes too;
+    its meshes are missing, which the collision check says."""
+    seed = ROOT / "tests" / "fixtures" / "seed_myrabot"
+    code, doc = run_json("vuelta", seed / "myrabot_fer_modelo" / "urdf" / "myrabot.urdf.xacro",
+                         "--package-path", seed)
+    assert code == 0
+    assert check(doc, "circle radius")["value"] == pytest.approx(1 / 3, rel=1e-4)
+    assert any("primitives only" in n for n in doc["notes"])
+
+
 def test_vuelta_press_twice_keeps_turning():
     """The seed sends no zero twist when switched off: the base keeps turning."""
     code, doc = run_json("vuelta", "--press", "1", "--press", "6", "--duration", "10", "--no-collisions")

@@ -135,6 +135,16 @@ def _top_view(d, res, box):
         hx, hy = b.x[i] + 0.12 * math.cos(b.yaw[i]), b.y[i] + 0.12 * math.sin(b.yaw[i])
         d.line([P(b.x[i], b.y[i]), P(hx, hy)], fill=colour, width=2)
     d.line([P(*p) for p in _decimate(b.axle_x, b.axle_y)], fill=(0, 0, 0), width=2)
+    legend = [((0, 0, 0), "base path (axle midpoint)"), ((40, 160, 40), "robot at start"),
+              ((200, 40, 40), "robot at end")]
+    for label, *_ in res.moving:
+        legend.append(((160, 160, 160), "expected path") if label == "expected"
+                      else ((30, 30, 200), f"{label} path"))
+    ly = y0 + 2
+    for colour, text in legend:
+        d.line([(x0 + 60, ly + 7), (x0 + 80, ly + 7)], fill=colour, width=2)
+        d.text((x0 + 86, ly), text, fill=(60, 60, 60), font=font)
+        ly += 14
 
 
 def _decimate(x, y, n=2000):

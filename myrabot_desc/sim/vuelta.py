@@ -183,7 +183,9 @@ def _verdict(res, robot, drive, arm, segments, commands, swing_cmds, dt, check_c
         if rep.min_pair:
             detail += f"; closest {rep.min_distance * 1000:.1f} mm ({rep.min_pair[0]} – {rep.min_pair[1]})"
         if rep.ignored:
-            detail += f"; {len(rep.ignored)} pairs touching at home ignored"
+            detail += f"; touching at home, ignored: {', '.join(a + ' – ' + b for a, b in rep.ignored[:3])}" \
+                      + (f" and {len(rep.ignored) - 3} more" if len(rep.ignored) > 3 else "")
+        res.notes.extend(col.notes)
         first = rep.hits[0] if rep.hits else None
         res.checks.append(Check("arm collision", not rep.collided,
                                 "none" if not first else f"{first[1]} – {first[2]} at {first[0]:.3f} s", "",

@@ -128,6 +128,9 @@ def find_drive(robot, wheels: str = "plugin") -> Drive:
     d = Drive(urdf=urdf, plugin=plugin, wheels=wheels)
     if plugin is not None:
         d.notes.extend(plugin.notes)
+        if plugin.left_joint != urdf.left.joint:
+            d.notes.append(f"the plugin's left joint {plugin.left_joint} sits on the right (y "
+                           f"{urdf.right.y:+.3f} m): it turns the wrong way")
     return d
 
 

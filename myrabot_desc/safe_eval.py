@@ -43,7 +43,21 @@ class RefusedExpression(Exception):
 
 
 def check_expression(expr: str) -> ast.Expression:
-    """Parse and vet ``expr``; raise RefusedExpression with a reason."""
+    """Parse and vet a ``${}`` expression; raise RefusedExpression with a reason."""
+    return _vet(expr, _check_call_target)
+
+
+def check_subst_eval(expr: str, allowed_calls: set[str]) -> None:
+    """Vet a ``$(eval ...)`` expression: same rules, its own function names."""
+
+    def calls(func):
+        if not (isinstance(func, ast.Name) and func.id in allowed_calls):
+            raise RefusedExpression("only find, env, optenv, arg, dirname and math functions may be called")
+
+    _vet(expr, calls)
+
+
+def _vet(expr: str, check_call) -> ast.Expression:
     try:
         tree = ast.parse(expr.strip(), mode="eval")
     except SyntaxError as exc:
@@ -53,14 +67,13 @@ def check_expression(expr: str) -> ast.Expression:
             raise RefusedExpression(f"{type(node).__name__} is not allowed in a model file")
         if isinstance(node, ast.Name) and node.id.startswith("_"):
             raise RefusedExpression(f"name {node.id!r} is not allowed (leading underscore)")
-        if isinstance(node, ast.Attribute):
-            if node.attr.startswith("_") or node.attr in FORBIDDEN_ATTRS:
-                raise RefusedExpression(f"attribute {node.attr!r} is not allowed")
+        if isinstance(node, ast.Attribute) and (node.attr.startswith("_") or node.attr in FORBIDDEN_ATTRS):
+            raise RefusedExpression(f"attribute {node.attr!r} is not allowed")
         if isinstance(node, ast.Constant) and isinstance(node.value, str) and "__" in node.value \
                 and "{" in node.value:
             raise RefusedExpression("format-style string reaching dunder attributes is not allowed")
         if isinstance(node, ast.Call):
-            _check_call_target(node.func)
+            check_call(node.func)
     return tree
 
 
@@ -122,23 +135,6 @@ def _lookup(mapping, key):
         return mapping[key]  # xacro's Table resolves parents and lazy values in __getitem__
     except (KeyError, NameError):
         return None
-
-
-def check_subst_eval(expr: str, allowed_calls: set[str]) -> None:
-    """Vet a ``$(eval ...)`` expression: same rules, its own function names."""
-    try:
-        tree = ast.parse(expr.strip(), mode="eval")
-    except SyntaxError as exc:
-        raise RefusedExpression(f"invalid expression ({exc.msg})") from None
-    for node in ast.walk(tree):
-        if not isinstance(node, _ALLOWED_NODES):
-            raise RefusedExpression(f"{type(node).__name__} is not allowed in a model file")
-        if isinstance(node, ast.Name) and node.id.startswith("_"):
-            raise RefusedExpression(f"name {node.id!r} is not allowed (leading underscore)")
-        if isinstance(node, ast.Attribute) and (node.attr.startswith("_") or node.attr in FORBIDDEN_ATTRS):
-            raise RefusedExpression(f"attribute {node.attr!r} is not allowed")
-        if isinstance(node, ast.Call) and not (isinstance(node.func, ast.Name) and node.func.id in allowed_calls):
-            raise RefusedExpression("only find, env, optenv, arg, dirname and math functions may be called")
 
 
 def make_safe_eval(original_safe_eval, refuse):

@@ -120,3 +120,14 @@ def test_no_trimesh_without_inertia():
             "print(r.exit_code, 'trimesh' in sys.modules)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.split()
     assert out == ["1", "False"]
+
+
+def test_docs_rules_md_documents_every_rule_and_is_current():
+    from myrabot_desc.checks.docs import EXAMPLES, render
+    from myrabot_desc.checks.registry import EXTERNAL, load_all
+
+    text = (Path(__file__).parent.parent / "docs" / "rules.md").read_text()
+    assert text == render(), "regenerate: python -m myrabot_desc.checks.docs > docs/rules.md"
+    for code in [*load_all(), *EXTERNAL]:
+        assert f"### {code}\n" in text
+        assert code in EXAMPLES, code

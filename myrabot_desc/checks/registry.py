@@ -66,8 +66,8 @@ def rule(code: str, name: str, severity: str, needs: str | None = None):
 
 # Codes produced outside the rule functions (by the build, or for whole-file problems).
 EXTERNAL = {
-    "X001": ("legacy-upgraded", "info", "Electric/Fuerte xacro syntax was upgraded during the build."),
-    "X002": ("unexpanded-macro-call", "warning", "A tag looks like a macro call that xacro passed through unexpanded."),
+    "X001": ("legacy-upgraded", "warning", "Electric/Fuerte xacro syntax was upgraded during the build."),
+    "X002": ("unexpanded-macro-call", "error", "A tag looks like a macro call that xacro passed through unexpanded."),
     "X003": ("macro-only-file", "warning", "The top-level file defines macros but instantiates none (empty robot)."),
     "X004": ("package-resolves", "warning", "A package:// URI names a package that cannot be found."),
     "X005": ("expression-refused", "error", "A ${} expression was refused by the safe evaluator."),

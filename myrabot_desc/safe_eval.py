@@ -109,10 +109,21 @@ class _Bound(ast.NodeTransformer):
     def visit_BinOp(self, node):
         self.generic_visit(node)
         helper = {ast.Pow: "_md_pow", ast.Mult: "_md_mul"}.get(type(node.op))
-        if helper is None:
+        if helper is None or not _needs_bound(node):
             return node
         return ast.copy_location(ast.Call(func=ast.Name(helper, ast.Load()), args=[node.left, node.right],
                                           keywords=[]), node)
+
+
+def _is_number(node) -> bool:
+    return isinstance(node, ast.Constant) and type(node.value) in (int, float, bool)
+
+
+def _needs_bound(node) -> bool:
+    """A ``*`` or ``**`` to route through the helpers: a product of two number literals
+    (``17 * 0.001``) cannot repeat a sequence, so it is left to Python (and folded)."""
+    return isinstance(node, ast.BinOp) and (isinstance(node.op, ast.Pow) or (
+        isinstance(node.op, ast.Mult) and not (_is_number(node.left) and _is_number(node.right))))
 
 
 _HELPERS = {"_md_pow": _bounded_pow, "_md_mul": _bounded_mul}
@@ -150,11 +161,16 @@ def make_safe_eval(original_safe_eval, refuse):
         """Vet and compile once per expression text; remember which helpers it calls."""
         tree = check_expression(expr)
         calls = []
+        bound = False
         for node in ast.walk(tree):
             if isinstance(node, ast.Call):
                 f = node.func
                 calls.append(("name", f.id) if isinstance(f, ast.Name) else ("ns", f.value.id))
-        code = compile(ast.fix_missing_locations(_Bound().visit(tree)), "<expression>", "eval")
+            elif isinstance(node, ast.BinOp) and not bound:
+                bound = _needs_bound(node)
+        if bound:  # most expressions have no * or ** to bound: skip the (slow) rewrite
+            tree = ast.fix_missing_locations(_Bound().visit(tree))
+        code = compile(tree, "<expression>", "eval")
         return code, tuple(calls)
 
     def safe_eval(expr, globals, locals=None):

@@ -197,35 +197,63 @@ def make_eval_text():
     return eval_text
 
 
+_split_cache: dict[str, tuple] = {}
+
+
+def _split(qname):
+    """minidom._nssplit(qname), memoised (the same few names recur in every clone)."""
+    r = _split_cache.get(qname)
+    if r is None:
+        from xml.dom import minidom
+
+        r = _split_cache[qname] = minidom._nssplit(qname)
+    return r
+
+
 def clone_node(node, deep, doc):
     """Drop-in for minidom._clone_node for the node kinds xacro clones (macro bodies, blocks).
 
-    Same result as minidom's, without its per-attribute lookups and per-child
-    appendChild bookkeeping; other node kinds go to minidom's own function.
+    Same tree as minidom's (elements, attributes with their Text child, text,
+    comments), built without its per-attribute lookups and per-child appendChild
+    bookkeeping; other node kinds go to minidom's own function.
     """
-    from xml.dom import minidom
-
     t = node.nodeType
     if t == ELEMENT:
-        qn = node.nodeName
-        clone = minidom.Element(qn, node.namespaceURI, minidom._nssplit(qn)[0])
+        qn = node.tagName
+        clone = _new(_Element)
         clone.ownerDocument = doc
+        clone.parentNode = clone.nextSibling = clone.previousSibling = None
+        clone.tagName = clone.nodeName = qn
+        clone.prefix = _split(qn)[0]
+        clone.namespaceURI = node.namespaceURI
+        clone.childNodes = kids = _NodeList()
         src = node._attrs
         if src:
             attrs, attrs_ns = {}, {}
             for attr in src.values():
-                aq = attr.nodeName
-                prefix, local = minidom._nssplit(aq)
-                a = minidom.Attr(aq, attr.namespaceURI, local, prefix)
-                a.value = attr.value
-                a.ownerDocument = doc
+                aq = attr._name
+                prefix, local = _split(aq)
+                value = attr._value
+                a = _new(_Attr)
                 a.ownerElement = clone
-                a.specified = attr.specified
+                a._name = aq
+                a.namespaceURI = ns = attr.namespaceURI
+                a._prefix = prefix
+                a._localName = local
+                text = _new(_Text)
+                text.ownerDocument = text.parentNode = text.previousSibling = text.nextSibling = None
+                text._data = value
+                a.childNodes = _NodeList((text,))
+                a._value = value
+                a.ownerDocument = doc
+                if attr.specified:
+                    a.specified = True
                 attrs[aq] = a
-                attrs_ns[(attr.namespaceURI, local)] = a
+                attrs_ns[(ns, local)] = a
             clone._attrs, clone._attrsNS = attrs, attrs_ns
+        else:
+            clone._attrs = clone._attrsNS = None
         if deep and node.childNodes:
-            kids = clone.childNodes
             prev = None
             for child in node.childNodes:
                 c = clone_node(child, deep, doc)
@@ -237,13 +265,14 @@ def clone_node(node, deep, doc):
                 prev = c
             prev.nextSibling = None
         return clone
-    if t == TEXT:
-        c = minidom.Text()
-        c.data = node.data
+    if t == TEXT and type(node) is _Text:
+        c = _new(_Text)
+        c._data = node._data
         c.ownerDocument = doc
+        c.parentNode = c.previousSibling = c.nextSibling = None
         return c
     if t == COMMENT:
-        c = minidom.Comment(node.data)
+        c = _Comment(node._data)
         c.ownerDocument = doc
         return c
     return _orig_clone(node, deep, doc)
@@ -251,14 +280,18 @@ def clone_node(node, deep, doc):
 
 ELEMENT = xml.dom.Node.ELEMENT_NODE
 _orig_clone = None
+_new = object.__new__
+_Element = _Attr = _Text = _Comment = _NodeList = None
 
 
 def install_clone():
-    global _orig_clone
+    global _orig_clone, _Element, _Attr, _Text, _Comment, _NodeList
     from xml.dom import minidom
 
     if _orig_clone is None:
         _orig_clone = minidom._clone_node
+    _Element, _Attr, _Text, _Comment, _NodeList = (minidom.Element, minidom.Attr, minidom.Text, minidom.Comment,
+                                                   minidom.NodeList)
     minidom._clone_node = clone_node
 
 
@@ -267,3 +300,219 @@ def uninstall_clone():
 
     if _orig_clone is not None:
         minidom._clone_node = _orig_clone
+
+
+# ---------------------------------------------------------------- eval_all
+def eval_all(node, macros, symbols):
+    """Drop-in for xacro.eval_all (2.1.1), statement for statement, minus minidom overhead.
+
+    Differences that cannot change the result: attribute and text values without
+    '$' are left alone (eval_text returns them unchanged and setAttribute of an
+    equal value is a no-op); changed attribute values are stored directly on the
+    Attr (minidom's setter also clears the document's getElementById cache,
+    which xacro never uses); the absent xmlns:xacro attribute is tested for
+    instead of raising and catching NotFoundErr; elements not named xacro:* go
+    straight to the recursive call (every xacro:* branch, and the macro-call
+    hook, ignores them). Recursion, and every xacro function called, go through
+    the xacro module so that build.py's hooks apply as they do to the original.
+    """
+    import xacro as X
+
+    attrs = node._attrs
+    if attrs:
+        for a in list(attrs.values()):
+            name = a._name
+            if name.startswith("xacro:"):  # remove xacro:* attributes
+                node.removeAttribute(name)
+            else:
+                value = a._value
+                if "$" in value:
+                    result = str(X.eval_text(value, symbols))
+                    if result != value:
+                        a._value = result
+                        a.childNodes[0]._data = result
+        if "xmlns:xacro" in attrs:  # remove xacro namespace definition
+            node.removeAttribute("xmlns:xacro")
+
+    node = node.firstChild
+    eval_comments = False
+    while node:
+        next = node.nextSibling
+        t = node.nodeType
+        if t == ELEMENT:
+            eval_comments = False  # any tag automatically disables comment evaluation
+            tag = node.tagName
+            if not tag.startswith("xacro:"):
+                X.eval_all(node, macros, symbols)
+            elif tag == "xacro:insert_block":
+                name, = X.check_attrs(node, ["name"], [])
+
+                if ("**" + name) in symbols:
+                    # Multi-block
+                    block = symbols["**" + name]
+                    content_only = True
+                elif ("*" + name) in symbols:
+                    # Single block
+                    block = symbols["*" + name]
+                    content_only = False
+                else:
+                    raise X.XacroException("Undefined block \"%s\"" % name)
+
+                # cloning block allows to insert the same block multiple times
+                block = block.cloneNode(deep=True)
+                # recursively evaluate block
+                X.eval_all(block, macros, symbols)
+                X.replace_node(node, by=block, content_only=content_only)
+
+            elif tag == "xacro:include":
+                X.process_include(node, macros, symbols, X.eval_all)
+
+            elif tag == "xacro:property":
+                X.grab_property(node, symbols)
+
+            elif tag == "xacro:macro":
+                X.grab_macro(node, macros)
+
+            elif tag == "xacro:arg":
+                name, default = X.check_attrs(node, ["name", "default"], [])
+                if name not in X.substitution_args_context["arg"]:
+                    X.substitution_args_context["arg"][name] = str(X.eval_text(default, symbols))
+
+                X.remove_previous_comments(node)
+                X.replace_node(node, by=None)
+
+            elif tag == "xacro:element":
+                name = X.eval_text(*X.reqd_attrs(node, ["xacro:name"]), symbols=symbols)
+                if not name:
+                    raise X.XacroException("xacro:element: empty name")
+
+                node.removeAttribute("xacro:name")
+                node.nodeName = node.tagName = name
+                continue  # re-process the node with new tagName
+
+            elif tag == "xacro:attribute":
+                name, value = [X.eval_text(a, symbols) for a in X.reqd_attrs(node, ["name", "value"])]
+                if not name:
+                    raise X.XacroException("xacro:attribute: empty name")
+
+                node.parentNode.setAttribute(name, value)
+                X.replace_node(node, by=None)
+
+            elif tag in ("xacro:if", "xacro:unless"):
+                X.remove_previous_comments(node)
+                cond, = X.check_attrs(node, ["value"], [])
+                keep = X.get_boolean_value(X.eval_text(cond, symbols), cond)
+                if tag == "xacro:unless":
+                    keep = not keep
+
+                if keep:
+                    X.eval_all(node, macros, symbols)
+                    X.replace_node(node, by=node, content_only=True)
+                else:
+                    X.replace_node(node, by=None)
+
+            elif X.handle_macro_call(node, macros, symbols):
+                pass  # handle_macro_call does all the work of expanding the macro
+
+            else:
+                X.eval_all(node, macros, symbols)
+
+        elif t == TEXT:
+            data = node.data
+            if "$" in data:
+                node.data = data = str(X.eval_text(data, symbols))
+            if data.strip():
+                eval_comments = False  # non-empty text disables comment evaluation
+
+        elif t == COMMENT:
+            if "xacro:eval-comments" in node.data:
+                eval_comments = "xacro:eval-comments:off" not in node.data
+                X.replace_node(node, by=None)  # drop this comment
+            elif eval_comments:
+                node.data = str(X.eval_text(node.data, symbols))
+            else:
+                pass  # leave comment as is
+
+        node = next
+
+
+# ---------------------------------------------------------------- output
+def pretty_xml(doc, skip_attr=None, skip_suffix=None, marks=None) -> str:
+    """``doc.toprettyxml(indent="  ")`` as xacro writes it (xmlutils.fixed_writexml), faster.
+
+    Elements, text and comments are written here with the same strings and the
+    same escaping function; every other node kind uses its own writexml.
+    Attributes named ``skip_attr`` or ending in ``skip_suffix`` are left out,
+    and (when ``marks`` is a list) the value of ``skip_attr`` of each element,
+    or None, is appended to ``marks`` in document order.
+    """
+    import io
+    from xml.dom import minidom
+
+    import xacro.xmlutils as xu
+
+    if minidom.Element.writexml is not xu.fixed_writexml:  # pragma: no cover - xacro changed
+        raise RuntimeError("xacro no longer patches minidom's writexml; cannot reproduce its output")
+    write_data = minidom._write_data
+    kw = xu._WRITE_DATA_EXTRA_KWARGS
+    Element, Text, Comment = minidom.Element, minidom.Text, minidom.Comment
+    out = io.StringIO()
+    w = out.write
+    addindent, newl = "  ", "\n"
+
+    def element(el, indent):
+        tag = el.tagName
+        w(indent + "<" + tag)
+        attrs = el._attrs
+        mark = None
+        if attrs:
+            for a_name in sorted(attrs):
+                if a_name == skip_attr:
+                    mark = attrs[a_name]._value
+                    continue
+                if skip_suffix and a_name.endswith(skip_suffix):
+                    continue
+                w(" %s=\"" % a_name)
+                write_data(out, attrs[a_name]._value, **kw)
+                w("\"")
+        if marks is not None:
+            marks.append(mark)
+        kids = el.childNodes
+        if kids:
+            if len(kids) == 1 and kids[0].nodeType == TEXT:
+                w(">")
+                kids[0].writexml(out, "", "", "")
+                w("</%s>%s" % (tag, newl))
+                return
+            w(">" + newl)
+            inner = indent + addindent
+            for node in kids:
+                k = type(node)
+                if k is Text:
+                    data = node._data
+                    if not data or data.isspace():
+                        continue
+                    write_data(out, "%s%s%s" % (inner, data, newl))
+                elif k is Element:
+                    element(node, inner)
+                elif k is Comment:
+                    if "--" in node._data:
+                        raise ValueError("'--' is not allowed in a comment node")
+                    w("%s<!--%s-->%s" % (inner, node._data, newl))
+                elif node.nodeType == ELEMENT:  # pragma: no cover - no other element classes in minidom
+                    node.writexml(out, inner, addindent, newl)
+                else:
+                    if node.nodeType == TEXT and (not node.data or node.data.isspace()):
+                        continue
+                    node.writexml(out, inner, addindent, newl)
+            w("%s</%s>%s" % (indent, tag, newl))
+        else:
+            w("/>" + newl)
+
+    w(minidom.Document().toprettyxml(indent=addindent))  # the XML declaration, as minidom writes it
+    for node in doc.childNodes:
+        if type(node) is Element:
+            element(node, "")
+        else:
+            node.writexml(out, "", addindent, newl)
+    return out.getvalue()

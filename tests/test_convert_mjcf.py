@@ -1,0 +1,114 @@
+"""`convert --to mjcf`: MuJoCo's own URDF compiler on a prepared URDF. The bundled MYRAbot and a
+spread of example-robot-data robots (DAE meshes, ASCII/huge STLs, zero inertias, flat meshes,
+A + B = C inertias) must load in mujoco.MjModel and step 1 s without NaN."""
+
+from __future__ import annotations
+
+import sysconfig
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from myrabot_desc.cli import main
+from myrabot_desc.convert.mjcf import convert_mjcf
+from myrabot_desc.loader import load_robot
+
+mujoco = pytest.importorskip("mujoco")
+np = pytest.importorskip("numpy")
+
+ERD = Path(sysconfig.get_paths()["purelib"]) / "cmeel.prefix/share/example-robot-data/robots"
+# 14 robots chosen for what they exercise (see the module docstring)
+ERD_ROBOTS = [
+    "ur_description/urdf/ur5_robot.urdf",
+    "panda_description/urdf/panda.urdf",
+    "solo_description/robots/solo12.urdf",
+    "talos_data/robots/talos_reduced.urdf",
+    "tiago_description/robots/tiago.urdf",
+    "pr2_description/urdf/pr2.urdf",
+    "anymal_b_simple_description/robots/anymal.urdf",
+    "icub_description/robots/icub.urdf",
+    "alex_description/urdf/alex_nub_hands.urdf",
+    "go1_description/urdf/go1.urdf",
+    "romeo_description/urdf/romeo_small.urdf",
+    "kinova_description/robots/kinova.urdf",
+    "baxter_description/urdf/baxter.urdf",
+    "double_pendulum_description/urdf/double_pendulum_simple.urdf",
+]
+
+
+def step_one_second(path: Path):
+    m = mujoco.MjModel.from_xml_path(str(path))
+    d = mujoco.MjData(m)
+    for _ in range(int(round(1.0 / m.opt.timestep))):
+        mujoco.mj_step(m, d)
+    assert np.isfinite(d.qpos).all() and np.isfinite(d.qvel).all(), f"NaN after 1 s in {path}"
+    return m, d
+
+
+def test_bundled_robot(tmp_path):
+    out = tmp_path / "mj" / "myrabot.xml"
+    r = CliRunner().invoke(main, ["convert", "--to", "mjcf", "-o", str(out)])
+    assert r.exit_code == 0, r.output
+    assert "free base" in r.output
+    m, d = step_one_second(out)
+    names = {mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_JOINT, i) for i in range(m.njnt)}
+    assert {"left_wheel_joint", "right_wheel_joint", "base", "arti1", "arti2", "arti3", "pinza"} <= names
+    # the massless base_footprint root got a free joint (MuJoCo alone would weld it to the world)
+    assert m.jnt_type[0] == mujoco.mjtJoint.mjJNT_FREE
+    assert d.qpos[2] < -1.0                      # no floor in a model file: it falls freely
+    # meshes localized next to the output, referenced through the compiler's meshdir
+    meshes = sorted(p.name for p in (tmp_path / "mj" / "myrabot_meshes").iterdir())
+    assert len(meshes) == m.nmesh >= 10
+    assert not [p for p in (tmp_path / "mj").iterdir() if p.name.startswith(".")]   # nothing half-written
+    # explicit colours: visuals (group 1) carry the URDF and Gazebo colours, collisions are hidden (3)
+    vis = m.geom_group == 1
+    colours = {tuple(np.round(c, 3)) for c in m.geom_rgba[vis]}
+    assert (0.0, 0.0, 0.0, 1.0) in colours and len(colours) >= 5
+    assert set(m.geom_group) == {1, 3}
+    text = out.read_text()
+    assert '<compiler angle="radian" meshdir="myrabot_meshes/"/>' in text
+
+
+def test_bundled_fixed_base(tmp_path):
+    out = tmp_path / "fixed.xml"
+    r = CliRunner().invoke(main, ["convert", "--to", "mjcf", "--base", "fixed", "-o", str(out)])
+    assert r.exit_code == 0, r.output
+    m, d = step_one_second(out)
+    assert mujoco.mjtJoint.mjJNT_FREE not in set(m.jnt_type)
+
+
+@pytest.mark.skipif(not ERD.is_dir(), reason="example-robot-data is not installed")
+@pytest.mark.parametrize("rel", ERD_ROBOTS, ids=[Path(r).stem for r in ERD_ROBOTS])
+def test_example_robot_data(tmp_path, rel):
+    robot = load_robot(str(ERD / rel))
+    out = tmp_path / Path(rel).stem / f"{Path(rel).stem}.xml"
+    res = convert_mjcf(robot, str(out))
+    m, _ = step_one_second(out)
+    assert m.nbody == res.nbody and m.njnt == res.njnt >= 1
+    assert m.nmesh == res.nmesh
+
+
+def test_repairs_are_reported(tmp_path):
+    """icub's zero inertias and alex's flat nub mesh used to stop MuJoCo; now warnings say what changed."""
+    if not ERD.is_dir():
+        pytest.skip("example-robot-data is not installed")
+    res = convert_mjcf(load_robot(str(ERD / "icub_description/robots/icub.urdf")), str(tmp_path / "i" / "icub.xml"))
+    assert any("r_hip_1" in w and "A + B >= C" in w for w in res.notes.warnings)
+    res = convert_mjcf(load_robot(str(ERD / "alex_description/urdf/alex_nub_hands.urdf")),
+                       str(tmp_path / "a" / "alex.xml"))
+    assert any("shell inertia" in w and "nub" in w for w in res.notes.warnings)
+
+
+def test_stdout_without_meshes_and_errors(tmp_path):
+    if ERD.is_dir():
+        r = CliRunner().invoke(main, ["convert", "--to", "mjcf",
+                                      str(ERD / "double_pendulum_description/urdf/double_pendulum_simple.urdf")])
+        assert r.exit_code == 0
+        xml = r.output[r.output.index("<mujoco"):r.output.index("</mujoco>") + 9]
+        m = mujoco.MjModel.from_xml_string(xml)
+        assert m.njnt == 2
+        assert "warning: MuJoCo: joint 'joint1' has equal lower and upper limits" in r.output
+    # a model with meshes cannot go to stdout: one line, exit 2
+    r = CliRunner().invoke(main, ["convert", "--to", "mjcf"])
+    assert r.exit_code == 2 and "give -o OUT.xml" in r.output and len(r.output.strip().splitlines()) == 1

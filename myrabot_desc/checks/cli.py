@@ -65,9 +65,9 @@ def check_one(inputs, path, options, select, ignore):
 @click.command("check")
 @input_options(multiple=True)
 @click.option("--inertia", is_flag=True,
-              help="Also load meshes and compare every inertia with the solid body of its collision geometry.")
+              help="Load collision meshes and compare every inertia with the solid body of its collision geometry.")
 @click.option("--suggest", is_flag=True, help="With --inertia: print a ready <inertia .../> line per link.")
-@click.option("--meshes", is_flag=True, help="Load mesh files to check scale, watertightness and normals.")
+@click.option("--meshes", is_flag=True, help="Load every mesh (visual too) to check scale, watertightness and normals.")
 @click.option("--format", "fmt", type=click.Choice(["text", "json", "github", "sarif"]), default="text",
               show_default=True, help="Report format.")
 @click.option("--select", "select", multiple=True, metavar="CODES",

@@ -252,8 +252,8 @@ def render() -> str:
            "numbers that matter and the xacro `file:line` it comes from. Select or ignore codes or prefixes",
            "with `--select I,G001` / `--ignore I008`; `--strict` makes warnings fail.", "",
            "Without `--inertia`, mesh files are not opened (only their existence is checked) and inertias are",
-           "compared with primitive geometry only; `--inertia` loads meshes with trimesh and compares watertight",
-           "ones too (`--meshes` loads them for the M rules alone). Severities: **error** (exit 1), **warning**,",
+           "compared with primitive geometry only; `--inertia` loads collision meshes with trimesh and compares",
+           "watertight ones too; `--meshes` also opens visual meshes for M002/M004. Severities: **error** (exit 1), **warning**,",
            "**info**. Some rules raise or lower the severity of one finding; their text says when.", "",
            "| code | name | severity | what |", "|---|---|---|---|"]
     rows = [(c, r.name, r.severity, r.summary) for c, r in rules.items()]

@@ -180,11 +180,19 @@ def radius_of_gyration(ctx):
 
 
 def _hull_points(ctx, link):
-    """Points bounding the link's collision ∪ visual geometry (link frame), None if unknown."""
+    """Points bounding the link's geometry (link frame), None if unknown.
+
+    Primitive-only links use collision ∪ visual (cheap, lenient). When meshes are involved only
+    the collision shapes are used (visual meshes are the slow ones to load), else the visuals.
+    """
     import numpy as np
 
     out = []
-    items = [c for c in link.collisions if c.geometry is not None] + [v for v in link.visuals if v.geometry is not None]
+    cols = [c for c in link.collisions if c.geometry is not None]
+    vis = [v for v in link.visuals if v.geometry is not None]
+    items = cols + vis
+    if any(it.geometry.kind == "mesh" for it in items):
+        items = cols or vis
     if not items:
         return None
     for it in items:

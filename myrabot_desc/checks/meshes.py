@@ -54,7 +54,11 @@ def mesh_resolves(ctx):
                       {"filename": g.filename, "link": link.name, "package": parts[0] if parts else None})
 
 
-def _loaded(ctx, g):
+def _loaded(ctx, g, kind="collision"):
+    """The loaded mesh, or None. --inertia loads collision meshes; --meshes loads visual ones too
+    (visual meshes are the large, slow ones)."""
+    if kind == "visual" and not ctx.opts.meshes:
+        return None
     if not ctx.opts.load_meshes or g.path is None or not g.path.is_file():
         return None
     m = ctx.mesh(g)
@@ -72,7 +76,7 @@ def mesh_scale(ctx):
     seen = set()
     for link, kind, it in _mesh_uses(ctx):
         g = it.geometry
-        m = _loaded(ctx, g)
+        m = _loaded(ctx, g, kind)
         key = (g.filename, tuple(g.scale))
         if m is None or key in seen:
             continue
@@ -122,7 +126,7 @@ def mesh_normals(ctx):
         g = it.geometry
         if g.filename in seen:
             continue
-        m = _loaded(ctx, g)
+        m = _loaded(ctx, g, kind)
         if m is None:
             continue
         seen.add(g.filename)

@@ -80,6 +80,9 @@ def test_wander_no_support_com_behind_axle_no_caster(wander):
     assert d["data"]["contacts"] == ["left_wheel", "right_wheel"]
     assert d["data"]["com"][0] == pytest.approx(0.0875)
     assert "12.5 mm behind" in d["message"] and "no caster" in d["message"]
+    # pivoting about the axle (r 0.08), the box's rear bottom edge (0.25 m behind, 0.02 m below the
+    # axle) lands after acos(-0.08/0.2508) - atan2(0.25, -0.02) = 14.0° (seed-spec's flat estimate: 13.5°)
+    assert d["data"]["tip_angle_deg"] == pytest.approx(14.0, abs=0.05) and d["data"]["rests_on"] == "base_link"
 
 
 def test_wander_wheels_below_ground_at_spawn(wander):

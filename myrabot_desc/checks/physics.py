@@ -148,14 +148,60 @@ def static_support(ctx):
         if len(xs) == 1:
             dx = com[0] - xs[0]
             ahead = f"; the centre of mass is {abs(dx) * 1000:.1f} mm {'behind' if dx < 0 else 'ahead of'} that line"
+        tip = _tip(ctx, hull, com, zmin) if len(hull) == 2 else None
+        rest = (f"; it tips {tip[0]:.1f}° until {tip[1]} touches the ground and drags" if tip else
+                "; the robot tips until another part drags")
+        if tip:
+            data["tip_angle_deg"], data["rests_on"] = tip
         msg = (f"no static support: the ground contacts ({', '.join(names)}) lie on one line{line}, with no caster"
-               f"{ahead} (centre of mass x {com[0]:.4g} y {com[1]:.3g}); the robot tips until another part drags")
+               f"{ahead} (centre of mass x {com[0]:.4g} y {com[1]:.3g}){rest}")
     else:
         msg = (f"no static support: the centre of mass (x {com[0]:.4g} y {com[1]:.3g}) is {abs(d) * 1000:.1f} mm "
                f"{'outside' if d < 0 else 'inside, but too close to the edge of'} the support polygon of "
                f"{', '.join(names)}")
     yield Finding(msg, ctx.robot.links[ctx.robot.root].loc if ctx.robot.root else ctx.robot.loc, data,
                   severity=None if d < 0 else "warning")
+
+
+def _tip(ctx, hull, com, zmin):
+    """(angle in degrees, link): the body pivots about the wheel axle (the wheels roll) toward its
+    centre of mass until another collision shape touches the ground; None if nothing would."""
+    import numpy as np
+
+    from myrabot_desc.checks.inertia_geometry import _primitive_points
+    from myrabot_desc.kinematics import pose_matrix
+
+    r = ctx.robot
+    wheel_joints = [r.joints[n] for n in wheels(ctx) if n in r.joints]
+    centres = [(ctx.world[j.parent] @ pose_matrix(j.origin))[:3, 3] for j in wheel_joints if j.parent in ctx.world]
+    if len(centres) < 2:
+        return None
+    c0, c1 = centres[0], centres[-1]
+    u = (c1[:2] - c0[:2])
+    if np.linalg.norm(u) < 1e-9:
+        return None
+    u = u / np.linalg.norm(u)
+    n = np.array([-u[1], u[0]])
+    side = np.sign((com[:2] - c0[:2]) @ n) or 1.0
+    axle_h = (c0[2] + c1[2]) / 2 - zmin
+    skip = {j.child for j in wheel_joints}
+    best = None
+    for link, it, T, mesh in _collision_world(ctx):
+        if link.name in skip:
+            continue
+        g = it.geometry
+        pts = np.asarray(mesh.vertices) if mesh is not None else _primitive_points(g)
+        w = pts @ T[:3, :3].T + T[:3, 3]
+        d = ((w[:, :2] - c0[:2]) @ n) * side          # horizontal distance behind the axle, on the tipping side
+        hz = w[:, 2] - zmin - axle_h                   # height relative to the axle
+        R = np.hypot(d, hz)
+        ok = (d > 1e-6) & (R > axle_h)
+        if not ok.any():
+            continue
+        theta = np.degrees(np.arccos(np.clip(-axle_h / R[ok], -1, 1)) - np.arctan2(d[ok], hz[ok])).min()
+        if theta > 0.01 and (best is None or theta < best[0]):
+            best = (float(theta), link.name)
+    return best
 
 
 @rule("P002", "spawn-above-ground", "warning")

@@ -42,7 +42,6 @@ def build_cmd(inputs, output, deps, resolve_uris, allow_errors, max_input_bytes,
     import sys
 
     from myrabot_desc.build import Limits, build_file
-    from myrabot_desc.loader import bundled_path
     from myrabot_desc.output import write_output
 
     with guarded():
@@ -53,7 +52,11 @@ def build_cmd(inputs, output, deps, resolve_uris, allow_errors, max_input_bytes,
             limits.max_include_depth = max_include_depth
         if max_macro_depth:
             limits.max_macro_depth = max_macro_depth
-        src = inputs.file or str(bundled_path())
+        src = inputs.file
+        if src is None:
+            from myrabot_desc.loader import bundled_path  # imports the model classes (~25 ms): only when needed
+
+            src = str(bundled_path())
         result = build_file(src, inputs.mappings, packages=inputs.packages, package_paths=inputs.package_paths,
                             legacy=inputs.legacy, unsafe_eval=inputs.unsafe_eval, no_env=inputs.no_env,
                             allow_paths=inputs.allow_paths, limits=limits)

@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import os
 import sys
-import tempfile
 from pathlib import Path
 
 from myrabot_desc.errors import InputError
@@ -24,7 +23,9 @@ def write_output(path: str | os.PathLike, data: str | bytes) -> None:
     target = Path(path)
     try:
         target.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
+        # (not tempfile.mkstemp: importing tempfile costs more than the whole write of a small URDF)
+        tmp = str(target.parent / f".{target.name}.{os.getpid()}.{os.urandom(6).hex()}.tmp")
+        fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_CLOEXEC", 0), 0o666)
     except OSError as exc:
         raise InputError(f"cannot write {target}: {exc.strerror}") from None
     try:
@@ -50,6 +51,8 @@ class OutputDir:
         self.target = Path(target_dir)
 
     def __enter__(self) -> Path:
+        import tempfile
+
         self.target.mkdir(parents=True, exist_ok=True)
         self.stage = Path(tempfile.mkdtemp(prefix=".staging.", dir=self.target))
         return self.stage

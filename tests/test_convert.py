@@ -7,6 +7,7 @@ from __future__ import annotations
 import math
 import shutil
 import subprocess
+import sysconfig
 from pathlib import Path
 
 import pytest
@@ -327,6 +328,30 @@ def test_wander_bot_diff_drive_mismatch():
     assert float(dd.findtext("wheel_radius")) == pytest.approx(0.08)
     warned = [w for w in res.notes.warnings if "the plugin says" in w]
     assert len(warned) == 2 and "0.4" in warned[0] and "robot.gazebo:4" in warned[0]
+
+
+# ------------------------------------------------------------------ a real corpus
+ERD = Path(sysconfig.get_paths()["purelib"]) / "cmeel.prefix/share/example-robot-data/robots"
+ERD_URDFS = sorted(ERD.rglob("*.urdf")) if ERD.is_dir() else []
+
+
+@needs_ign
+@pytest.mark.skipif(not ERD_URDFS, reason="example-robot-data is not installed")
+@pytest.mark.parametrize("urdf", ERD_URDFS, ids=[p.stem for p in ERD_URDFS])
+def test_example_robot_data_validates(tmp_path, urdf):
+    out = tmp_path / "robot.sdf"
+    r = CliRunner().invoke(main, ["convert", str(urdf), "-o", str(out), "-q"])
+    robot = load_robot(str(urdf))
+    if not robot.links:                     # ur3.urdf is an empty shell: a clean refusal
+        assert r.exit_code == 2 and "no links" in r.output and not out.exists()
+        return
+    assert r.exit_code == 0, r.output
+    ign_check(out)
+    root = etree.parse(str(out)).getroot()
+    # every link is kept (an empty URDF `world` link is the SDF world itself)
+    expected = {n for n, l in robot.links.items()
+                if not (n == "world" and not l.visuals and not l.collisions and l.inertial is None)}
+    assert {e.get("name") for e in root.iter("link")} == expected
 
 
 # ------------------------------------------------------------------ CLI behaviour

@@ -22,6 +22,7 @@ from myrabot_desc.convert.inertia import describe, repaired
 from myrabot_desc.convert.sensors import translate_sensor
 from myrabot_desc.convert.systems import Systems
 from myrabot_desc.convert.uris import UriMapper
+from myrabot_desc.errors import InputError
 
 SDF_VERSION = "1.9"
 # Placeholder for massless links: 1 g with the inertia of a 5 cm sphere. Enough for DART to
@@ -115,6 +116,8 @@ def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = Non
                 name: str | None = None) -> SdfResult:
     opts = opts or SdfOptions()
     notes = notes if notes is not None else Notes()
+    if not robot.links:
+        raise InputError("the model has no links: nothing to convert", robot.loc)
     props = GazeboProps(robot, notes)
     uris = UriMapper(robot, opts.uri_style, notes)
     look = Appearance(robot, notes)
@@ -242,6 +245,7 @@ def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = Non
                     sub(ce, "pose", pose_text(P))
                 _geometry_el(ce, c.geometry, uris)
                 props.apply_collision(ce, m.name)
+        link_sensor_names: set[str] = set()
         for so in sensor_outs:
             if so.link in host and host[so.link] == n:
                 for text in so.comments:
@@ -255,6 +259,13 @@ def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = Non
                 if not is_identity(P):
                     so.element.insert(0, etree.Element("pose"))
                     so.element[0].text = pose_text(P)
+                base, k = so.element.get("name") or "sensor", 2
+                while so.element.get("name") in link_sensor_names:      # sdformat: unique in a link
+                    so.element.set("name", f"{base}_{k}")
+                    k += 1
+                if so.element.get("name") != base:
+                    notes.warn(f"two sensors named '{base}' on link '{n}': the second is '{so.element.get('name')}'")
+                link_sensor_names.add(so.element.get("name"))
                 el.append(so.element)
                 sensor_names.append(so.element.get("name"))
     for so in sensor_outs:

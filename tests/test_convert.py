@@ -396,3 +396,18 @@ def test_bad_input_one_line_exit_2_nothing_written(tmp_path, args, expect):
     assert len(r.output.strip().splitlines()) == 1
     assert not out.exists()
     assert not (tmp_path / "out").exists() or not any((tmp_path / "out").iterdir())
+
+
+def test_uri_styles(tmp_path):
+    """absolute (default): files that exist; model: model://<package>/... for meshes and textures."""
+    r = run(["convert", "--to", "world", "-o", str(tmp_path / "abs.sdf"), "-q"])
+    assert r.exit_code == 0
+    root = etree.parse(str(tmp_path / "abs.sdf")).getroot()
+    uris = [e.text for e in root.iter("uri")] + [e.text for e in root.iter("albedo_map")]
+    assert uris and all(Path(u).is_absolute() and Path(u).is_file() for u in uris)
+    assert any(u.endswith(".png") for u in uris)          # the cans' and table's textures
+    r = run(["convert", "--to", "world", "--uri-style", "model", "-o", str(tmp_path / "model.sdf")])
+    assert r.exit_code == 0 and "GZ_SIM_RESOURCE_PATH=" in r.output
+    root = etree.parse(str(tmp_path / "model.sdf")).getroot()
+    uris = [e.text for e in root.iter("uri")] + [e.text for e in root.iter("albedo_map")]
+    assert all(u.startswith("model://myrabot_description/") for u in uris)

@@ -94,6 +94,11 @@ def material_element(parent, look: Look, uri_mapper=None):
     if not look.lighting:
         sub(m, "lighting", False)
     if look.texture:
-        tex = uri_mapper.map(look.texture) if uri_mapper and "://" in look.texture else look.texture
+        if uri_mapper is None:
+            tex = look.texture
+        elif "://" in look.texture:
+            tex = uri_mapper.map(look.texture)
+        else:
+            tex = uri_mapper.map_file(look.texture)
         sub(sub(sub(m, "pbr"), "metal"), "albedo_map", tex)
     return m

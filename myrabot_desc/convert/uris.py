@@ -50,6 +50,17 @@ class UriMapper:
             return "model://" + uri[len("package://"):]
         return uri
 
+    def map_file(self, path) -> str:
+        """A file found on disk (a texture next to a material script): model:// when it lies in a
+        package and the style asks for it, else its absolute path."""
+        p = Path(path).resolve()
+        if self.style == "model":
+            for pkg, root in sorted(self.robot.package_roots.items()):
+                root = Path(root).resolve()
+                if p.is_relative_to(root):
+                    return self.map(f"package://{pkg}/{p.relative_to(root).as_posix()}", p)
+        return str(p)
+
     def finish(self) -> None:
         if self._unresolved:
             shown = ", ".join(self._unresolved[:5]) + (" ..." if len(self._unresolved) > 5 else "")

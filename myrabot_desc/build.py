@@ -32,14 +32,45 @@ SRC_ATTR = "_mdsrc"
 XSRC_ATTR = "xacro:mdsrc"   # on xacro elements; xacro itself strips xacro:* attributes
 
 
+def _env_int(name: str, default: int) -> int:
+    import os
+
+    raw = os.environ.get(name, "").strip()
+    if not raw:
+        return default
+    try:
+        value = int(raw.replace("_", ""))
+    except ValueError:
+        raise InputError(f"{name}={raw!r} is not a whole number") from None
+    if value <= 0:
+        raise InputError(f"{name}={raw!r} must be positive")
+    return value
+
+
+# Every limit can be set from the environment (any command) and some by ``build`` flags.
+LIMIT_ENV = {
+    "max_input_bytes": "MYRABOT_DESC_MAX_INPUT_BYTES",
+    "max_include_depth": "MYRABOT_DESC_MAX_INCLUDE_DEPTH",
+    "max_macro_depth": "MYRABOT_DESC_MAX_MACRO_DEPTH",
+    "max_macro_calls": "MYRABOT_DESC_MAX_MACRO_CALLS",
+    "max_output_elements": "MYRABOT_DESC_MAX_ELEMENTS",
+}
+
+
 @dataclass
 class Limits:
-    """Guards against hostile input; each is configurable (CLI flags of ``build``)."""
+    """Guards against hostile input; each is configurable (``build`` flags, or the environment
+    variables of LIMIT_ENV for every command). Mesh limits live in meshio.py."""
 
     max_input_bytes: int = 20_000_000      # one file
     max_include_depth: int = 32
     max_macro_depth: int = 200             # nested macro calls (xacro dies near 400)
-    max_output_elements: int = 2_000_000
+    max_macro_calls: int = 20_000          # macro calls in one build (5x the 4,000-call benchmark)
+    max_output_elements: int = 200_000     # counted while macros expand (2^n call bombs stop early)
+
+    def __post_init__(self):
+        for attr, env in LIMIT_ENV.items():
+            setattr(self, attr, _env_int(env, getattr(self, attr)))
 
 
 @dataclass
@@ -114,6 +145,9 @@ class _Build:
         self.macro_files: dict[str, str] = {}
         self.trees: dict[Path, object] = {}   # path -> parsed lxml root (prescan cache)
         self.deps: list[str] = []
+        self.body_sizes: dict[int, int] = {}   # macro body -> elements it holds
+        self.expanded = 0                      # elements produced by macro calls so far
+        self.calls = 0
 
     # ------------------------------------------------------------ reading files
     def allowed(self, path: Path) -> bool:
@@ -225,6 +259,10 @@ class _Build:
         import xacro
 
         self.prescan(self.src, set())
+        top = self.read_tree(self.src)
+        if top.tag != "robot":  # xacro would expand any XML; a URDF needs <robot>
+            raise InputError(f"the root element is <{top.tag}>, not <robot>: not a URDF or xacro robot file",
+                             Loc(display(self.src), top.sourceline))
         with _Hooks(self):
             xacro.init_stacks(str(self.src))
             xacro.all_includes = []
@@ -280,6 +318,29 @@ class _Build:
             raise InputError(f"includes nest deeper than {self.limits.max_include_depth} "
                              "(see --max-include-depth)", asked_at or self.last_loc)
 
+    def count_expansion(self, name, macros, symbols, loc) -> None:
+        """Add the elements a macro call will produce; stop before a call bomb runs for hours
+        (each macro calling the previous one twice doubles the output per level)."""
+        import xacro
+
+        try:
+            m = xacro.resolve_macro(name, macros, symbols)[2]
+        except Exception:  # unknown macro: xacro reports it
+            return
+        size = self.body_sizes.get(id(m.body))
+        if size is None:
+            size = self.body_sizes[id(m.body)] = len(m.body.getElementsByTagName("*")) + 1
+        self.expanded += size
+        self.calls += 1
+        if self.calls > self.limits.max_macro_calls:
+            raise InputError(f"over {self.limits.max_macro_calls} macro calls (macro '{name}'); is a macro "
+                             "calling others in a loop? (see --max-macro-calls)", loc or self.last_loc,
+                             self._stack())
+        if self.expanded > self.limits.max_output_elements:
+            raise InputError(f"macro expansion produces over {self.limits.max_output_elements} elements "
+                             f"(macro '{name}'); is a macro calling others in a loop? (see --max-elements)",
+                             loc or self.last_loc, self._stack())
+
     def _stack(self) -> list[str]:
         out = []
         for name, loc in reversed(self.call_stack[-8:]):
@@ -293,7 +354,7 @@ class _Build:
         inner = getattr(exc, "exc", None)
         if isinstance(inner, InputError):
             return inner
-        msg = msg.replace("\n", " ").replace("  ", " ")
+        msg = _short(msg.replace("\n", " ").replace("  ", " "), 600)
         return InputError(msg, self.last_loc, self._stack())
 
     # ------------------------------------------------------------ after expansion
@@ -406,6 +467,11 @@ def display(path) -> str:
     return rel if not rel.startswith("..") else str(p.resolve())
 
 
+def _short(text: str, n: int = 200) -> str:
+    """Hostile inputs carry huge expressions: keep error messages to one readable line."""
+    return text if len(text) <= n else text[:n] + f"... ({len(text)} characters)"
+
+
 def _inside(el, tag: str) -> bool:
     p = el.getparent()
     while p is not None:
@@ -467,6 +533,12 @@ def parse_xml_bytes(data: bytes, name: str):
         raise InputError(f"malformed XML: {msg}", Loc(name, line)) from None
     except ValueError as exc:
         raise InputError(f"malformed XML: {exc}", Loc(name)) from None
+    except RecursionError:
+        raise InputError("malformed XML: elements nest too deeply", Loc(name)) from None
+    # The byte check above misses a DOCTYPE behind 64 kB of comment or in another encoding (UTF-7)
+    info = root.getroottree().docinfo
+    if info.internalDTD is not None or info.externalDTD is not None or info.doctype:
+        raise InputError("DTDs and entity declarations are not allowed in model files", Loc(name, 1))
     return root
 
 
@@ -539,6 +611,7 @@ class _Hooks:
             if len(b.call_stack) >= b.limits.max_macro_depth:
                 raise InputError(f"macro calls nest deeper than {b.limits.max_macro_depth} (macro '{name}'); "
                                  "is a macro calling itself? (see --max-macro-depth)", loc or b.last_loc, b._stack())
+            b.count_expansion(name, macros, symbols, loc)
             b.call_stack.append((name, loc))
             result = orig_macro(node, macros, symbols)
             b.call_stack.pop()
@@ -585,7 +658,7 @@ class _Hooks:
             raise InputError(f"$(env {name}) / $(optenv {name}) is refused by --no-env", b.last_loc, b._stack())
 
         def refuse(expr, reason):
-            raise InputError(f"refused expression ${{{expr.strip()}}}: {reason} (--unsafe-eval allows it for "
+            raise InputError(f"refused expression ${{{_short(expr.strip())}}}: {reason} (--unsafe-eval allows it for "
                              "trusted files)", b.last_loc, b._stack(), code="X005")
 
         def subst_eval(s, context):
@@ -596,10 +669,12 @@ class _Hooks:
             functions.update(sa._eval_dict)
             if not b.unsafe_eval:
                 try:
-                    safe_eval.check_subst_eval(s, set(functions))
+                    tree = safe_eval.check_subst_eval(s, set(functions))
+                    value = safe_eval.eval_bounded(s, tree, sa._DictWrapper(context["arg"], functions))
                 except safe_eval.RefusedExpression as exc:
-                    raise InputError(f"refused expression $(eval {s.strip()}): {exc}", b.last_loc,
+                    raise InputError(f"refused expression $(eval {_short(s.strip())}): {exc}", b.last_loc,
                                      b._stack(), code="X005") from None
+                return str(value)
             return str(eval(s, {"__builtins__": {}}, sa._DictWrapper(context["arg"], functions)))
 
         def guarded_yaml(orig_load_yaml):

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import ast
 import math
+import re
 
 FORBIDDEN_ATTRS = {"format", "format_map", "mro", "gi_frame", "f_globals", "f_locals", "f_back"}
 
@@ -35,7 +36,10 @@ _ALLOWED_NODES = (
 )
 
 MAX_POW_RESULT_BITS = 4096       # ints larger than this are refused
-MAX_SEQUENCE_LEN = 1_000_000     # 'a' * n or [0] * n
+MAX_SEQUENCE_LEN = 1_000_000     # 'a' * n or [0] * n, and any one result
+MAX_TOTAL_CHARS = 20_000_000     # characters all expressions of one build may produce
+MAX_FORMAT_WIDTH = 1000          # '%1000d'
+MAX_FACTORIAL_ARG = 5000         # math.factorial / comb / perm
 
 
 class RefusedExpression(Exception):
@@ -54,7 +58,7 @@ def check_subst_eval(expr: str, allowed_calls: set[str]) -> None:
         if not (isinstance(func, ast.Name) and func.id in allowed_calls):
             raise RefusedExpression("only find, env, optenv, arg, dirname and math functions may be called")
 
-    _vet(expr, calls)
+    return _vet(expr, calls)
 
 
 def _vet(expr: str, check_call) -> ast.Expression:
@@ -62,6 +66,8 @@ def _vet(expr: str, check_call) -> ast.Expression:
         tree = ast.parse(expr.strip(), mode="eval")
     except SyntaxError as exc:
         raise RefusedExpression(f"invalid expression ({exc.msg})") from None
+    except (RecursionError, MemoryError):
+        raise RefusedExpression("expression nests too deeply") from None
     for node in ast.walk(tree):
         if not isinstance(node, _ALLOWED_NODES):
             raise RefusedExpression(f"{type(node).__name__} is not allowed in a model file")
@@ -96,23 +102,96 @@ def _bounded_pow(a, b):
     return a ** b
 
 
+def weight(x, cap: int = MAX_SEQUENCE_LEN, _memo=None) -> int:
+    """Items a value expands to when printed (strings count their characters, nested
+    containers their contents; a list repeating one object counts it each time). Stops
+    counting once past ``cap``."""
+    if isinstance(x, (str, bytes)):
+        return len(x)
+    if not isinstance(x, (list, tuple, dict, set, frozenset)):
+        return 1
+    memo = {} if _memo is None else _memo
+    if id(x) in memo:
+        return memo[id(x)]
+    memo[id(x)] = cap + 1          # a container reaching itself counts as too large
+    items = x.items() if isinstance(x, dict) else x
+    total = len(x)
+    for item in items:
+        total += weight(item, cap, memo)
+        if total > cap:
+            break
+    memo[id(x)] = total
+    return total
+
+
 def _bounded_mul(a, b):
     for seq, n in ((a, b), (b, a)):
-        if isinstance(seq, (str, list, tuple)) and isinstance(n, int) and len(seq) * n > MAX_SEQUENCE_LEN:
-            raise RefusedExpression(f"sequence repetition of {len(seq) * n} items is too large")
+        if isinstance(seq, (str, list, tuple)) and isinstance(n, int):
+            if len(seq) * n > MAX_SEQUENCE_LEN or (n > 1 and weight(seq) * n > MAX_SEQUENCE_LEN):
+                raise RefusedExpression(f"sequence repetition of {weight(seq) * n} items is too large")
     return a * b
 
 
+_PERCENT_SPEC = re.compile(r"%[#0\- +]*(\*|\d+)?(?:\.(\*|\d+))?")
+
+
+def _bounded_mod(a, b):
+    """``'%0999999999d' % 1`` would build a gigabyte string: cap %-format widths."""
+    if isinstance(a, str):
+        for m in _PERCENT_SPEC.finditer(a):
+            for part in m.groups():
+                if part == "*" or (part and int(part) > MAX_FORMAT_WIDTH):
+                    raise RefusedExpression(f"%-format width {part} is too large")
+    return a % b
+
+
+def _bounded_lshift(a, b):
+    if isinstance(b, int) and b > MAX_POW_RESULT_BITS:
+        raise RefusedExpression(f"<< {b} is too large")
+    return a << b
+
+
+_BIG_CALLS = {"factorial", "comb", "perm"}
+
+
+def _bounded_call(func, *args, **kwargs):
+    """Calls whose cost grows with an argument's value (math.factorial(10**7) runs for minutes)."""
+    name = getattr(func, "__name__", "")
+    if name in _BIG_CALLS and any(isinstance(a, int) and abs(a) > MAX_FACTORIAL_ARG for a in args):
+        raise RefusedExpression(f"{name}() of a number over {MAX_FACTORIAL_ARG} is too large")
+    if name == "sum" and (len(args) > 1 or "start" in kwargs):
+        start = args[1] if len(args) > 1 else kwargs["start"]
+        if not isinstance(start, (int, float)):
+            raise RefusedExpression("sum() with a non-number start is not allowed")
+    if name == "prod" and args and isinstance(args[0], (list, tuple)):
+        bits = sum(abs(v).bit_length() for v in args[0] if isinstance(v, int))
+        if bits > 4 * MAX_POW_RESULT_BITS:
+            raise RefusedExpression("prod() of numbers this large is not allowed")
+    return func(*args, **kwargs)
+
+
 class _Bound(ast.NodeTransformer):
-    """Route ** and * through the bounded helpers."""
+    """Route **, *, %, << and calls through the bounded helpers."""
 
     def visit_BinOp(self, node):
         self.generic_visit(node)
-        helper = {ast.Pow: "_md_pow", ast.Mult: "_md_mul"}.get(type(node.op))
+        helper = {ast.Pow: "_md_pow", ast.Mult: "_md_mul", ast.Mod: "_md_mod",
+                  ast.LShift: "_md_lshift"}.get(type(node.op))
         if helper is None or not _needs_bound(node):
             return node
         return ast.copy_location(ast.Call(func=ast.Name(helper, ast.Load()), args=[node.left, node.right],
                                           keywords=[]), node)
+
+    def visit_Call(self, node):
+        self.generic_visit(node)
+        if _call_name(node.func) not in _BIG_CALLS | {"sum", "prod"}:
+            return node
+        return ast.copy_location(ast.Call(func=ast.Name("_md_call", ast.Load()), args=[node.func, *node.args],
+                                          keywords=node.keywords), node)
+
+
+def _call_name(func) -> str:
+    return func.id if isinstance(func, ast.Name) else func.attr if isinstance(func, ast.Attribute) else ""
 
 
 def _is_number(node) -> bool:
@@ -120,13 +199,46 @@ def _is_number(node) -> bool:
 
 
 def _needs_bound(node) -> bool:
-    """A ``*`` or ``**`` to route through the helpers: a product of two number literals
-    (``17 * 0.001``) cannot repeat a sequence, so it is left to Python (and folded)."""
-    return isinstance(node, ast.BinOp) and (isinstance(node.op, ast.Pow) or (
-        isinstance(node.op, ast.Mult) and not (_is_number(node.left) and _is_number(node.right))))
+    """A ``*``, ``**``, ``%``, ``<<`` or costly call to route through the helpers: a product of two
+    number literals (``17 * 0.001``) cannot repeat a sequence, so it is left to Python (and folded)."""
+    if isinstance(node, ast.Call):
+        return _call_name(node.func) in _BIG_CALLS | {"sum", "prod"}
+    return isinstance(node, ast.BinOp) and (isinstance(node.op, (ast.Pow, ast.LShift)) or (
+        isinstance(node.op, (ast.Mult, ast.Mod)) and not (_is_number(node.left) and _is_number(node.right))))
 
 
-_HELPERS = {"_md_pow": _bounded_pow, "_md_mul": _bounded_mul}
+_HELPERS = {"_md_pow": _bounded_pow, "_md_mul": _bounded_mul, "_md_mod": _bounded_mod,
+            "_md_lshift": _bounded_lshift, "_md_call": _bounded_call}
+
+
+def bounded_code(tree: ast.Expression):
+    """Compile a vetted tree with the bounded operators (skipping the rewrite when nothing needs it)."""
+    if any(_needs_bound(n) for n in ast.walk(tree)):
+        tree = ast.fix_missing_locations(_Bound().visit(tree))
+    return compile(tree, "<expression>", "eval")
+
+
+def check_result(value, budget: list | None = None):
+    """Refuse a result too large to print, and count printed characters against ``budget``
+    (a one-item list: characters left for the whole build)."""
+    if isinstance(value, (str, list, tuple, dict, set, frozenset)):
+        n = weight(value)
+        if n > MAX_SEQUENCE_LEN:
+            raise RefusedExpression(f"the result has over {MAX_SEQUENCE_LEN} items/characters")
+        if budget is not None:
+            budget[0] -= n
+            if budget[0] < 0:
+                raise RefusedExpression(f"expressions produced over {MAX_TOTAL_CHARS} characters in all")
+    return value
+
+
+def eval_bounded(expr: str, tree: ast.Expression, namespace):
+    """Evaluate a vetted ``$(eval)`` tree with the bounded operators; RefusedExpression when too large."""
+    scope = {"__builtins__": {}, **_HELPERS}
+    try:
+        return check_result(eval(bounded_code(tree), scope, namespace))
+    except (RecursionError, MemoryError) as exc:
+        raise RefusedExpression(f"too deep or too large ({type(exc).__name__})") from None
 
 
 def _genuine_callables(symbols) -> dict:
@@ -156,22 +268,17 @@ def make_safe_eval(original_safe_eval, refuse):
     genuine_ns = {ns: xacro._global_symbols[ns] for ns in NAMESPACES if ns in xacro._global_symbols}
 
     cache: dict[str, tuple] = {}
+    budget = [MAX_TOTAL_CHARS]
 
     def prepare(expr):
         """Vet and compile once per expression text; remember which helpers it calls."""
         tree = check_expression(expr)
         calls = []
-        bound = False
         for node in ast.walk(tree):
             if isinstance(node, ast.Call):
                 f = node.func
                 calls.append(("name", f.id) if isinstance(f, ast.Name) else ("ns", f.value.id))
-            elif isinstance(node, ast.BinOp) and not bound:
-                bound = _needs_bound(node)
-        if bound:  # most expressions have no * or ** to bound: skip the (slow) rewrite
-            tree = ast.fix_missing_locations(_Bound().visit(tree))
-        code = compile(tree, "<expression>", "eval")
-        return code, tuple(calls)
+        return bounded_code(tree), tuple(calls)   # most expressions need no bounding: no rewrite
 
     def safe_eval(expr, globals, locals=None):
         try:
@@ -193,9 +300,12 @@ def make_safe_eval(original_safe_eval, refuse):
         # lookup, which would bypass xacro's Table (parent scopes, lazy properties).
         scope = {"__builtins__": {}, **_HELPERS}
         try:
-            return eval(code, scope, locals if locals is not None else globals)
+            return check_result(eval(code, scope, locals if locals is not None else globals), budget)
         except RefusedExpression as exc:
             refuse(expr, str(exc))
+            raise
+        except (RecursionError, MemoryError) as exc:
+            refuse(expr, f"too deep or too large ({type(exc).__name__})")
             raise
 
     return safe_eval

@@ -112,3 +112,18 @@ def test_stdout_without_meshes_and_errors(tmp_path):
     # a model with meshes cannot go to stdout: one line, exit 2
     r = CliRunner().invoke(main, ["convert", "--to", "mjcf"])
     assert r.exit_code == 2 and "give -o OUT.xml" in r.output and len(r.output.strip().splitlines()) == 1
+
+
+def test_textured_can_gets_its_texture_colour(tmp_path):
+    """MuJoCo gets one rgba per geom: the Amstel can's body takes its texture's mean colour (red),
+    not the script's white diffuse."""
+    from myrabot_desc.loader import data_root
+
+    out = tmp_path / "can.xml"
+    r = CliRunner().invoke(main, ["convert", str(data_root() / "xacro/lata_cerveza.urdf.xacro"), "--to", "mjcf",
+                                  "--base", "free", "-o", str(out)])
+    assert r.exit_code == 0, r.output
+    m, _ = step_one_second(out)
+    body = m.geom_rgba[(m.geom_group == 1) & (m.geom_type == mujoco.mjtGeom.mjGEOM_CYLINDER)][0]
+    assert body[0] > 0.5 and body[1] < 0.3 and body[2] < 0.3
+    assert m.jnt_type[0] == mujoco.mjtJoint.mjJNT_FREE

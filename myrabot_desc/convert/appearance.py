@@ -38,6 +38,7 @@ class Appearance:
         self.robot = robot
         self.notes = notes
         self._unresolved: dict[str, object] = {}
+        self._missing_tex: dict[str, object] = {}
         try:
             from myrabot_desc.materials.resolve import resolver_for
         except ImportError:  # the shared resolver is not installed: URDF colours only
@@ -57,8 +58,14 @@ class Appearance:
             rgba = _rgba(mat.rgba, (1.0, 1.0, 1.0, 1.0))
             tex = None
             if mat.texture:
-                p = self.robot.resolve_uri(mat.texture)
-                tex = str(p) if p else mat.texture
+                try:
+                    p = self.robot.resolve_uri(mat.texture)
+                except Exception:  # a malformed URI: reported like a missing file
+                    p = None
+                if p is not None and p.is_file():
+                    tex = str(p)
+                else:
+                    self._missing_tex.setdefault(f"{mat.texture} (URDF material {mat.name})", None)
             return Look(ambient=rgba, diffuse=rgba, texture=tex, source=f"urdf:{mat.name}")
         return None
 
@@ -70,7 +77,9 @@ class Appearance:
             return None
         diffuse = _rgba(getattr(m, "diffuse", None), (1.0, 1.0, 1.0, 1.0))
         ambient = _rgba(getattr(m, "ambient", None), diffuse)
-        tex = getattr(m, "texture_path", None) or getattr(m, "texture", None)
+        tex = getattr(m, "texture_path", None)
+        if tex is None and getattr(m, "texture", None):
+            self._missing_tex.setdefault(f"{m.texture} ({name})", None)
         return Look(ambient=ambient, diffuse=diffuse,
                     specular=_rgba(getattr(m, "specular", None), (0.0, 0.0, 0.0, 1.0)),
                     emissive=_rgba(getattr(m, "emissive", None), (0.0, 0.0, 0.0, 1.0)),
@@ -79,10 +88,26 @@ class Appearance:
                     transparency=float(getattr(m, "transparency", 0.0) or 0.0), source=f"gazebo:{name}")
 
     def finish(self) -> None:
+        if self._missing_tex:
+            self.notes.warn("texture image(s) not found next to their material script, colour only: "
+                            + ", ".join(sorted(self._missing_tex)))
         if self._unresolved:
             names = ", ".join(sorted(self._unresolved))
             self.notes.warn(f"Gazebo material(s) not found in any script or the stock table, URDF colour "
                             f"kept: {names}")
+
+
+def texture_mean_rgb(path) -> tuple[float, float, float] | None:
+    """Average colour of a texture image (MuJoCo gets one rgba per geom: a can is then red-ish,
+    not white). None when the image cannot be read."""
+    try:
+        from PIL import Image
+
+        with Image.open(path) as im:
+            px = im.convert("RGB").resize((1, 1), Image.Resampling.BOX).getpixel((0, 0))
+    except Exception:  # unreadable image: keep the material's own colour
+        return None
+    return tuple(round(c / 255.0, 4) for c in px)
 
 
 def material_element(parent, look: Look, uri_mapper=None):

@@ -4,13 +4,13 @@ MuJoCo reads URDF itself but stumbles on what real descriptions contain: it cann
 resolve ``package://`` (#1432), strips mesh paths, reads no DAE, discards visuals by
 default, welds a massless root to the world (a REP-105 ``base_footprint`` robot stops
 being mobile) and rejects inertias that break A + B >= C. So we hand it a prepared
-URDF: meshes copied (DAE and others converted to STL with trimesh, MSH past
-200000 faces) into
-``<OUT stem>_meshes/`` next to the output with unique names, explicit rgba from the URDF
-colours and the resolved Gazebo materials, repaired inertias, a placeholder inertial
-for massless moving links, and a free joint for mobile bases. MuJoCo compiles it and
-saves the MJCF; collision geoms go to group 3 (hidden by the viewer's defaults), visuals
-stay in group 1 with their colours.
+URDF: meshes copied into ``<OUT stem>_meshes/`` next to the output under unique names
+(DAE and others converted to STL with trimesh, MSH past 200000 faces), explicit rgba
+from the URDF colours and the resolved Gazebo materials (a texture contributes its
+mean colour), repaired inertias, a placeholder inertial for massless moving links, and
+a free joint for mobile bases. MuJoCo compiles it and saves the MJCF; collision geoms
+go to group 3 (hidden by the viewer's defaults), visuals stay in group 1 with their
+colours.
 """
 
 from __future__ import annotations
@@ -153,7 +153,7 @@ def _binary_stl_ok(path: Path) -> bool:
 
 def prepare_urdf(robot, notes: Notes, base: str, mesh_dirname: str):
     """The URDF MuJoCo gets, and the mesh plan."""
-    from myrabot_desc.convert.appearance import Appearance
+    from myrabot_desc.convert.appearance import Appearance, texture_mean_rgb
     from myrabot_desc.convert.gazebo import GazeboProps
 
     root = _parse(robot.urdf_text)
@@ -176,7 +176,11 @@ def prepare_urdf(robot, notes: Notes, base: str, mesh_dirname: str):
             for m in vis.findall("material"):
                 vis.remove(m)
             if lk is not None:
-                rgba = tuple(lk.diffuse[:3]) + (lk.diffuse[3] if len(lk.diffuse) > 3 else 1.0,)
+                rgb = tuple(lk.diffuse[:3])
+                mean = texture_mean_rgb(lk.texture) if lk.texture else None
+                if mean is not None:
+                    rgb = tuple(round(a * b, 4) for a, b in zip(rgb, mean))
+                rgba = rgb + ((lk.diffuse[3] if len(lk.diffuse) > 3 else 1.0) * (1.0 - lk.transparency),)
                 mname = colours.setdefault(nums(rgba), f"rgba_{len(colours)}")
                 m = etree.SubElement(vis, "material", name=mname)
                 etree.SubElement(m, "color", rgba=nums(rgba))

@@ -1,0 +1,146 @@
+"""The issue-8 targets in one table: ours against each peer, with the ratio and a verdict.
+
+    .venv/bin/python bench/bench_targets.py [--repeat N] [--write-docs] [--fresh]
+
+Reads the results bench_build.py, bench_load.py and bench_start.py left in
+out/bench/ during this `make bench` run (runs them first when missing, or with
+--fresh), times `convert --to sdf` against `ign sdf -p` here, and takes the sim
+figures from the sim developer's bench/bench_sim.py (--json). --write-docs puts
+the table into docs/benchmarks.md between its "targets" markers.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _timing import BIN, OUT, ROOT, best_of, bench_env, fmt_s, have, machine, save, table  # noqa: E402
+
+DOC = ROOT / "docs" / "benchmarks.md"
+BEGIN, END = "<!-- targets:begin -->", "<!-- targets:end -->"
+
+
+def result(name: str, fresh: bool, args: list[str]) -> dict:
+    path = OUT / f"{name}.json"
+    if fresh or not path.exists() or time.time() - path.stat().st_mtime > 6 * 3600:
+        subprocess.run([sys.executable, str(ROOT / "bench" / f"bench_{name}.py"), *args], check=True)
+    return json.loads(path.read_text())
+
+
+def convert(repeat: int) -> dict:
+    cli = str(BIN / "myrabot-desc")
+    OUT.mkdir(parents=True, exist_ok=True)
+    urdf = OUT / "myrabot.urdf"
+    subprocess.run([cli, "build", "-o", str(urdf)], check=True, capture_output=True, env=bench_env())
+    cmds = {"ours": [cli, "convert", "--to", "sdf", str(urdf), "-o", str(OUT / "ours.sdf")]}
+    if have("ign") and subprocess.run(["ign", "sdf", "--versions"], capture_output=True).returncode == 0:
+        cmds["ign"] = ["sh", "-c", f"exec ign sdf -p {urdf} > {OUT / 'ign.sdf'}"]
+    return best_of(cmds, repeat)
+
+
+def sim() -> dict:
+    p = subprocess.run([sys.executable, str(ROOT / "bench" / "bench_sim.py"), "--json", "--repeat", "3"],
+                       capture_output=True, text=True, cwd=ROOT, env=bench_env())
+    if p.returncode != 0:
+        return {"error": p.stderr.strip()[-300:]}
+    return json.loads(p.stdout[p.stdout.index("{"):])
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--repeat", type=int, default=10, help="runs for the convert comparison [10]")
+    ap.add_argument("--write-docs", action="store_true", help="update the table in docs/benchmarks.md")
+    ap.add_argument("--fresh", action="store_true", help="rerun bench_build/load/start even if results exist")
+    a = ap.parse_args(argv)
+
+    b = result("build", a.fresh, [])["cases"]
+    st = result("start", a.fresh, [])
+    ld = result("load", a.fresh, [])
+    cv = convert(a.repeat)
+    sm = sim()
+
+    def yes(ok):
+        return "**yes**" if ok else "**NO**"
+
+    rows = []
+    f4 = b["flat, 4,000 macro calls"]
+    rows.append(["build, 4,000 top-level macro calls", "< 2 s", fmt_s(f4["ours_wall"]),
+                 f"xacro CLI {fmt_s(f4['xacro_wall'])}" if f4["xacro_wall"] else "xacro CLI: not run",
+                 f"{f4['speedup']:.0f}× faster" if f4["speedup"] else "—", yes(f4["ours_wall"] < 2.0)])
+    f1 = b["flat, 1,000 macro calls"]
+    rows.append(["build, 1,000 top-level macro calls", "—", fmt_s(f1["ours_wall"]),
+                 f"xacro CLI {fmt_s(f1['xacro_wall'])}", f"{f1['speedup']:.1f}× faster", ""])
+    pr = b["PR2-sized (synthetic, 99 links)"]
+    rows.append(["build, PR2-sized (synthetic)", "< 0.3 s", fmt_s(pr["ours_wall"]),
+                 f"xacro CLI {fmt_s(pr['xacro_wall'])}", f"{pr['speedup']:.2f}× faster", yes(pr["ours_wall"] < 0.3)])
+    bm = b["bundled MYRAbot"]
+    rows.append(["build, bundled MYRAbot", "—", fmt_s(bm["ours_wall"]),
+                 f"xacro CLI {fmt_s(bm['xacro_wall'])}", f"{bm['speedup']:.2f}× faster", ""])
+    t = st["times"]
+    rows.append(["`--help`", "≤ python + 60 ms", fmt_s(t["myrabot-desc --help"]["wall"]),
+                 f"`python -c pass` {fmt_s(t['python -c pass']['wall'])}",
+                 f"+{st['help_over_python_s'] * 1000:.0f} ms", yes(st["help_over_python_s"] < 0.060)])
+    rows.append(["heavy imports: `--help`, `build`; trimesh in `check`", "none; only with --inertia/--meshes",
+                 "none; none; " + ("no" if "trimesh" not in st["imports"]["check URDF"] else "YES"), "", "",
+                 yes(st["imports_ok"])])
+    c69 = ld["all69"]
+    ours69 = c69["myrabot-desc check (69 files, one call)"]["wall"]
+    peer69 = c69.get("check_urdf (69 processes, summed)")
+    pin69 = c69["Pinocchio buildModelFromUrdf (one process)"]
+    rows.append(["`check`, 69 example-robot-data URDFs, one call", "< 10 s", fmt_s(ours69),
+                 (f"check_urdf ×69 {fmt_s(peer69['wall'])}; " if peer69 else "") +
+                 f"Pinocchio {fmt_s(pin69['wall'])} (load only)", f"{ours69 / pin69['wall']:.1f}× Pinocchio's time",
+                 yes(ours69 < 10)])
+    bl = ld["bundled"]
+    rows.append(["load, bundled URDF (`info`)", "—", fmt_s(bl["myrabot-desc info"]["wall"]),
+                 (f"check_urdf {fmt_s(bl['check_urdf']['wall'])}; " if "check_urdf" in bl else "") +
+                 f"Pinocchio {fmt_s(bl['Pinocchio buildModelFromUrdf']['wall'])}", "", ""])
+    if "ign" in cv:
+        r = cv["ours"]["wall"] / cv["ign"]["wall"]
+        rows.append(["`convert --to sdf`, bundled URDF", "< ½ of ign's", fmt_s(cv["ours"]["wall"]),
+                     f"`ign sdf -p` {fmt_s(cv['ign']['wall'])}", f"{r:.2f} of ign's time", yes(r < 0.5)])
+    else:
+        rows.append(["`convert --to sdf`, bundled URDF", "< ½ of ign's", fmt_s(cv["ours"]["wall"]),
+                     "ign sdf: not installed", "", "—"])
+    if "vuelta_full_s" in sm:
+        v = sm["vuelta_full_s"]
+        mj = sm.get("mujoco_step_s")
+        ratio = mj / v if mj else None
+        rows.append([f"`sim vuelta`, {sm['simulated_s']:g} s at 1 kHz (in process)", "< 1 s and ≥ 10× MuJoCo",
+                     fmt_s(v), f"MuJoCo {sm.get('mujoco_version', '')} mj_step {fmt_s(mj)}" if mj else "MuJoCo: —",
+                     f"{ratio:.1f}× faster" if ratio else "—", yes(v < 1.0 and (ratio or 0) >= 10)])
+        rows.append(["`sim vuelta`, first call (imports, load)", "—", fmt_s(sm["vuelta_cold_s"]), "", "", ""])
+    else:
+        rows.append(["`sim vuelta`", "< 1 s and ≥ 10× MuJoCo", "—", sm.get("error", "bench_sim.py failed"), "", "—"])
+
+    m = machine()
+    head = ["what", "target", "ours", "peer", "ratio", "met"]
+    text = table(rows, head)
+    n_note = (f"best of {f4['n']} (xacro CLI on 4,000 calls: {f4['xacro_n']} run), start-up best of {st['n']}, "
+              f"load/check best of {ld['all69']['myrabot-desc check (69 files, one call)']['n']}, "
+              f"convert best of {a.repeat}; sim: median of 3 in process (bench_sim.py)")
+    meta = (f"Machine: {m['cores']} cores, {m['cpu']}, Python {m['python']}; {m['date']}; "
+            f"load average {m['load']:.1f} at the end of the run (other sessions were using the machine).\n"
+            f"Fresh processes, wall clock, {n_note}.")
+    print(text)
+    print(meta)
+    save("targets", {"rows": rows, "convert": cv, "sim": sm, "meta": meta})
+    if a.write_docs:
+        doc = DOC.read_text()
+        if BEGIN in doc and END in doc:
+            pre, rest = doc.split(BEGIN, 1)
+            post = rest.split(END, 1)[1]
+            DOC.write_text(f"{pre}{BEGIN}\n{text}\n\n{meta}\n{END}{post}")
+            print(f"updated {DOC}")
+        else:
+            print(f"{DOC} has no {BEGIN} ... {END} markers; not updated")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

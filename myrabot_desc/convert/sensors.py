@@ -369,9 +369,8 @@ def imu_from_plugin(p, robot, notes) -> SensorOut | None:
             for axis in "xyz":
                 noise_el(sub(g, axis), noise, attr=True)
     xyz = to_floats(pparam(p, "xyzOffsets", "xyzOffset")) or [0, 0, 0]
+    # the plugin built a Quaternion from this vector: radians, even in the Electric dialect
     rpy = to_floats(pparam(p, "rpyOffsets", "rpyOffset")) or [0, 0, 0]
-    if p.dialect == "electric":
-        rpy = [math.radians(a) for a in rpy]
     comments = [f"from {'Electric controller' if p.dialect == 'electric' else 'plugin'} '{p.name}' "
                 f"({_plugin_key(p)}) on {body}; gaussianNoise used as the stddev, as the plugin did"]
     return SensorOut(body, transform(xyz, rpy), s, comments, "controller")

@@ -168,7 +168,15 @@ class _Reader:
             return Sphere(self.num(shape, "radius"))
         if shape.tag == "mesh":
             fn = shape.get("filename", "")
-            return Mesh(fn, self.vec(shape, "scale", (1.0, 1.0, 1.0)), resolve(fn) if fn else None)
+            path = resolve(fn) if fn else None
+            if fn and path is None:
+                from myrabot_desc.packages import outside_roots
+
+                if outside_roots(fn, package_roots, robot_src_dir) is not None:
+                    self.issue(shape, f"mesh {fn} lies outside the model's package and folder: not read "
+                               "(a model may only use files of its own package or of the packages it names)",
+                               code="X006")
+            return Mesh(fn, self.vec(shape, "scale", (1.0, 1.0, 1.0)), path)
         self.issue(shape, f"unknown geometry <{shape.tag}>")
         return None
 

@@ -12,6 +12,7 @@ Search order (first match wins):
 
 from __future__ import annotations
 
+import functools
 import os
 import re
 import sys
@@ -142,7 +143,41 @@ def split_package_uri(uri: str) -> tuple[str, str] | None:
     return (pkg, tail) if pkg else None
 
 
+def resource_roots(base: Path, package_roots: dict[str, Path]) -> list[Path]:
+    """Folders a model's meshes and textures may come from: the model's own package (else the
+    folder above the model, for the common urdf/ + meshes/ layout), the packages its URIs
+    name, and the bundled package. A model from a stranger cannot make us read /etc/passwd
+    or ~/.ssh through ``file://``, an absolute path, ``../..`` or a symlink."""
+    return list(_base_roots(Path(base).resolve())) + [Path(r).resolve() for r in package_roots.values()]
+
+
+@functools.lru_cache(maxsize=256)
+def _base_roots(base: Path) -> tuple[Path, ...]:
+    from myrabot_desc.loader import data_root
+
+    own = own_package(base)
+    return tuple(Path(r).resolve() for r in (own[1] if own else base.parent, base, data_root()))
+
+
+def outside_roots(uri: str, package_roots: dict[str, Path], base: Path) -> Path | None:
+    """The file ``uri`` names when it exists but lies outside :func:`resource_roots` (else None)."""
+    path = _resolve_any(uri, package_roots, base)
+    if path is None:
+        return None
+    real = path.resolve()
+    return None if any(real.is_relative_to(r) for r in resource_roots(base, package_roots)) else path
+
+
 def resolve_resource_uri(uri: str, package_roots: dict[str, Path], base: Path) -> Path | None:
+    """Resolve a mesh/texture URI to a file inside :func:`resource_roots`, or None."""
+    path = _resolve_any(uri, package_roots, base)
+    if path is None:
+        return None
+    real = path.resolve()
+    return path if any(real.is_relative_to(r) for r in resource_roots(base, package_roots)) else None
+
+
+def _resolve_any(uri: str, package_roots: dict[str, Path], base: Path) -> Path | None:
     """Resolve a mesh/texture URI to a file. Never leaves the package root it names."""
     uri = uri.strip()
     if uri.startswith("package://"):

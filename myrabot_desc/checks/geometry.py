@@ -76,14 +76,12 @@ def load_mesh(g):
 
 
 def _load_mesh(g):
-    import trimesh
+    from myrabot_desc import meshio
 
-    try:
-        m = trimesh.load(str(g.path), force="mesh", process=True)
-    except Exception as exc:  # unreadable or unsupported format
-        return f"cannot read {g.path.name}: {type(exc).__name__}: {exc}"
-    if not isinstance(m, trimesh.Trimesh) or len(m.faces) == 0:
-        return f"{g.path.name} holds no triangles"
+    try:  # size and triangle limits, one-line reasons (meshio.py)
+        m = meshio.load(g.path, process=True)
+    except meshio.MeshError as exc:
+        return str(exc)
     if tuple(g.scale) != (1.0, 1.0, 1.0):
         import numpy as np
 

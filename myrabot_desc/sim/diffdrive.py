@@ -279,11 +279,11 @@ def _geometry_points(robot, g, loc, n: int = 720):
         return np.vstack([np.column_stack([r * c, r * s, 0 * a]), np.column_stack([r * c, 0 * a, r * s]),
                           np.column_stack([0 * a, r * c, r * s])])
     if g.kind == "mesh":
-        import trimesh
+        from myrabot_desc import meshio
 
         if g.path is None:
             raise InputError(f"mesh {g.filename} cannot be resolved", loc)
-        m = trimesh.load(str(g.path), force="mesh")
+        m = meshio.load_or_input_error(g.path, loc)   # size/triangle limits; garbage -> one line
         return np.asarray(m.vertices) * np.asarray(g.scale)
     raise InputError(f"unsupported geometry {g.kind}", loc)
 

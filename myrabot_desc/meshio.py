@@ -1,0 +1,92 @@
+"""Load mesh files from untrusted models with size and triangle limits.
+
+check (--inertia, --meshes), convert --to mjcf and sim read meshes named by model files. A
+mesh is refused before trimesh sees it when the file is larger than ``max_mesh_bytes`` or a
+binary STL header announces more than ``max_mesh_triangles`` faces; after loading, when it
+holds more triangles than that. Both limits come from the environment:
+
+  MYRABOT_DESC_MAX_MESH_BYTES      largest mesh file read  [50000000]
+  MYRABOT_DESC_MAX_MESH_TRIANGLES  most triangles per mesh [2000000]
+"""
+
+from __future__ import annotations
+
+import struct
+from pathlib import Path
+
+from myrabot_desc.errors import InputError
+
+MAX_MESH_BYTES = 50_000_000
+MAX_MESH_TRIANGLES = 2_000_000
+ENV_BYTES = "MYRABOT_DESC_MAX_MESH_BYTES"
+ENV_TRIANGLES = "MYRABOT_DESC_MAX_MESH_TRIANGLES"
+
+
+class MeshError(ValueError):
+    """A mesh that cannot or may not be loaded (message names the file and why)."""
+
+
+def limits() -> tuple[int, int]:
+    from myrabot_desc.build import _env_int
+
+    return _env_int(ENV_BYTES, MAX_MESH_BYTES), _env_int(ENV_TRIANGLES, MAX_MESH_TRIANGLES)
+
+
+def precheck(path: Path) -> int:
+    """Refuse a mesh file by size or announced face count before parsing it; returns its size."""
+    max_bytes, max_tris = limits()
+    try:
+        if not path.is_file():
+            raise MeshError(f"{path.name} is not a file")
+        size = path.stat().st_size
+    except OSError as exc:
+        raise MeshError(f"cannot read {path.name}: {exc.strerror}") from None
+    if size == 0:
+        raise MeshError(f"{path.name} is empty (0 bytes)")
+    if size > max_bytes:
+        raise MeshError(f"{path.name} is {size} bytes, over the {max_bytes}-byte mesh limit ({ENV_BYTES})")
+    if path.suffix.lower() == ".stl" and size >= 84:
+        try:
+            with open(path, "rb") as fh:
+                head = fh.read(84)
+        except OSError as exc:
+            raise MeshError(f"cannot read {path.name}: {exc.strerror}") from None
+        if not head[:5].lower() == b"solid":
+            n = struct.unpack("<I", head[80:84])[0]
+            if n > max_tris:
+                raise MeshError(f"{path.name}: the STL header announces {n} triangles, over the {max_tris} "
+                                f"limit ({ENV_TRIANGLES})")
+    return size
+
+
+def load(path: Path, process: bool = True):
+    """trimesh.Trimesh of ``path`` (one mesh), or MeshError saying why not."""
+    import trimesh
+
+    path = Path(path)
+    precheck(path)
+    _, max_tris = limits()
+    try:
+        mesh = trimesh.load(str(path), force="mesh", process=process)
+    except (RecursionError, MemoryError) as exc:
+        raise MeshError(f"cannot read {path.name}: {type(exc).__name__}") from None
+    except Exception as exc:  # every reader has its own errors: one line naming the file
+        msg = " ".join(str(exc).split())[:200]
+        raise MeshError(f"cannot read {path.name}: {type(exc).__name__}: {msg}") from None
+    if not isinstance(mesh, trimesh.Trimesh) or len(mesh.faces) == 0:
+        raise MeshError(f"{path.name} holds no triangles")
+    if len(mesh.faces) > max_tris:
+        raise MeshError(f"{path.name} has {len(mesh.faces)} triangles, over the {max_tris} limit ({ENV_TRIANGLES})")
+    import numpy as np
+
+    if not np.isfinite(mesh.vertices).all():
+        raise MeshError(f"{path.name} has vertices that are not finite numbers (NaN or inf)")
+    return mesh
+
+
+def load_or_input_error(path: Path, loc=None):
+    """``load`` for callers that stop on a bad mesh: InputError with the model's file:line."""
+    try:
+        return load(path)
+    except MeshError as exc:
+        raise InputError(f"mesh {exc}", loc) from None

@@ -83,15 +83,21 @@ class _Prep:
         key = src.resolve()
         if key in self.meshes:
             return self.meshes[key]
+        from myrabot_desc import meshio
+
         ext = src.suffix.lower()
         mesh = None
+        try:  # size and triangle limits before anything reads or copies it
+            meshio.precheck(key)
+        except meshio.MeshError as exc:
+            self.notes.warn(f"mesh {src}: {exc}; geometry left out")
+            self.meshes[key] = None
+            return None
         if ext not in MUJOCO_MESH_EXT or (ext == ".stl" and not _binary_stl_ok(key)):
-            import trimesh
-
             try:
-                mesh = trimesh.load(str(key), force="mesh", process=False)
-            except Exception as exc:  # unreadable: leave the geometry out, say which file
-                self.notes.warn(f"mesh {src} cannot be read ({type(exc).__name__}: {exc}); geometry left out")
+                mesh = meshio.load(key, process=False)
+            except meshio.MeshError as exc:  # unreadable: leave the geometry out, say which file
+                self.notes.warn(f"mesh {src}: {exc}; geometry left out")
                 mesh = None
             if mesh is None or mesh.is_empty or len(mesh.faces) == 0:
                 self.empty.append(src.name)

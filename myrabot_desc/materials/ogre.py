@@ -678,6 +678,9 @@ def read_script_text(path: Path, file: str, max_bytes: int = MAX_BYTES) -> str:
         raise InputError("no such file", Loc(file)) from None
     except OSError as exc:
         raise InputError(f"cannot read: {exc.strerror}", Loc(file)) from None
+    if b"\0" in data:  # UTF-16/32 or binary: nothing an OGRE script holds
+        raise InputError("not a material script (binary data: NUL bytes)",
+                         Loc(file, data[:data.index(b"\0")].count(b"\n") + 1))
     try:
         return data.decode("utf-8")
     except UnicodeDecodeError:
@@ -697,12 +700,16 @@ def parse_file(path: str | Path, *, parents: Callable[[str], Material | None] | 
     raws, imports, warnings = parse_raw(text, file, max_bytes=max_bytes, max_depth=max_depth)
     imported: list[RawMaterial] = []
     seen = {path.resolve()}
+    top = path.resolve().parent
 
     def follow(items, base: Path, depth: int):
         for name, line in items:
             target = (base / name).resolve()
             if target in seen:
                 continue
+            if not target.is_relative_to(top):  # ../../etc/passwd, /abs, a symlink out: never read
+                raise InputError(f"import {name!r} lies outside the script's folder: refusing to read it",
+                                 Loc(file, line))
             seen.add(target)
             if depth > MAX_IMPORT_DEPTH:
                 raise InputError(f"imports nest deeper than {MAX_IMPORT_DEPTH} files", Loc(file, line))

@@ -95,8 +95,11 @@ class MaterialResolver:
                 folder = d / sub
                 if not folder.is_dir():
                     continue
+                top = folder.resolve()
                 for f in sorted(folder.glob("*.material")):
                     key = f.resolve()
+                    if not key.is_relative_to(top):   # a symlink out of the folder: not a material script
+                        continue
                     if key not in seen and f.is_file():
                         seen.add(key)
                         out.append(f)

@@ -16,7 +16,6 @@ from lxml import etree
 
 from myrabot_desc.cli import main
 from myrabot_desc.convert.sdf import SdfOptions, to_sdf
-from myrabot_desc.convert.world import to_world
 from myrabot_desc.loader import data_root, load_robot
 
 FIX = Path(__file__).parent / "fixtures"

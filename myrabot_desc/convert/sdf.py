@@ -118,6 +118,11 @@ def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = Non
     notes = notes if notes is not None else Notes()
     if not robot.links:
         raise InputError("the model has no links: nothing to convert", robot.loc)
+    for j in robot.joints.values():  # a joint to nowhere cannot be placed (check reports it as T-rules)
+        for end in (j.parent, j.child):
+            if end not in robot.links:
+                raise InputError(f"joint '{j.name}' names link '{end}', which does not exist: nothing to "
+                                 "attach it to (run check for the whole picture)", j.loc)
     props = GazeboProps(robot, notes)
     uris = UriMapper(robot, opts.uri_style, notes)
     look = Appearance(robot, notes)

@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 
 from lxml import etree
 
-from myrabot_desc.convert.common import (comment, local, num, sub, to_bool, to_float, to_floats, transform,
+from myrabot_desc.convert.common import (local, num, sub, to_bool, to_float, to_floats, transform,
                                          xml_text)
 
 SONAR_NOTE = ("gz-sim has no sonar sensor: this is a narrow gpu_lidar with the seed's rays; the old plugin "

@@ -12,11 +12,10 @@
 from __future__ import annotations
 
 import copy
-import math
 
 from lxml import etree
 
-from myrabot_desc.convert.common import comment, local, num, sub, to_bool, to_float, xml_text
+from myrabot_desc.convert.common import local, num, sub, to_bool, to_float, xml_text
 from myrabot_desc.convert.sensors import imu_from_plugin, plugin_kind, pparam, ros_namespace, ros_remap
 
 DIFF_DRIVE = ("gz-sim-diff-drive-system", "gz::sim::systems::DiffDrive")

@@ -8,7 +8,6 @@ for cameras and lidars, Imu for IMUs (anchors §6.3).
 
 from __future__ import annotations
 
-from pathlib import Path
 
 from lxml import etree
 

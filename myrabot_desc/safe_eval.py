@@ -260,6 +260,49 @@ def _lookup(mapping, key):
         return None
 
 
+# A number literal that is a whole token (not part of a name, attribute, 0x/1_000/1j literal).
+_NUMBER = re.compile(r"(?<![\w.])(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?(?![\w.])")
+
+
+_UNSEEN = object()
+
+
+def _prepare_by_shape(expr: str, shapes: dict):
+    """(code, calls) for ``expr`` from the vetting of its *shape*, or None for the full path.
+
+    Generated files pass a different number to every macro call (``${0.1 + 17 * 0.001}``),
+    so each expression text is new and vetting walks its tree again. Vetting never looks
+    at the value of a number literal (only at node types, names, attributes, strings, and
+    whether an operand is a number), so an expression vets exactly as its shape with every
+    number replaced by 1. Only quote-free expressions whose shape vets and needs no bounded
+    operator take this path; everything else (refusals and their messages included) goes
+    through check_expression and bounded_code as before.
+    """
+    if "'" in expr or '"' in expr:
+        return None
+    shape = _NUMBER.sub("1", expr)
+    if shape == expr:
+        return None
+    entry = shapes.get(shape, _UNSEEN)
+    if entry is _UNSEEN:
+        entry = None
+        try:
+            tree = check_expression(shape)
+            if not any(_needs_bound(n) for n in ast.walk(tree)):
+                entry = tuple(("name", n.func.id) if isinstance(n.func, ast.Name) else ("ns", n.func.value.id)
+                              for n in ast.walk(tree) if isinstance(n, ast.Call))
+        except Exception:  # refused or unparsable shape: the full path reports it
+            entry = None
+        if len(shapes) < 100_000:
+            shapes[shape] = entry
+    if entry is None:
+        return None
+    try:
+        return compile(expr.strip(), "<expression>", "eval"), entry
+    except Exception:  # e.g. a literal the shape hid (09, too many digits): the full path reports it
+        return None
+
+
 def make_safe_eval(original_safe_eval, refuse):
     """A drop-in for ``xacro.safe_eval``; ``refuse(expr, reason)`` raises our error."""
     import xacro
@@ -270,8 +313,13 @@ def make_safe_eval(original_safe_eval, refuse):
     cache: dict[str, tuple] = {}
     budget = [MAX_TOTAL_CHARS]
 
+    shapes: dict[str, tuple | None] = {}
+
     def prepare(expr):
         """Vet and compile once per expression text; remember which helpers it calls."""
+        fast = _prepare_by_shape(expr, shapes)
+        if fast is not None:
+            return fast
         tree = check_expression(expr)
         calls = []
         for node in ast.walk(tree):

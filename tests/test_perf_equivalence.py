@@ -151,3 +151,42 @@ def test_hector_through_find_is_byte_identical(tmp_path):
                    'quadrotor_base.urdf.xacro"/>\n  <xacro:quadrotor_base_macro/>\n</robot>\n')
     text = assert_same_as_xacro(top)
     assert 'name="base_link"' in text
+
+
+# ------------------------------------------------------------------ safe_eval's vetting by shape
+SHAPE_CASES = ["0.1 + 17 * 0.001", "-3.5e-2 * 2", "(1 + 2) / 4.0", "sin(0.5) * 2", "pi * 0.25", "1 if x else 2",
+               "x * 0.5", "2 ** 10", "9**9**9", "1(2)", "(1).__class__", "09", "1_000 + 1", "0x10 * 2", "1j * 2",
+               "[1, 2, 3][1]", "x.real + 1", "abs(-1.5)", "factorial(3)", "1 << 3", "7 % 3"]
+
+
+@pytest.mark.parametrize("expr", SHAPE_CASES)
+def test_vetting_by_shape_agrees_with_the_full_vetting(expr):
+    """The shape shortcut (numbers -> 1) gives the same value, or the same refusal, as the full path."""
+    from myrabot_desc import safe_eval as S
+
+    def outcome(use_shapes):
+        refusals = []
+
+        def refuse(e, reason):
+            refusals.append(reason)
+            raise S.RefusedExpression(reason)
+
+        saved = S._prepare_by_shape
+        if not use_shapes:
+            S._prepare_by_shape = lambda e, shapes: None
+        try:
+            se = S.make_safe_eval(None, refuse)
+            import xacro
+
+            symbols = xacro.Table(xacro._global_symbols)
+            symbols["x"] = 3
+            try:
+                return ("value", se(expr, symbols))
+            except S.RefusedExpression:
+                return ("refused", refusals[-1])
+            except Exception as exc:
+                return ("error", type(exc).__name__)
+        finally:
+            S._prepare_by_shape = saved
+
+    assert outcome(True) == outcome(False)

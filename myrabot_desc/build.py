@@ -352,8 +352,12 @@ class _Build:
     def _xacro_error(self, exc) -> InputError:
         msg = str(exc).strip()
         inner = getattr(exc, "exc", None)
-        if isinstance(inner, InputError):
-            return inner
+        for _ in range(50):  # xacro wraps once per lazy property level ("when evaluating expression ...")
+            if isinstance(inner, InputError):
+                return inner
+            inner = getattr(inner, "exc", None)
+            if inner is None:
+                break
         msg = _short(msg.replace("\n", " ").replace("  ", " "), 600)
         return InputError(msg, self.last_loc, self._stack())
 
@@ -465,6 +469,53 @@ def display(path) -> str:
     except ValueError:
         return str(p)
     return rel if not rel.startswith("..") else str(p.resolve())
+
+
+def _check_yaml_aliases(path: Path, loc) -> None:
+    """A YAML "billion laughs" (aliases of aliases) is small on disk and expands to 10^9 items in
+    xacro's wrappers: count the expanded nodes on the composed graph (aliases shared) first."""
+    import yaml
+
+    from myrabot_desc.safe_eval import MAX_SEQUENCE_LEN
+
+    try:
+        text = path.read_text(encoding="utf-8", errors="replace")
+    except OSError:
+        return  # xacro reports it
+    if "&" not in text or "*" not in text:
+        return
+    try:
+        node = yaml.compose(text, Loader=yaml.SafeLoader)
+    except RecursionError:
+        raise InputError(f"{path.name}: YAML nests too deeply", loc) from None
+    except yaml.YAMLError:
+        return  # malformed: xacro reports it with its line
+    memo: dict[int, int] = {}
+
+    def size(n) -> int:
+        if id(n) in memo:
+            return memo[id(n)]
+        memo[id(n)] = MAX_SEQUENCE_LEN + 1   # a node reaching itself is too large
+        total = 1
+        if isinstance(n, yaml.SequenceNode):
+            for c in n.value:
+                total += size(c)
+                if total > MAX_SEQUENCE_LEN:
+                    break
+        elif isinstance(n, yaml.MappingNode):
+            for k, v in n.value:
+                total += size(k) + size(v)
+                if total > MAX_SEQUENCE_LEN:
+                    break
+        memo[id(n)] = total
+        return total
+
+    try:
+        too_big = node is not None and size(node) > MAX_SEQUENCE_LEN
+    except RecursionError:
+        raise InputError(f"{path.name}: YAML nests too deeply", loc) from None
+    if too_big:
+        raise InputError(f"{path.name}: YAML aliases expand to over {MAX_SEQUENCE_LEN} items (an alias bomb)", loc)
 
 
 def _short(text: str, n: int = 200) -> str:
@@ -691,6 +742,8 @@ class _Hooks:
                                  "(use --allow-path DIR to allow it)", b.last_loc, b._stack(), code="X006")
             if p.is_file() and p.stat().st_size > b.limits.max_input_bytes:
                 raise InputError(f"{p} is over the {b.limits.max_input_bytes}-byte limit", b.last_loc)
+            if p.is_file():
+                _check_yaml_aliases(p, b.last_loc)
 
         if self.saved_yaml[0] is not None:
             dict.__setitem__(g["xacro"], "load_yaml", guarded_yaml(self.saved_yaml[0]))

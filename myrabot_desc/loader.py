@@ -18,6 +18,10 @@ from myrabot_desc.model import (
 
 BUNDLED_ASSEMBLY = "xacro/myrabot.urdf.xacro"
 ELECTRIC_SUFFIXES = ("#controller", "#sensor", "#interface")
+# Sizes, offsets, masses and inertias beyond this (SI units) are typing errors or attacks: 1e300
+# overflows volumes and inertias downstream. Joint limits and dynamics are exempt (1e16 is a
+# common "unlimited").
+MAX_MAGNITUDE = 1e6
 
 
 def data_root() -> Path:
@@ -117,7 +121,7 @@ class _Reader:
     def issue(self, el, message: str, code: str = "T010") -> None:
         self.issues.append(Diagnostic(code, "error", message, self.loc(el)))
 
-    def num(self, el, attr: str, default: float | None = 0.0) -> float | None:
+    def num(self, el, attr: str, default: float | None = 0.0, limit: float | None = MAX_MAGNITUDE) -> float | None:
         raw = el.get(attr)
         if raw is None:
             return default
@@ -128,6 +132,9 @@ class _Reader:
             return default
         if not math.isfinite(v):
             self.issue(el, f"<{el.tag} {attr}=\"{raw}\">: not a finite number")
+            return default
+        if limit is not None and abs(v) > limit:
+            self.issue(el, f"<{el.tag} {attr}=\"{raw}\">: out of range (more than {limit:g} in magnitude)")
             return default
         return v
 
@@ -143,6 +150,9 @@ class _Reader:
             return default
         if len(vals) != n or not all(math.isfinite(v) for v in vals):
             self.issue(el, f"<{el.tag} {attr}=\"{raw}\">: expected {n} finite numbers")
+            return default
+        if any(abs(v) > MAX_MAGNITUDE for v in vals):
+            self.issue(el, f"<{el.tag} {attr}=\"{raw}\">: out of range (more than {MAX_MAGNITUDE:g} in magnitude)")
             return default
         return vals
 
@@ -270,13 +280,14 @@ def _read(root, text, src: Path, locations, package_roots, build_warnings, from_
         axis_el = el.find("axis")
         axis = r.vec(axis_el, "xyz", (1.0, 0.0, 0.0)) if axis_el is not None else (1.0, 0.0, 0.0)
         lim = el.find("limit")
-        limit = Limit(r.num(lim, "lower", None), r.num(lim, "upper", None), r.num(lim, "effort", None),
-                      r.num(lim, "velocity", None)) if lim is not None else None
+        limit = Limit(*(r.num(lim, a, None, limit=None) for a in ("lower", "upper", "effort", "velocity"))) \
+            if lim is not None else None
         mim = el.find("mimic")
         mimic = Mimic(mim.get("joint", ""), r.num(mim, "multiplier", 1.0), r.num(mim, "offset", 0.0)) \
             if mim is not None else None
         dyn = el.find("dynamics")
-        dynamics = Dynamics(r.num(dyn, "damping", 0.0), r.num(dyn, "friction", 0.0)) if dyn is not None else None
+        dynamics = Dynamics(r.num(dyn, "damping", 0.0, limit=None), r.num(dyn, "friction", 0.0, limit=None)) \
+            if dyn is not None else None
         if name in joints:
             continue
         joints[name] = Joint(name, jtype, p.get("link"), c.get("link"), r.pose(el), axis, limit, mimic,

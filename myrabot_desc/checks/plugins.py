@@ -195,6 +195,8 @@ def wheel_separation(ctx):
             real = abs(float(d @ axis))
         else:
             real = float(np.linalg.norm(d))
+        if real < 1e-9:  # both wheels at one point (broken origins/axis): nothing to compare
+            continue
         if abs(sep - real) > max(0.002, 0.02 * real):
             yield Finding(f"{spec.separation} {sep:.3g} m, but the wheel joints {lj.name} and {rj.name} are "
                           f"{real:.3g} m apart (y {pl[1]:.3g} and {pr[1]:.3g}): the robot turns at "
@@ -226,7 +228,8 @@ def wheel_size(ctx):
             if abs(val - real) > max(0.001, 0.02 * real):
                 word = "diameter" if spec.diameter else "radius"
                 yield Finding(f"{key} {val:.3g} m, but wheel {j.child} (joint {j.name}) has a collision {word} of "
-                              f"{real:.3g} m: the robot drives at {real / val:.3g}× the commanded speed", p.loc,
+                              f"{real:.3g} m: the robot drives at "
+                              f"{f'{real / val:.3g}×' if val else 'an infinite multiple of'} the commanded speed", p.loc,
                               {"plugin": p.name, "param": key, "value": val, "urdf": real, "fix": round(real, 6)})
                 break
 

@@ -378,6 +378,29 @@ def _compile(mujoco, spec, notes):
     return model
 
 
+MAX_BODY_DEPTH = 1000  # MuJoCo fails past 1024 nested bodies, after seconds of work (quadratic)
+
+
+def _check_depth(robot) -> None:
+    """Refuse a body chain MuJoCo cannot take before spending seconds in its compiler."""
+    children: dict[str, list[str]] = {}
+    for j in robot.joints.values():
+        children.setdefault(j.parent, []).append(j.child)
+    child_links = {j.child for j in robot.joints.values()}
+    depth: dict[str, int] = {}
+    stack = [(name, 1) for name in robot.links if name not in child_links]
+    while stack:
+        name, d = stack.pop()
+        if name in depth:       # cycles and shared children are the tree rules' business
+            continue
+        depth[name] = d
+        if d > MAX_BODY_DEPTH:
+            raise InputError(f"the kinematic chain is over {MAX_BODY_DEPTH} links deep (at link '{name}'): "
+                             "MuJoCo cannot nest bodies that deep", robot.links[name].loc
+                             if name in robot.links else robot.loc)
+        stack.extend((c, d + 1) for c in children.get(name, ()))
+
+
 def convert_mjcf(robot, output: str, base: str = "auto") -> MjcfResult:
     try:
         import mujoco
@@ -388,6 +411,7 @@ def convert_mjcf(robot, output: str, base: str = "auto") -> MjcfResult:
     notes = Notes()
     if not robot.links:
         raise InputError("the model has no links: nothing to convert", robot.loc)
+    _check_depth(robot)
     out = Path(output) if output != "-" else None
     mesh_dirname = f"{out.stem}_meshes" if out else "meshes"
     urdf_root, prep, free = prepare_urdf(robot, notes, base, mesh_dirname)

@@ -168,7 +168,7 @@ class _Build:
             raise InputError(f"cannot read {path}: {exc.strerror}", asked_at) from None
         if size > self.limits.max_input_bytes:
             raise InputError(f"{path} is {size} bytes, over the {self.limits.max_input_bytes}-byte limit "
-                             "(see --max-input-bytes)", asked_at)
+                             "(see --max-input-bytes or MYRABOT_DESC_MAX_INPUT_BYTES)", asked_at)
         try:
             data = path.read_bytes()
         except OSError as exc:
@@ -316,7 +316,7 @@ class _Build:
             raise InputError(f"include cycle: {chain}", asked_at or self.last_loc)
         if len(xacro.filestack or []) > self.limits.max_include_depth:
             raise InputError(f"includes nest deeper than {self.limits.max_include_depth} "
-                             "(see --max-include-depth)", asked_at or self.last_loc)
+                             "(see --max-include-depth or MYRABOT_DESC_MAX_INCLUDE_DEPTH)", asked_at or self.last_loc)
 
     def count_expansion(self, name, macros, symbols, loc) -> None:
         """Add the elements a macro call will produce; stop before a call bomb runs for hours
@@ -334,11 +334,11 @@ class _Build:
         self.calls += 1
         if self.calls > self.limits.max_macro_calls:
             raise InputError(f"over {self.limits.max_macro_calls} macro calls (macro '{name}'); is a macro "
-                             "calling others in a loop? (see --max-macro-calls)", loc or self.last_loc,
+                             "calling others in a loop? (see --max-macro-calls or MYRABOT_DESC_MAX_MACRO_CALLS)", loc or self.last_loc,
                              self._stack())
         if self.expanded > self.limits.max_output_elements:
             raise InputError(f"macro expansion produces over {self.limits.max_output_elements} elements "
-                             f"(macro '{name}'); is a macro calling others in a loop? (see --max-elements)",
+                             f"(macro '{name}'); is a macro calling others in a loop? (see --max-elements or MYRABOT_DESC_MAX_ELEMENTS)",
                              loc or self.last_loc, self._stack())
 
     def _stack(self) -> list[str]:
@@ -661,7 +661,7 @@ class _Hooks:
             name = node.tagName[6:]
             if len(b.call_stack) >= b.limits.max_macro_depth:
                 raise InputError(f"macro calls nest deeper than {b.limits.max_macro_depth} (macro '{name}'); "
-                                 "is a macro calling itself? (see --max-macro-depth)", loc or b.last_loc, b._stack())
+                                 "is a macro calling itself? (see --max-macro-depth or MYRABOT_DESC_MAX_MACRO_DEPTH)", loc or b.last_loc, b._stack())
             b.count_expansion(name, macros, symbols, loc)
             b.call_stack.append((name, loc))
             result = orig_macro(node, macros, symbols)

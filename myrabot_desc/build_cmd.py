@@ -17,8 +17,10 @@ from myrabot_desc.cli_common import guarded, input_options
 @click.option("--max-input-bytes", type=int, default=None, help="Largest input file accepted [20000000].")
 @click.option("--max-include-depth", type=int, default=None, help="Deepest include nesting [32].")
 @click.option("--max-macro-depth", type=int, default=None, help="Deepest macro call nesting [200].")
+@click.option("--max-macro-calls", type=int, default=None, help="Most macro calls in one build [20000].")
+@click.option("--max-elements", type=int, default=None, help="Most elements macros may produce [200000].")
 def build_cmd(inputs, output, deps, resolve_uris, allow_errors, max_input_bytes, max_include_depth,
-              max_macro_depth):
+              max_macro_depth, max_macro_calls, max_elements):
     """Expand a xacro file into URDF, with no ROS installed.
 
     FILE defaults to the bundled MYRAbot (xacro/myrabot.urdf.xacro). Files written
@@ -34,6 +36,12 @@ def build_cmd(inputs, output, deps, resolve_uris, allow_errors, max_input_bytes,
       myrabot-desc build robot.urdf.xacro use_gpu:=false -o robot.urdf
       myrabot-desc build old/myrabot.urdf.xacro --package-path old/ -o -
       myrabot-desc build robot.urdf.xacro --deps
+
+    \b
+    Limits (flags here, or for every command the environment):
+      MYRABOT_DESC_MAX_INPUT_BYTES, MYRABOT_DESC_MAX_INCLUDE_DEPTH,
+      MYRABOT_DESC_MAX_MACRO_DEPTH, MYRABOT_DESC_MAX_MACRO_CALLS, MYRABOT_DESC_MAX_ELEMENTS;
+      meshes: MYRABOT_DESC_MAX_MESH_BYTES [50000000], MYRABOT_DESC_MAX_MESH_TRIANGLES [2000000].
 
     \b
     Exit codes: 0 built; 1 built with errors (e.g. X002, nothing written);
@@ -58,6 +66,10 @@ def build_cmd(inputs, output, deps, resolve_uris, allow_errors, max_input_bytes,
             limits.max_include_depth = max_include_depth
         if max_macro_depth:
             limits.max_macro_depth = max_macro_depth
+        if max_macro_calls:
+            limits.max_macro_calls = max_macro_calls
+        if max_elements:
+            limits.max_output_elements = max_elements
         src = inputs.file
         if src is None:
             from myrabot_desc.loader import bundled_path  # imports the model classes (~25 ms): only when needed

@@ -50,6 +50,14 @@ Examples:
 
 FILE defaults to the bundled MYRAbot assembly. Exit codes: 0 ok, 1 findings
 (check) or failed verdict (sim), 2 input could not be processed.
+
+\b
+Model files are untrusted: ${} runs through an allow-list, files are read only
+from the model's folder and package roots, and these limits apply (environment):
+  MYRABOT_DESC_MAX_INPUT_BYTES [20000000]   MYRABOT_DESC_MAX_INCLUDE_DEPTH [32]
+  MYRABOT_DESC_MAX_MACRO_DEPTH [200]        MYRABOT_DESC_MAX_MACRO_CALLS [20000]
+  MYRABOT_DESC_MAX_ELEMENTS [200000]        MYRABOT_DESC_MAX_MESH_BYTES [50000000]
+  MYRABOT_DESC_MAX_MESH_TRIANGLES [2000000]
 """
 
 

@@ -1,4 +1,14 @@
-"""Linear-time node replacement for xacro's minidom expansion.
+"""Fast drop-ins for the slow parts of xacro 2.1.1's minidom expansion (hooked by build.py).
+
+* ``replace_node``/``remove_previous_comments``: linear-time node replacement (below);
+* ``make_eval_text``: xacro's eval_text with the token list of each string cached;
+* ``clone_node``: minidom's _clone_node for elements, text and comments, built directly;
+* ``eval_all``: xacro's eval_all statement for statement, without minidom's overhead;
+* ``pretty_xml``: ``toprettyxml(indent="  ")`` as xacro writes it, reading our source
+  annotations off in the same pass.
+
+Each one gives exactly xacro's result; tests/test_perf_equivalence.py compares the
+output byte for byte with plain xacro on a generated corpus and on every test xacro.
 
 xacro 2.1.1 replaces every macro call with ``parent.insertBefore(child, node)``
 per child, and minidom's insertBefore/removeChild locate nodes with

@@ -65,7 +65,9 @@ _MAX_CACHED = 512
 def load_mesh(g):
     """Load a mesh file as one trimesh.Trimesh with the URDF scale applied; str on failure (cached)."""
     try:
-        key = (str(g.path), g.path.stat().st_mtime_ns, tuple(g.scale))
+        from myrabot_desc import meshio
+
+        key = (str(g.path), g.path.stat().st_mtime_ns, tuple(g.scale), meshio.limits())
     except OSError as exc:
         return f"cannot read {g.path}: {exc.strerror}"
     if key not in _MESHES:

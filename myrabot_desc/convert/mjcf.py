@@ -402,6 +402,11 @@ def _check_depth(robot) -> None:
 
 
 def convert_mjcf(robot, output: str, base: str = "auto") -> MjcfResult:
+    import os
+
+    # We never render: without this, `import mujoco` loads pyGLFW, which spawns a Python
+    # subprocess to probe libglfw (a process per conversion, seen by the hardening audit).
+    os.environ.setdefault("MUJOCO_GL", "disable")
     try:
         import mujoco
     except ImportError:

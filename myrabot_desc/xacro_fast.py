@@ -234,15 +234,16 @@ def clone_node(node, deep, doc):
         clone.ownerDocument = doc
         clone.parentNode = clone.nextSibling = clone.previousSibling = None
         clone.tagName = clone.nodeName = qn
-        clone.prefix = _split(qn)[0]
+        clone.prefix = (_split_cache.get(qn) or _split(qn))[0]
         clone.namespaceURI = node.namespaceURI
         clone.childNodes = kids = _NodeList()
         src = node._attrs
         if src:
             attrs, attrs_ns = {}, {}
+            split = _split_cache.get
             for attr in src.values():
                 aq = attr._name
-                prefix, local = _split(aq)
+                prefix, local = split(aq) or _split(aq)
                 value = attr._value
                 a = _new(_Attr)
                 a.ownerElement = clone
@@ -447,6 +448,31 @@ def eval_all(node, macros, symbols):
 
 
 # ---------------------------------------------------------------- output
+def _escapers(write_data, attr_kw):
+    """(attribute, text) escaping functions equal to minidom's _write_data on this Python.
+
+    The plain replace chain of Python 3.11's _write_data is used when it gives the same
+    result on a probe holding every character any version escapes; otherwise (3.13 escapes
+    attributes differently) minidom's own function is called through a buffer.
+    """
+    import io
+
+    def chain(data):
+        return data.replace("&", "&amp;").replace("<", "&lt;").replace("\"", "&quot;").replace(">", "&gt;")
+
+    def via(**kw):
+        def esc(data):
+            buf = io.StringIO()
+            write_data(buf, data, **kw)
+            return buf.getvalue()
+        return esc
+
+    probe = "a&b<c>d\"e'f\rg\nh\ti&amp;"
+    exact_attr, exact_text = via(**attr_kw), via()
+    return (chain if exact_attr(probe) == chain(probe) else exact_attr,
+            chain if exact_text(probe) == chain(probe) else exact_text)
+
+
 def pretty_xml(doc, skip_attr=None, skip_suffix=None, marks=None) -> str:
     """``doc.toprettyxml(indent="  ")`` as xacro writes it (xmlutils.fixed_writexml), faster.
 
@@ -465,6 +491,7 @@ def pretty_xml(doc, skip_attr=None, skip_suffix=None, marks=None) -> str:
         raise RuntimeError("xacro no longer patches minidom's writexml; cannot reproduce its output")
     write_data = minidom._write_data
     kw = xu._WRITE_DATA_EXTRA_KWARGS
+    esc_attr, esc_text = _escapers(write_data, kw)
     Element, Text, Comment = minidom.Element, minidom.Text, minidom.Comment
     out = io.StringIO()
     w = out.write
@@ -483,7 +510,7 @@ def pretty_xml(doc, skip_attr=None, skip_suffix=None, marks=None) -> str:
                 if skip_suffix and a_name.endswith(skip_suffix):
                     continue
                 w(" %s=\"" % a_name)
-                write_data(out, attrs[a_name]._value, **kw)
+                w(esc_attr(attrs[a_name]._value))
                 w("\"")
         if marks is not None:
             marks.append(mark)
@@ -502,7 +529,7 @@ def pretty_xml(doc, skip_attr=None, skip_suffix=None, marks=None) -> str:
                     data = node._data
                     if not data or data.isspace():
                         continue
-                    write_data(out, "%s%s%s" % (inner, data, newl))
+                    w(esc_text("%s%s%s" % (inner, data, newl)))
                 elif k is Element:
                     element(node, inner)
                 elif k is Comment:

@@ -231,8 +231,10 @@ class _Build:
         after = "".join(etree.tostring(s, encoding="unicode") for s in original.itersiblings())
         if self.legacy != "off" and lg.needs_upgrade(root, self.macro_names):
             root, kinds = lg.upgrade(root, self.macro_names)
-            for kind, (count, line) in sorted(kinds.items()):
+            for kind, (count, line, names) in sorted(kinds.items()):
                 new = "xacro:" + kind.strip("<>") if kind.startswith("<") else "xacro:NAME"
+                if names:
+                    kind += " (" + ", ".join(f"<{n}>" for n in names[:4]) + (", ..." if len(names) > 4 else "") + ")"
                 times = f" ({count} times)" if count > 1 else ""
                 self.diagnostics.append(Diagnostic(
                     "X001", "warning", f"legacy {kind} upgraded to <{new}>{times}; xacro 2.x would copy it "

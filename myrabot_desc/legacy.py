@@ -82,7 +82,7 @@ def needs_upgrade(root, known_macros: set[str]) -> bool:
 
 
 def upgrade(root, known_macros: set[str]):
-    """Rename legacy elements in place; return (new_root, {kind: (count, first_line)}).
+    """Rename legacy elements in place; return (new_root, {kind: (count, first_line, macro names)}).
 
     ``new_root`` differs from ``root`` only when the xacro namespace had to be
     declared (files from the Electric era often have none).
@@ -91,7 +91,7 @@ def upgrade(root, known_macros: set[str]):
     if uri is None:
         root = _with_xacro_ns(root)
         uri = XACRO_NS
-    found: dict[str, list[int]] = {}
+    found: dict[str, list] = {}
     for el in list(root.iter()):
         if not is_plain(el):
             continue
@@ -103,9 +103,11 @@ def upgrade(root, known_macros: set[str]):
         else:
             continue
         el.tag = "{%s}%s" % (uri, tag)
-        entry = found.setdefault(kind, [0, el.sourceline or 0])
+        entry = found.setdefault(kind, [0, el.sourceline or 0, []])
         entry[0] += 1
-    return root, {k: (v[0], v[1]) for k, v in found.items()}
+        if kind == "bare macro call" and tag not in entry[2]:
+            entry[2].append(tag)
+    return root, {k: tuple(v) for k, v in found.items()}
 
 
 def _with_xacro_ns(root):

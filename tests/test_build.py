@@ -53,7 +53,7 @@ def test_legacy_constructs_are_reported_once_per_kind_and_file_with_lines():
     keys = [(d.loc.file, d.message.split(" upgraded")[0]) for d in x001]
     assert len(keys) == len(set(keys))
     top = {d.message.split(" upgraded")[0]: d.loc.line for d in x001 if d.loc.file.endswith("robot.urdf.xacro")}
-    assert top == {"legacy <include>": 8, "legacy <property>": 11, "legacy bare macro call": 13}
+    assert top == {"legacy <include>": 8, "legacy <property>": 11, "legacy bare macro call (<base>, <arm>)": 13}
     assert any("(2 times)" in d.message and d.loc.file.endswith("arm_macros.xacro") for d in x001)
 
 

@@ -190,3 +190,18 @@ def test_vetting_by_shape_agrees_with_the_full_vetting(expr):
             S._prepare_by_shape = saved
 
     assert outcome(True) == outcome(False)
+
+
+def test_build_cli_writes_what_the_xacro_cli_writes(tmp_path):
+    """The whole command (GC off, frozen exit, atomic write) against the stock `xacro` script."""
+    import subprocess
+
+    bindir = Path(sys.executable).parent
+    if not (bindir / "xacro").exists():
+        pytest.skip("the xacro console script is not installed next to this Python")
+    f = tmp_path / "flat.urdf.xacro"
+    f.write_text(SHAPES["flat"](300))
+    ours, theirs = tmp_path / "ours.urdf", tmp_path / "theirs.urdf"
+    subprocess.run([str(bindir / "myrabot-desc"), "build", str(f), "-o", str(ours)], check=True, capture_output=True)
+    subprocess.run([str(bindir / "xacro"), str(f), "-o", str(theirs)], check=True, capture_output=True)
+    assert ours.read_bytes() == theirs.read_bytes()

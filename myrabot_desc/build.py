@@ -286,7 +286,7 @@ class _Build:
                                  self.last_loc, self._stack()) from None
             except RuntimeError as exc:  # xmlutils.reqd_attrs raises RuntimeError for a missing attribute
                 raise InputError(str(exc), self.last_loc, self._stack()) from None
-            except (NameError, TypeError, ValueError, KeyError, AttributeError, ZeroDivisionError) as exc:
+            except (NameError, TypeError, ValueError, LookupError, AttributeError, ArithmeticError) as exc:
                 raise InputError(f"{type(exc).__name__}: {exc}", self.last_loc, self._stack()) from None
             self.deps = [str(self.src)] + [d for d in dict.fromkeys(xacro.all_includes)]
         self._xacro_warnings(chatter.getvalue())

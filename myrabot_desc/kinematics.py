@@ -99,3 +99,39 @@ def center_of_mass(robot: Robot, q: dict[str, float] | None = None) -> tuple[flo
         total += link.inertial.mass
         acc += link.inertial.mass * p
     return total, (acc / total if total > 0 else np.full(3, np.nan))
+
+
+def require_tree(robot: Robot) -> str:
+    """The root link, or InputError when the joints do not form one tree over the links.
+
+    check reports these as T-rules and goes on; commands that move the robot (sim) need a tree:
+    a joint naming a missing link, a link with two parents, a cycle or a second root would
+    otherwise surface as a KeyError deep inside.
+    """
+    from myrabot_desc.errors import InputError
+
+    parent_of: dict[str, str] = {}
+    for j in robot.joints.values():
+        for end in (j.parent, j.child):
+            if end not in robot.links:
+                raise InputError(f"joint '{j.name}' names link '{end}', which does not exist", j.loc)
+        if j.child in parent_of:
+            raise InputError(f"link '{j.child}' has two parent joints: a URDF must be a tree", j.loc)
+        parent_of[j.child] = j.name
+    roots = [n for n in robot.links if n not in parent_of]
+    if len(roots) != 1:
+        names = ", ".join(roots[:5]) if roots else "none: the joints form a cycle"
+        raise InputError(f"the model needs exactly one root link, it has {len(roots)} ({names})", robot.loc)
+    children: dict[str, list[str]] = {}
+    for j in robot.joints.values():
+        children.setdefault(j.parent, []).append(j.child)
+    seen, stack = set(), [roots[0]]
+    while stack:
+        n = stack.pop()
+        seen.add(n)
+        stack.extend(c for c in children.get(n, ()) if c not in seen)
+    if len(seen) != len(robot.links):
+        lost = sorted(set(robot.links) - seen)
+        raise InputError(f"links {', '.join(lost[:5])} are not reachable from the root '{roots[0]}' "
+                         "(the joints form a cycle)", robot.links[lost[0]].loc)
+    return roots[0]

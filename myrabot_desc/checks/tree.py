@@ -39,7 +39,8 @@ def no_cycle(ctx):
     """
     r = ctx.robot
     raw = [j for j in r.root_element.findall("joint")]
-    children = Counter(j.find("child").get("link") for j in raw if j.find("child") is not None)
+    children = Counter(j.find("child").get("link") for j in raw
+                       if j.find("child") is not None and j.find("child").get("link") is not None)
     for link, n in sorted(children.items()):
         if n > 1:
             js = [j.get("name") for j in raw if j.find("child") is not None and j.find("child").get("link") == link]

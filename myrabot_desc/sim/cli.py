@@ -57,6 +57,15 @@ def _finish(res, as_json, csv_path, plot_path):
     sys.exit(0 if res.passed else 1)
 
 
+def _load(inputs):
+    """The model, which must be one tree to move (a broken one fails here with file:line, not deep inside)."""
+    from myrabot_desc.kinematics import require_tree
+
+    robot = inputs.load()
+    require_tree(robot)
+    return robot
+
+
 def _runner(duration, progress_flag):
     """A progress callback (0…1) drawn on stderr when wanted, and its closer."""
     want = progress_flag if progress_flag is not None else (sys.stderr.isatty() and (duration or 0) >= 60)
@@ -128,7 +137,7 @@ def vuelta_cmd(inputs, duration, rate, as_json, csv_path, plot_path, progress, w
 
     duration = 25.0 if duration is None else duration
     with guarded():
-        robot = inputs.load()
+        robot = _load(inputs)
         prog, close = _runner(duration, progress)
         try:
             res = vuelta.run(robot, rate=rate, duration=duration, presses=presses or (1.0,),
@@ -172,7 +181,7 @@ def drive_cmd(inputs, duration, rate, as_json, csv_path, plot_path, progress, wh
     except ValueError as exc:
         raise click.BadParameter(str(exc), param_hint="--twist") from None
     with guarded():
-        robot = inputs.load()
+        robot = _load(inputs)
         prog, close = _runner(duration or sum(s for *_, s in script), progress)
         try:
             res = drive.run(robot, rate=rate, duration=duration, script=script, wheels=wheels,
@@ -244,7 +253,7 @@ def escoja_cmd(inputs, duration, rate, as_json, csv_path, plot_path, progress, l
     from myrabot_desc.sim import pointing
 
     with guarded():
-        robot = inputs.load()
+        robot = _load(inputs)
         objects = _layout("escoja", layout_path)
         prog, close = _runner(duration, progress)
         try:
@@ -292,7 +301,7 @@ def seguir_cmd(inputs, duration, rate, as_json, csv_path, plot_path, progress, l
     except ValueError as exc:
         raise click.BadParameter(str(exc), param_hint="--keys") from None
     with guarded():
-        robot = inputs.load()
+        robot = _load(inputs)
         objects = _layout("seguir", layout_path)
         prog, close = _runner(duration, progress)
         try:

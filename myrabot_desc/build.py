@@ -81,6 +81,7 @@ class BuildResult:
     deps: list[str]                     # files read (input, includes, YAML)
     source: Path
     package_roots: dict[str, Path] = field(default_factory=dict)
+    root: object = None                 # the URDF parsed with lxml (the loader reads this; one parse)
 
     @property
     def errors(self) -> list[Diagnostic]:
@@ -291,9 +292,9 @@ class _Build:
             self.deps = [str(self.src)] + [d for d in dict.fromkeys(xacro.all_includes)]
         self._xacro_warnings(chatter.getvalue())
         text, locations = self.render(doc)
-        self.check_unexpanded(text, locations)
+        root = self.check_unexpanded(text, locations)
         return BuildResult(text=text, locations=locations, diagnostics=self.diagnostics, deps=self.deps,
-                           source=self.src, package_roots=dict(self.resolver.used))
+                           source=self.src, package_roots=dict(self.resolver.used), root=root)
 
     def _xacro_warnings(self, text: str) -> None:
         counts: dict[str, int] = {}
@@ -364,27 +365,6 @@ class _Build:
         return InputError(msg, self.last_loc, self._stack())
 
     # ------------------------------------------------------------ after expansion
-    def finish(self, doc) -> list:  # kept for reference; render() now reads the annotations while writing
-        """Read the source annotations off in document order, and remove them."""
-        locations = []
-        count = 0
-        stack = [doc.documentElement]
-        while stack:
-            el = stack.pop()
-            count += 1
-            if count > self.limits.max_output_elements:
-                raise InputError(f"the expanded URDF has over {self.limits.max_output_elements} elements")
-            idx = el.getAttribute(SRC_ATTR) if el.hasAttribute(SRC_ATTR) else None
-            if idx is not None:
-                el.removeAttribute(SRC_ATTR)
-            for a in [a for a in el.attributes.keys() if a.endswith(":mdsrc")]:
-                el.removeAttribute(a)
-            locations.append(self.locs[int(idx)] if idx and idx.isdigit() and int(idx) < len(self.locs) else None)
-            kids = [c for c in el.childNodes if c.nodeType == c.ELEMENT_NODE]
-            stack.extend(reversed(kids))
-        # elements without an annotation (xacro:element) inherit their parent's location
-        return locations
-
     def render(self, doc) -> tuple[str, list]:
         """The URDF text as xacro writes it, and the source Loc (or None) of each element in document order.
 
@@ -409,8 +389,10 @@ class _Build:
         locations = [self.locs[int(m)] if m and m.isdigit() and int(m) < n else None for m in marks]
         return text, locations
 
-    def check_unexpanded(self, text: str, locations: list) -> None:
-        """X002: leftover macro calls / xacro keywords; X003: macro-only file; X004: bad package://."""
+    def check_unexpanded(self, text: str, locations: list):
+        """X002: leftover macro calls / xacro keywords; X003: macro-only file; X004: bad package://.
+
+        Returns the parsed URDF root, which the loader reuses."""
         from lxml import etree
 
         root = etree.fromstring(text.encode("utf-8"), parser=safe_parser())
@@ -459,6 +441,7 @@ class _Build:
                 self.diagnostics.append(Diagnostic(
                     "X004", "warning", f"package '{parts[0]}' of {uri} cannot be found (give -p "
                     f"{parts[0]}=PATH or --package-path)", loc_of.get(id(el))))
+        return root
 
 
 def display(path) -> str:
@@ -793,7 +776,3 @@ class _Hooks:
         xacro_fast.reset()
         xacro.substitution_args_context["arg"] = {}
         return False
-
-
-def deps_text(result: BuildResult) -> str:
-    return "\n".join(result.deps) + "\n"

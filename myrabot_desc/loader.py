@@ -57,13 +57,13 @@ def load_robot(path=None, **build_options) -> Robot:
 
         result = build_file(src, build_options.pop("mappings", None), **build_options)
         return read_urdf_text(result.text, src, locations=result.locations, package_roots=result.package_roots,
+                              root=result.root,
                               build_warnings=result.diagnostics, from_xacro=True,
                               packages=build_options.get("packages"),
                               package_paths=build_options.get("package_paths", ()))
     from myrabot_desc.build import Limits
 
-    limit = build_options.get("limits", Limits()).max_input_bytes if build_options.get("limits") else \
-        Limits().max_input_bytes
+    limit = (build_options.get("limits") or Limits()).max_input_bytes
     try:
         size = src.stat().st_size
         if size > limit:
@@ -84,10 +84,12 @@ def read_urdf_bytes(data: bytes, src: Path, packages=None, package_paths=()) -> 
 
 
 def read_urdf_text(text: str, src: Path, locations=None, package_roots=None, build_warnings=None,
-                   from_xacro=False, packages=None, package_paths=()) -> Robot:
+                   from_xacro=False, packages=None, package_paths=(), root=None) -> Robot:
+    """Read URDF text into a Robot; ``root`` is the text already parsed (the build hands it over)."""
     from myrabot_desc.build import parse_xml_bytes
 
-    root = parse_xml_bytes(text.encode("utf-8"), str(src))
+    if root is None:
+        root = parse_xml_bytes(text.encode("utf-8"), str(src))
     return _read(root, text, src, locations, package_roots or {}, list(build_warnings or []), from_xacro,
                  packages, package_paths)
 

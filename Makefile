@@ -46,5 +46,9 @@ test: install
 bench: install
 	@for b in bench/bench_*.py; do echo "== $$b"; $(BIN)/python $$b || exit 1; done
 
+# Hardening (issue 7): 10,000 mutated URDF/xacro/material cases through every command (~5 min, 2 workers).
+fuzz: install
+	$(BIN)/python bench/fuzz_long.py --cases 10000
+
 clean:
 	rm -rf $(OUT) .pytest_cache

@@ -169,7 +169,8 @@ def outside(opens: list[str], roots: list[Path]) -> list[str]:
 LOC_RE = re.compile(r"^(?P<file>[^\s:][^:]*?)(?::(?P<line>\d+))?: error: ", re.M)
 
 
-def problems(run: dict, command: str, expect: str, case_dir: Path, out_dir: Path, src: Path) -> list[str]:
+def problems(run: dict, command: str, expect: str, case_dir: Path, out_dir: Path, src: Path,
+             time_limit: float = TIME_LIMIT) -> list[str]:
     """Everything wrong with one run (empty = it behaved)."""
     errs = []
     text = (run["stderr"] or "") + (run["stdout"] or "")
@@ -180,7 +181,7 @@ def problems(run: dict, command: str, expect: str, case_dir: Path, out_dir: Path
         errs.append("traceback in the output")
     if "internal error" in text:
         errs.append("internal error: " + next(ln for ln in text.splitlines() if "internal error" in ln)[:300])
-    if run["seconds"] > TIME_LIMIT:
+    if run["seconds"] > time_limit:
         errs.append(f"took {run['seconds']:.1f} s")
     if run["events"]:
         errs.append(f"network/subprocess: {run['events'][:3]}")

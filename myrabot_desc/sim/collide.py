@@ -14,6 +14,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 
+# Distance queries cost ~10 collision tests each; the closest approach is found at the
+# joints' extremes (always probed) plus this many evenly spread poses.
+PROBES = 12
+
+
 @dataclass
 class CollisionReport:
     checked_configs: int
@@ -117,9 +122,9 @@ class ArmCollider:
         rep = CollisionReport(checked_configs=len(qarms), pairs=len(active), ignored=ignored)
         best = (np.inf, None)
         # distances (the closest approach, informative) cost ten times a collision test: take
-        # ~40 evenly spread poses plus each joint's extremes, where the arm reaches farthest
+        # PROBES evenly spread poses plus each joint's extremes, where the arm reaches farthest
         qa_all = np.asarray(qarms)
-        probe = set(np.linspace(0, len(qa_all) - 1, min(40, len(qa_all))).astype(int).tolist())
+        probe = set(np.linspace(0, len(qa_all) - 1, min(PROBES, len(qa_all))).astype(int).tolist())
         if len(qa_all):
             probe |= set(qa_all.argmin(axis=0).tolist()) | set(qa_all.argmax(axis=0).tolist())
         for i, (t, qa) in enumerate(zip(times, qarms)):

@@ -523,8 +523,9 @@ def _defined_nearby(name: str, src: Path, roots) -> str | None:
     folders = [src.parent] + [Path(r) for r in roots]
     seen = set()
     for folder in folders:
+        top = folder.resolve()
         for f in sorted(folder.rglob("*.xacro")) if folder.is_dir() else []:
-            if f in seen or len(seen) > 500:
+            if f in seen or len(seen) > 500 or not f.resolve().is_relative_to(top):  # no symlinks out
                 continue
             seen.add(f)
             try:

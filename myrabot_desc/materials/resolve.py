@@ -61,8 +61,9 @@ class ResolvedMaterial:
 def find_texture(script: Path, texture: str) -> Path | None:
     """The image for ``texture`` used by ``script``: ../textures, ./textures, or next to it."""
     d = script.parent
+    top = d.parent.resolve()    # the materials/ folder: scripts/ and textures/ (never ../../etc/passwd)
     for cand in (d.parent / "textures" / texture, d / "textures" / texture, d / texture):
-        if cand.is_file():
+        if cand.is_file() and cand.resolve().is_relative_to(top):
             return cand
     return None
 

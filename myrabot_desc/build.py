@@ -208,12 +208,15 @@ class _Build:
         s = re.sub(r"\$\(dirname\)", str(including.parent), s)
         if "$" in s or any(ch in s for ch in "*?["):
             return None
-        p = Path(s)
-        if not p.is_absolute():
-            p = including.parent / p
-            if not p.exists() and self.legacy == "on":
-                p = self.src.parent / s
-        return p if p.is_file() and self.allowed(p) else None
+        try:
+            p = Path(s)
+            if not p.is_absolute():
+                p = including.parent / p
+                if not p.exists() and self.legacy == "on":
+                    p = self.src.parent / s
+            return p if p.is_file() and self.allowed(p) else None
+        except (OSError, ValueError):   # a name too long for the file system: xacro reports it
+            return None
 
     # ------------------------------------------------------------ annotate + hand to minidom
     def load_dom(self, path: Path, asked_at: Loc | None):
@@ -287,6 +290,9 @@ class _Build:
                                  self.last_loc, self._stack()) from None
             except RuntimeError as exc:  # xmlutils.reqd_attrs raises RuntimeError for a missing attribute
                 raise InputError(str(exc), self.last_loc, self._stack()) from None
+            except OSError as exc:  # a 5000-character include name (ENAMETOOLONG), a folder...
+                name = _short(str(exc.filename or ""), 120)
+                raise InputError(f"cannot read {name}: {exc.strerror or exc}", self.last_loc, self._stack()) from None
             except (NameError, TypeError, ValueError, LookupError, AttributeError, ArithmeticError) as exc:
                 raise InputError(f"{type(exc).__name__}: {exc}", self.last_loc, self._stack()) from None
             self.deps = [str(self.src)] + [d for d in dict.fromkeys(xacro.all_includes)]

@@ -161,20 +161,26 @@ def _base_roots(base: Path) -> tuple[Path, ...]:
 
 def outside_roots(uri: str, package_roots: dict[str, Path], base: Path) -> Path | None:
     """The file ``uri`` names when it exists but lies outside :func:`resource_roots` (else None)."""
-    path = _resolve_any(uri, package_roots, base)
-    if path is None:
+    try:
+        path = _resolve_any(uri, package_roots, base)
+        if path is None:
+            return None
+        real = path.resolve()
+        return None if any(real.is_relative_to(r) for r in resource_roots(base, package_roots)) else path
+    except (OSError, ValueError):   # a 5000-character name, a NUL byte: no such file
         return None
-    real = path.resolve()
-    return None if any(real.is_relative_to(r) for r in resource_roots(base, package_roots)) else path
 
 
 def resolve_resource_uri(uri: str, package_roots: dict[str, Path], base: Path) -> Path | None:
     """Resolve a mesh/texture URI to a file inside :func:`resource_roots`, or None."""
-    path = _resolve_any(uri, package_roots, base)
-    if path is None:
+    try:
+        path = _resolve_any(uri, package_roots, base)
+        if path is None:
+            return None
+        real = path.resolve()
+        return path if any(real.is_relative_to(r) for r in resource_roots(base, package_roots)) else None
+    except (OSError, ValueError):   # a 5000-character name (ENAMETOOLONG), a NUL byte: no such file
         return None
-    real = path.resolve()
-    return path if any(real.is_relative_to(r) for r in resource_roots(base, package_roots)) else None
 
 
 def _resolve_any(uri: str, package_roots: dict[str, Path], base: Path) -> Path | None:

@@ -458,8 +458,18 @@ def make_tree():
         "gazebo_missing_ref": (link("a") + '<gazebo reference="ghost"><sensor type="camera" name="c">'
                                '<update_rate>nan</update_rate></sensor></gazebo>', "gazebo block for a missing link"),
     }
+    cases["child_no_link"] = (link("a") + link("b") + '<joint name="j" type="fixed"><parent link="a"/><child/>'
+                              '</joint>', "<child> without link= (found by the fuzzer: T002 crashed)")
     for stem, (body, what) in cases.items():
         add(f"tree/{stem}.urdf", urdf(body), "model", "defect", what)
+    # the diff-drive robot with a broken tree, so that sim drive gets past "no drive" (fuzzer finds)
+    add("tree/drive_island.urdf", robot(extra='\n  <link name="island"/>'), "model", "defect",
+        "diff-drive robot with a second root link (sim: KeyError before)")
+    add("tree/drive_wheel_ghost.urdf", robot().replace('<child link="left_wheel"/>', '<child link="ghost"/>'),
+        "model", "defect", "diff-drive robot whose wheel joint names a missing link (sim: KeyError before)")
+    add("tree/drive_wheel_cycle.urdf", robot(extra='\n  <joint name="loop" type="fixed"><parent link="arm"/>'
+                                                  '<child link="base_link"/></joint>'), "model", "defect",
+        "diff-drive robot with a joint closing a cycle to the base")
     chain = link("l0") + "".join(link(f"l{i}") + joint(f"j{i}", f"l{i - 1}", f"l{i}") for i in range(1, 1500))
     add("tree/long_chain.urdf", urdf(chain), "model", "warn", "a 1500-link serial chain (recursion depth)")
     big_cycle = "".join(link(f"c{i}") for i in range(300)) + "".join(
@@ -648,6 +658,11 @@ def make_paths():
                       '<link name="${y}"/>', "load_yaml of a symlink leaving the folder"),
         "find_arg_injection": ('<xacro:include filename="$(find $(arg p))/x.xacro"/>', "$(find $(arg))"),
     }
+    long = "x" * 5000
+    cases["include_long_name"] = (f'<xacro:include filename="{long}.xacro"/>',
+                                  "a 5000-character include name (ENAMETOOLONG; found by the fuzzer)")
+    cases["yaml_long_name"] = (f"<xacro:property name=\"y\" value=\"${{xacro.load_yaml('{long}.yaml')}}\"/>"
+                               '<link name="${y}"/>', "a 5000-character load_yaml name")
     add("paths/package.xml", "<package><name>bad_paths</name></package>\n", "asset", "-", "makes paths/ a package")
     for stem, (body, what) in cases.items():
         add(f"paths/{stem}.urdf.xacro", xacro(body + LINK), "model", "reject", what)
@@ -666,6 +681,8 @@ def make_paths():
     for stem, (uri, what) in meshes.items():
         add(f"paths/{stem}.urdf", robot(base_collision=f'<mesh filename="{uri}"/>'), "model", "defect",
             f"mesh {what}")
+    add("paths/mesh_long_name.urdf", robot(base_collision=f'<mesh filename="{long}.stl"/>'), "model", "defect",
+        "a 5000-character mesh name (every command crashed with ENAMETOOLONG; found by the fuzzer)")
     add("paths/texture_escape.urdf", robot(extra='\n  <material name="m"><texture filename="file:///etc/shadow"/>'
         "</material>"), "model", "warn", "texture file:///etc/shadow")
 

@@ -343,12 +343,12 @@ class _Build:
         self.calls += 1
         if self.calls > self.limits.max_macro_calls:
             raise InputError(f"over {self.limits.max_macro_calls} macro calls (macro '{name}'); is a macro "
-                             "calling others in a loop? (see --max-macro-calls or MYRABOT_DESC_MAX_MACRO_CALLS)", loc or self.last_loc,
-                             self._stack())
+                             "calling others in a loop? (see --max-macro-calls or MYRABOT_DESC_MAX_MACRO_CALLS)",
+                             loc or self.last_loc, self._stack())
         if self.expanded > self.limits.max_output_elements:
             raise InputError(f"macro expansion produces over {self.limits.max_output_elements} elements "
-                             f"(macro '{name}'); is a macro calling others in a loop? (see --max-elements or MYRABOT_DESC_MAX_ELEMENTS)",
-                             loc or self.last_loc, self._stack())
+                             f"(macro '{name}'); is a macro calling others in a loop? "
+                             "(see --max-elements or MYRABOT_DESC_MAX_ELEMENTS)", loc or self.last_loc, self._stack())
 
     def _stack(self) -> list[str]:
         out = []
@@ -653,7 +653,8 @@ class _Hooks:
             name = node.tagName[6:]
             if len(b.call_stack) >= b.limits.max_macro_depth:
                 raise InputError(f"macro calls nest deeper than {b.limits.max_macro_depth} (macro '{name}'); "
-                                 "is a macro calling itself? (see --max-macro-depth or MYRABOT_DESC_MAX_MACRO_DEPTH)", loc or b.last_loc, b._stack())
+                                 "is a macro calling itself? (see --max-macro-depth or MYRABOT_DESC_MAX_MACRO_DEPTH)",
+                                 loc or b.last_loc, b._stack())
             b.count_expansion(name, macros, symbols, loc)
             b.call_stack.append((name, loc))
             result = orig_macro(node, macros, symbols)

@@ -114,7 +114,8 @@ def test_reject_messages_name_the_file_and_line(corpus, tmp_path):
         "inject/factorial.urdf.xacro": r"factorial\.urdf\.xacro:4: error: X005 .*factorial\(\) of a number",
         "inject/percent_bomb.urdf.xacro": r"percent_bomb\.urdf\.xacro:4: error: X005 .*width",
         "inject/nested_repeat.urdf.xacro": r"nested_repeat\.urdf\.xacro:4: error: X005 .*too large",
-        "inject/long_expression.urdf.xacro": r"long_expression\.urdf\.xacro:4: error: X005 .*\(\d+ characters\)\}: expression nests too deeply",
+        "inject/long_expression.urdf.xacro":
+            r"long_expression\.urdf\.xacro:4: error: X005 .*\(\d+ characters\)\}: expression nests too deeply",
         "paths/include_dotdot.urdf.xacro": r"include_dotdot\.urdf\.xacro:3: error: X006 refusing to read",
         "paths/include_link.urdf.xacro": r"include_link\.urdf\.xacro:3: error: X006 refusing to read",
         "xacro/chain/include_depth_40.urdf.xacro": r"chain_3\d\.xacro:3: error: includes nest deeper than 32",

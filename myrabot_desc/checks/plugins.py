@@ -229,7 +229,8 @@ def wheel_size(ctx):
                 word = "diameter" if spec.diameter else "radius"
                 yield Finding(f"{key} {val:.3g} m, but wheel {j.child} (joint {j.name}) has a collision {word} of "
                               f"{real:.3g} m: the robot drives at "
-                              f"{f'{real / val:.3g}×' if val else 'an infinite multiple of'} the commanded speed", p.loc,
+                              f"{f'{real / val:.3g}×' if val else 'an infinite multiple of'} the commanded speed",
+                              p.loc,
                               {"plugin": p.name, "param": key, "value": val, "urdf": real, "fix": round(real, 6)})
                 break
 

@@ -37,7 +37,8 @@ demo: install
 	$(BIN)/myrabot-desc check --inertia
 	$(BIN)/myrabot-desc convert --to sdf -o $(OUT)/myrabot.sdf
 	$(BIN)/myrabot-desc convert --to world --layout escoja -o $(OUT)/escoja.sdf
-	$(BIN)/myrabot-desc sim vuelta --plot $(OUT)/vuelta.png --json > $(OUT)/vuelta.json
+	$(BIN)/myrabot-desc convert --to mjcf -o $(OUT)/mjcf/myrabot.xml
+	$(BIN)/myrabot-desc sim vuelta --plot $(OUT)/vuelta.png --csv $(OUT)/vuelta.csv
 	@echo "demo outputs in $(OUT)/"
 
 test: install

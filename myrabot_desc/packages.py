@@ -159,28 +159,28 @@ def _base_roots(base: Path) -> tuple[Path, ...]:
     return tuple(Path(r).resolve() for r in (own[1] if own else base.parent, base, data_root()))
 
 
-def outside_roots(uri: str, package_roots: dict[str, Path], base: Path) -> Path | None:
-    """The file ``uri`` names when it exists but lies outside :func:`resource_roots` (else None)."""
+def _locate(uri: str, package_roots: dict[str, Path], base: Path) -> tuple[Path | None, bool]:
+    """(the file ``uri`` names or None, whether it lies inside :func:`resource_roots`)."""
     try:
         path = _resolve_any(uri, package_roots, base)
         if path is None:
-            return None
+            return None, False
         real = path.resolve()
-        return None if any(real.is_relative_to(r) for r in resource_roots(base, package_roots)) else path
-    except (OSError, ValueError):   # a 5000-character name, a NUL byte: no such file
-        return None
+        return path, any(real.is_relative_to(r) for r in resource_roots(base, package_roots))
+    except (OSError, ValueError):   # a 5000-character name (ENAMETOOLONG), a NUL byte: no such file
+        return None, False
+
+
+def outside_roots(uri: str, package_roots: dict[str, Path], base: Path) -> Path | None:
+    """The file ``uri`` names when it exists but lies outside :func:`resource_roots` (else None)."""
+    path, inside = _locate(uri, package_roots, base)
+    return path if path is not None and not inside else None
 
 
 def resolve_resource_uri(uri: str, package_roots: dict[str, Path], base: Path) -> Path | None:
     """Resolve a mesh/texture URI to a file inside :func:`resource_roots`, or None."""
-    try:
-        path = _resolve_any(uri, package_roots, base)
-        if path is None:
-            return None
-        real = path.resolve()
-        return path if any(real.is_relative_to(r) for r in resource_roots(base, package_roots)) else None
-    except (OSError, ValueError):   # a 5000-character name (ENAMETOOLONG), a NUL byte: no such file
-        return None
+    path, inside = _locate(uri, package_roots, base)
+    return path if inside else None
 
 
 def _resolve_any(uri: str, package_roots: dict[str, Path], base: Path) -> Path | None:

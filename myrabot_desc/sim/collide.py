@@ -204,3 +204,23 @@ def coal_shape(g):
     if g.kind == "sphere":
         return coal.Sphere(g.radius)
     return None
+
+
+def collision_check(res, arm, t, arm_q, q_home, name: str, expected: str, scene=()) -> None:
+    """Check the run's arm poses for collisions and append the verdict line to ``res``."""
+    from myrabot_desc.sim.result import Check
+
+    tt, qq = unique_configs(t, arm_q)
+    col = ArmCollider(arm, scene)
+    rep = col.check(tt, qq, q_home)
+    detail = f"{rep.checked_configs} arm poses, {rep.pairs} pairs"
+    if rep.min_pair:
+        detail += f"; closest {rep.min_distance * 1000:.1f} mm ({rep.min_pair[0]} – {rep.min_pair[1]})"
+    if rep.ignored:
+        detail += f"; touching at home, ignored: {', '.join(a + ' – ' + b for a, b in rep.ignored[:3])}" \
+                  + (f" and {len(rep.ignored) - 3} more" if len(rep.ignored) > 3 else "")
+    res.notes.extend(col.notes)
+    first = rep.hits[0] if rep.hits else None
+    res.checks.append(Check(name, not rep.collided,
+                            "none" if not first else f"{first[1]} – {first[2]} at {first[0]:.3f} s", "",
+                            expected, detail))

@@ -80,22 +80,9 @@ def _base_track(robot, N, dt):
 
 
 def _collisions(res, arm, scene, q_home, label):
-    from myrabot_desc.sim.collide import ArmCollider, unique_configs
+    from myrabot_desc.sim.collide import collision_check
 
-    tt, qq = unique_configs(res.t, res.arm_q)
-    col = ArmCollider(arm, scene)
-    rep = col.check(tt, qq, q_home)
-    detail = f"{rep.checked_configs} arm poses, {rep.pairs} pairs"
-    if rep.min_pair:
-        detail += f"; closest {rep.min_distance * 1000:.1f} mm ({rep.min_pair[0]} – {rep.min_pair[1]})"
-    if rep.ignored:
-        detail += f"; touching at home, ignored: {', '.join(a + ' – ' + b for a, b in rep.ignored[:3])}" \
-                  + (f" and {len(rep.ignored) - 3} more" if len(rep.ignored) > 3 else "")
-    res.notes.extend(col.notes)
-    first = rep.hits[0] if rep.hits else None
-    res.checks.append(Check("collision", not rep.collided,
-                            "none" if not first else f"{first[1]} – {first[2]} at {first[0]:.3f} s", "",
-                            label, detail))
+    collision_check(res, arm, res.t, res.arm_q, q_home, "collision", label, scene)
 
 
 def run_escoja(robot, layout_objects, *, which="1", rate=1000.0, duration=None, select_at=0.5, hold=2.0,

@@ -172,24 +172,13 @@ def _verdict(res, robot, drive, arm, segments, commands, swing_cmds, dt, check_c
                             f"{reversals / (res.duration - t[k0]) * T_exp:.1f} swings per turn"))
     res.info["swing commands"] = swing_cmds
     # collisions of the arm with the structure
-    from myrabot_desc.sim.collide import ArmCollider, unique_configs
+    from myrabot_desc.sim.collide import collision_check, unique_configs
 
+    _, qq = unique_configs(t, res.arm_q)     # distinct arm poses, for the tip-over margin below
     q_home = np.array([sv.units_to_rad(sv.UNITS_HOME)] * len(arm.names))
-    tt, qq = unique_configs(t, res.arm_q)
     if check_collisions:
-        col = ArmCollider(arm)
-        rep = col.check(tt, qq, q_home)
-        detail = f"{rep.checked_configs} arm poses, {rep.pairs} arm/structure pairs"
-        if rep.min_pair:
-            detail += f"; closest {rep.min_distance * 1000:.1f} mm ({rep.min_pair[0]} – {rep.min_pair[1]})"
-        if rep.ignored:
-            detail += f"; touching at home, ignored: {', '.join(a + ' – ' + b for a, b in rep.ignored[:3])}" \
-                      + (f" and {len(rep.ignored) - 3} more" if len(rep.ignored) > 3 else "")
-        res.notes.extend(col.notes)
-        first = rep.hits[0] if rep.hits else None
-        res.checks.append(Check("arm collision", not rep.collided,
-                                "none" if not first else f"{first[1]} – {first[2]} at {first[0]:.3f} s", "",
-                                "no contact with the structure while swinging", detail))
+        collision_check(res, arm, t, res.arm_q, q_home, "arm collision",
+                        "no contact with the structure while swinging")
     # tip-over margin under the turn's centripetal acceleration
     sup = stability.support_polygon(robot, drive)
     mx, my = drive.urdf.axle_mid

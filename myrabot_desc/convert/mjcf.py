@@ -239,21 +239,16 @@ def prepare_urdf(robot, notes: Notes, base: str, mesh_dirname: str):
     for r in roots:
         link = robot.links.get(r)
         j_world = next((j for j in robot.joints.values() if j.parent == "world" and j.child == r), None)
+        kind = "floating" if free else ("fixed" if base == "fixed" else None)
+        if kind is not None:
+            if j_world is not None:
+                j_el = root.find(f"joint[@name='{j_world.name}']")
+                if j_el is not None:
+                    j_el.set("type", kind)
+            else:
+                _add_world_joint(root, r, kind)
         if free:
-            if j_world is not None:
-                j_el = root.find(f"joint[@name='{j_world.name}']")
-                if j_el is not None:
-                    j_el.set("type", "floating")
-            else:
-                _add_world_joint(root, r, "floating")
             moving_children.add(r)
-        elif base == "fixed":
-            if j_world is not None:
-                j_el = root.find(f"joint[@name='{j_world.name}']")
-                if j_el is not None:
-                    j_el.set("type", "fixed")
-            else:
-                _add_world_joint(root, r, "fixed")
     for name in moving_children:
         link = robot.links.get(name)
         if link is not None and link.mass <= 0 and name in links_xml:

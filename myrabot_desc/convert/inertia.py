@@ -14,40 +14,86 @@ finding; the converter warns and repairs.
 
 from __future__ import annotations
 
+import math
 
-def repaired(ine):
+from myrabot_desc.convert.common import Mat3, matmul3, transpose3
+
+# Pure Python like the transforms in common.py: a 3x3 symmetric eigenproblem is a few
+# Jacobi sweeps, far cheaper than importing numpy for it.
+
+
+def tensor(ine) -> Mat3:
+    """The 3x3 inertia matrix of a model.Inertial, in its inertial frame."""
+    return ((ine.ixx, ine.ixy, ine.ixz), (ine.ixy, ine.iyy, ine.iyz), (ine.ixz, ine.iyz, ine.izz))
+
+
+def eigh3(A) -> tuple[list[float], list[list[float]]]:
+    """Eigenvalues (ascending) and eigenvectors (columns of V) of a symmetric 3x3 matrix.
+
+    Cyclic Jacobi rotations: each zeroes one off-diagonal term; a handful of sweeps
+    reach machine precision for 3x3.
+    """
+    a = [list(map(float, r)) for r in A]
+    V = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+    scale = max(abs(x) for r in a for x in r) or 1.0
+    for _ in range(50):
+        off = abs(a[0][1]) + abs(a[0][2]) + abs(a[1][2])
+        if off <= 1e-17 * scale:
+            break
+        for p, q in ((0, 1), (0, 2), (1, 2)):
+            if a[p][q] == 0.0:
+                continue
+            theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q])
+            t = math.copysign(1.0, theta) / (abs(theta) + math.sqrt(theta * theta + 1.0))
+            c = 1.0 / math.sqrt(t * t + 1.0)
+            s = t * c
+            for k in range(3):       # a <- a J (columns p, q)
+                akp, akq = a[k][p], a[k][q]
+                a[k][p], a[k][q] = c * akp - s * akq, s * akp + c * akq
+            for k in range(3):       # a <- J^T a (rows p, q)
+                apk, aqk = a[p][k], a[q][k]
+                a[p][k], a[q][k] = c * apk - s * aqk, s * apk + c * aqk
+            for k in range(3):
+                vkp, vkq = V[k][p], V[k][q]
+                V[k][p], V[k][q] = c * vkp - s * vkq, s * vkp + c * vkq
+    order = sorted(range(3), key=lambda i: a[i][i])
+    return [a[i][i] for i in order], [[V[k][i] for i in order] for k in range(3)]
+
+
+def from_eigen(w, V) -> Mat3:
+    """V diag(w) V^T, symmetrised."""
+    M = matmul3([[V[i][j] * w[j] for j in range(3)] for i in range(3)], transpose3(V))
+    return tuple(tuple((M[i][j] + M[j][i]) / 2 for j in range(3)) for i in range(3))
+
+
+def repaired(ine) -> tuple[Mat3, bool]:
     """(tensor, changed) for a model.Inertial: the tensor itself when valid, else the repair."""
-    import numpy as np
-
-    I = ine.tensor()
+    I = tensor(ine)
     if ine.mass <= 0:
         return I, False
-    if abs(I).max() <= 1e-12:
+    if max(abs(x) for r in I for x in r) <= 1e-12:
         # a point mass: give it the inertia of a solid sphere of water of that mass
-        r = (3 * ine.mass / (4 * np.pi * 1000.0)) ** (1 / 3)
-        return np.eye(3) * 0.4 * ine.mass * r * r, True
-    w, V = np.linalg.eigh(I)
-    order = np.argsort(w)
-    w, V = w[order], V[:, order]
-    scale = max(abs(w).max(), 1e-12)
+        r = (3 * ine.mass / (4 * math.pi * 1000.0)) ** (1 / 3)
+        m = 0.4 * ine.mass * r * r
+        return ((m, 0.0, 0.0), (0.0, m, 0.0), (0.0, 0.0, m)), True
+    w, V = eigh3(I)
+    scale = max(max(abs(x) for x in w), 1e-12)
     tol = 1e-9 * scale
     changed = False
     if w[0] <= 0:
         # non-positive moment: make it a small positive fraction of the largest
-        w = np.maximum(w, 1e-6 * scale)
+        w = [max(x, 1e-6 * scale) for x in w]
         changed = True
     a, b, c = w
     if a + b < c - tol:
         f = c / (a + b) * (1 + 1e-9)    # a hair over, so rounding never lands below
-        a, b = a * f, b * f
-        w = np.array([a, b, c])
+        w = [a * f, b * f, c]
         changed = True
     if not changed:
         return I, False
-    fixed = V @ np.diag(w) @ V.T
-    return (fixed + fixed.T) / 2, True
+    return from_eigen(w, V), True
 
 
 def describe(ine, fixed) -> str:
     d = lambda M: f"({M[0][0]:.4g}, {M[1][1]:.4g}, {M[2][2]:.4g})"  # noqa: E731
-    return f"diagonal {d(ine.tensor())} -> {d(fixed)}"
+    return f"diagonal {d(tensor(ine))} -> {d(fixed)}"

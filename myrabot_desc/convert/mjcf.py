@@ -220,7 +220,7 @@ def prepare_urdf(robot, notes: Notes, base: str, mesh_dirname: str):
                     t = etree.SubElement(ine_el, "inertia")
                 for key, (a, b) in {"ixx": (0, 0), "ixy": (0, 1), "ixz": (0, 2), "iyy": (1, 1), "iyz": (1, 2),
                                     "izz": (2, 2)}.items():
-                    t.set(key, num(tensor[a, b]))
+                    t.set(key, num(tensor[a][b]))
     if prep.missing:
         shown = ", ".join(sorted(set(prep.missing))[:5])
         notes.warn(f"{len(prep.missing)} mesh geometry(ies) left out: file not found ({shown})")

@@ -16,7 +16,8 @@ from dataclasses import dataclass
 from lxml import etree
 
 from myrabot_desc.convert.appearance import Appearance, material_element
-from myrabot_desc.convert.common import Notes, comment, is_identity, pose_T, pose_text, pretty, sub
+from myrabot_desc.convert.common import (EYE3, IDENTITY, Notes, comment, compose, is_identity, matmul3, pose_T,
+                                         pose_text, pretty, sub, transpose3)
 from myrabot_desc.convert.gazebo import GazeboProps
 from myrabot_desc.convert.inertia import describe, repaired
 from myrabot_desc.convert.sensors import translate_sensor
@@ -50,8 +51,6 @@ class SdfResult:
 
 def _inertial_el(parent, members, host_T, repairs):
     """One SDF <inertial> for the link's members (a single one kept as written, several combined)."""
-    import numpy as np
-
     parts = []
     for m in members:
         ine = m.inertial
@@ -60,7 +59,7 @@ def _inertial_el(parent, members, host_T, repairs):
         tensor, changed = repaired(ine)
         if changed:
             repairs.append(f"{m.name} {describe(ine, tensor)}")
-        parts.append((ine, host_T[m.name] @ pose_T(ine.origin), tensor))
+        parts.append((ine, compose(host_T[m.name], pose_T(ine.origin)), tensor))
     if not parts:
         return None
     el = sub(parent, "inertial")
@@ -69,25 +68,26 @@ def _inertial_el(parent, members, host_T, repairs):
         if not is_identity(T):
             sub(el, "pose", pose_text(T))
         sub(el, "mass", ine.mass)
-        I = {"ixx": t[0, 0], "ixy": t[0, 1], "ixz": t[0, 2], "iyy": t[1, 1], "iyz": t[1, 2], "izz": t[2, 2]}
     else:
+        # parallel axis theorem about the combined centre of mass, in the host link's axes
         M = sum(i.mass for i, _, _ in parts)
-        com = sum(i.mass * T[:3, 3] for i, T, _ in parts) / M
-        total = np.zeros((3, 3))
-        for i, T, t in parts:
-            R = T[:3, :3]
-            d = T[:3, 3] - com
-            total += R @ t @ R.T + i.mass * (d @ d * np.eye(3) - np.outer(d, d))
-        T = np.eye(4)
-        T[:3, 3] = com
+        com = tuple(sum(i.mass * T[1][k] for i, T, _ in parts) / M for k in range(3))
+        t = [[0.0] * 3 for _ in range(3)]
+        for i, (R, p), ti in parts:
+            d = [p[k] - com[k] for k in range(3)]
+            dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
+            rt = matmul3(matmul3(R, ti), transpose3(R))
+            for a in range(3):
+                for b in range(3):
+                    t[a][b] += rt[a][b] + i.mass * ((dd if a == b else 0.0) - d[a] * d[b])
+        T = (EYE3, com)
         if not is_identity(T):
             sub(el, "pose", pose_text(T))
         sub(el, "mass", M)
-        I = {"ixx": total[0, 0], "ixy": total[0, 1], "ixz": total[0, 2],
-             "iyy": total[1, 1], "iyz": total[1, 2], "izz": total[2, 2]}
     inertia = sub(el, "inertia")
-    for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz"):
-        sub(inertia, k, I[k])
+    for k, (a, b) in (("ixx", (0, 0)), ("ixy", (0, 1)), ("ixz", (0, 2)), ("iyy", (1, 1)), ("iyz", (1, 2)),
+                      ("izz", (2, 2))):
+        sub(inertia, k, t[a][b])
     return el
 
 
@@ -143,8 +143,6 @@ def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = Non
         sub(model, "self_collide", sc)
 
     # ---- which link hosts each URDF link (itself, or the link it is lumped into)
-    import numpy as np
-
     host: dict[str, str] = {}
     host_T: dict[str, object] = {}
     lumped_joints = []
@@ -153,7 +151,7 @@ def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = Non
         children.setdefault(j.parent, []).append(j)
     order = [r for r in robot.roots]
     for r in order:
-        host[r], host_T[r] = r, np.eye(4)
+        host[r], host_T[r] = r, IDENTITY
     i = 0
     while i < len(order):
         parent = order[i]
@@ -164,14 +162,14 @@ def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = Non
             if (opts.lump and j.type == "fixed" and parent not in world_links
                     and not props.preserve_fixed(j.name)):
                 host[j.child] = host[parent]
-                host_T[j.child] = host_T[parent] @ pose_T(j.origin)
+                host_T[j.child] = compose(host_T[parent], pose_T(j.origin))
                 lumped_joints.append(j)
             else:
-                host[j.child], host_T[j.child] = j.child, np.eye(4)
+                host[j.child], host_T[j.child] = j.child, IDENTITY
             order.append(j.child)
     for n in robot.links:          # links outside the tree (cycles): keep them as they are
         if n not in host:
-            host[n], host_T[n] = n, np.eye(4)
+            host[n], host_T[n] = n, IDENTITY
 
     kept = [n for n in robot.links if host[n] == n and n not in world_links]
     members = {n: [robot.links[m] for m in robot.links if host[m] == n] for n in kept}
@@ -230,7 +228,7 @@ def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = Non
                     continue
                 vname = _part_name(n, m.name, v.name, "visual", k, lumped)
                 ve = sub(el, "visual", name=vname)
-                P = T @ pose_T(v.origin)
+                P = compose(T, pose_T(v.origin))
                 if not is_identity(P):
                     sub(ve, "pose", pose_text(P))
                 _geometry_el(ve, v.geometry, uris)
@@ -245,7 +243,7 @@ def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = Non
                     continue
                 cname = _part_name(n, m.name, c.name, "collision", k, lumped)
                 ce = sub(el, "collision", name=cname)
-                P = T @ pose_T(c.origin)
+                P = compose(T, pose_T(c.origin))
                 if not is_identity(P):
                     sub(ce, "pose", pose_text(P))
                 _geometry_el(ce, c.geometry, uris)
@@ -257,7 +255,7 @@ def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = Non
                     comment(el, text)
                 if so.element is None:
                     continue
-                P = host_T[so.link] @ so.T
+                P = compose(host_T[so.link], so.T)
                 old = so.element.find("pose")
                 if old is not None:
                     so.element.remove(old)
@@ -306,7 +304,7 @@ def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = Non
             parent = "world"
         else:
             parent = host[j.parent]
-            sub(je, "pose", pose_text(host_T[j.parent] @ pose_T(j.origin)), relative_to=parent)
+            sub(je, "pose", pose_text(compose(host_T[j.parent], pose_T(j.origin))), relative_to=parent)
         sub(je, "parent", parent)
         sub(je, "child", j.child)
         axis = None

@@ -25,7 +25,7 @@ SONAR_NOTE = ("gz-sim has no sonar sensor: this is a narrow gpu_lidar with the s
 @dataclass
 class SensorOut:
     link: str                       # the URDF link it is attached to
-    T: object                       # 4x4 pose in that link's frame
+    T: object                       # pose in that link's frame: a common.Tf (R, p)
     element: object                 # the <sensor> element
     comments: list[str] = field(default_factory=list)
     source: str = ""                # 'electric' | 'sdf' | 'controller'

@@ -12,10 +12,12 @@
 from __future__ import annotations
 
 import copy
+import math
 
 from lxml import etree
 
-from myrabot_desc.convert.common import local, num, sub, to_bool, to_float, xml_text
+from myrabot_desc.convert.common import (IDENTITY, compose, local, num, pose_T, rotate, sub, to_bool, to_float,
+                                         xml_text)
 from myrabot_desc.convert.sensors import imu_from_plugin, plugin_kind, pparam, ros_namespace, ros_remap
 
 DIFF_DRIVE = ("gz-sim-diff-drive-system", "gz::sim::systems::DiffDrive")
@@ -25,14 +27,10 @@ POSITION = ("gz-sim-joint-position-controller-system", "gz::sim::systems::JointP
 
 def link_transforms(robot):
     """World transform of every link at q = 0 (joint origins only)."""
-    import numpy as np
-
-    from myrabot_desc.convert.common import pose_T
-
     out = {}
     todo = list(robot.roots)
     for r in todo:
-        out[r] = np.eye(4)
+        out[r] = IDENTITY
     children = {}
     for j in robot.joints.values():
         children.setdefault(j.parent, []).append(j)
@@ -41,7 +39,7 @@ def link_transforms(robot):
         for j in children.get(link, []):
             if j.child in out:
                 continue
-            out[j.child] = out[link] @ pose_T(j.origin)
+            out[j.child] = compose(out[link], pose_T(j.origin))
             todo.append(j.child)
     return out
 
@@ -62,21 +60,17 @@ def wheel_radius(robot, joint_name):
 
 def wheel_separation(robot, left, right, transforms):
     """Distance between the two wheel joints along the left wheel's axis (the track width)."""
-    import numpy as np
-
-    from myrabot_desc.convert.common import pose_T
-
     jl, jr = robot.joints.get(left), robot.joints.get(right)
     if jl is None or jr is None or jl.parent not in transforms or jr.parent not in transforms:
         return None
-    Tl = transforms[jl.parent] @ pose_T(jl.origin)
-    Tr = transforms[jr.parent] @ pose_T(jr.origin)
-    axis = Tl[:3, :3] @ np.asarray(jl.axis, dtype=float)
-    n = np.linalg.norm(axis)
-    d = Tl[:3, 3] - Tr[:3, 3]
+    Rl, pl = compose(transforms[jl.parent], pose_T(jl.origin))
+    _, pr = compose(transforms[jr.parent], pose_T(jr.origin))
+    axis = rotate(Rl, [float(v) for v in jl.axis])
+    n = math.hypot(*axis)
+    d = [pl[k] - pr[k] for k in range(3)]
     if n < 1e-9:
-        return float(np.linalg.norm(d))
-    return float(abs(d @ axis / n))
+        return math.hypot(*d)
+    return abs(sum(d[k] * axis[k] for k in range(3)) / n)
 
 
 class Systems:

@@ -52,6 +52,13 @@ def rad_to_units(q: float) -> int:
     return int(((q + OFFSET) * 180 / PI) * 1023 / 300)
 
 
+def rad_to_units_array(q):
+    """``rad_to_units`` of every element (numpy, the same operations in the same order: same numbers)."""
+    import numpy as np
+
+    return np.trunc(((q + OFFSET) * 180 / PI) * 1023 / 300)
+
+
 def units_for_angle(q: float, mode: str = "nearest") -> int:
     """Units to command for a joint angle.
 
@@ -112,6 +119,15 @@ class Servo:
         step = s * (t - t0)
         return goal if abs(d) <= step else q0 + math.copysign(step, d)
 
+    def at_many(self, times):
+        """``at`` at each of ``times`` (numpy; the same operations, so the same numbers)."""
+        import numpy as np
+
+        t0, q0, goal, s = self.segments[-1]
+        d = goal - q0
+        step = s * (np.asarray(times, dtype=float) - t0)
+        return np.where(abs(d) <= step, goal, q0 + np.copysign(step, d))
+
     def command(self, t: float, goal: float, speed: float | None = None) -> None:
         q = self.at(t)
         self.segments.append((float(t), q, self._clamp(float(goal)), self.speed if speed is None else float(speed)))
@@ -126,11 +142,11 @@ class Servo:
         import numpy as np
 
         times = np.asarray(times, dtype=float)
-        starts = np.array([s[0] for s in self.segments])
-        idx = np.searchsorted(starts, times, side="right") - 1
-        idx = np.clip(idx, 0, len(self.segments) - 1)
-        seg = np.array(self.segments)
-        t0, q0, goal, s = seg[idx, 0], seg[idx, 1], seg[idx, 2], seg[idx, 3]
-        d = goal - q0
-        step = s * np.maximum(times - t0, 0.0)
-        return q0 + np.clip(d, -step, step)
+        out = np.empty(len(times))
+        # segment i holds from its start until the next one starts (the first also before it)
+        cuts = [0, *np.searchsorted(times, [s[0] for s in self.segments[1:]], side="left").tolist(), len(times)]
+        for (t0, q0, goal, s), a, b in zip(self.segments, cuts, cuts[1:]):
+            if b > a:
+                step = s * np.maximum(times[a:b] - t0, 0.0)
+                out[a:b] = q0 + np.clip(goal - q0, -step, step)
+        return out

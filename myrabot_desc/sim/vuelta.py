@@ -62,6 +62,7 @@ def run(robot, *, rate=1000.0, duration=25.0, presses=(1.0,), feedback_rate=100.
     pi = 0
     n_msgs = N // every + 1
     report_every = max(1, n_msgs // 50)
+    reported = -1
 
     def publish(t, targets):
         for i, u in enumerate(targets):
@@ -71,7 +72,12 @@ def run(robot, *, rate=1000.0, duration=25.0, presses=(1.0,), feedback_rate=100.
                     servos[i].command(t, goal)
                 commands.append((t, i, u))
 
-    for m in range(n_msgs):
+    # Message by message, but only the messages at which something can happen: a press, the
+    # swing's next command, or the base reading entering the ±TOL window (found in one
+    # vectorised pass over the messages in between, with the same arithmetic as a step by step loop).
+    press_msgs = [-(-ks // every) for ks in press_steps]      # a press is handled at the first message at or after it
+    m = 0
+    while m < n_msgs:
         k = m * every
         t = k * dt
         while pi < len(press_steps) and press_steps[pi] <= k:     # start_button callbacks first
@@ -103,8 +109,17 @@ def run(robot, *, rate=1000.0, duration=25.0, presses=(1.0,), feedback_rate=100.
                     swing_cmds += 1
                 else:
                     cont1 = 1
-        if progress and m % report_every == 0:
+        if progress and m // report_every > reported:
+            reported = m // report_every
             progress(0.6 * m / n_msgs)
+        # the next message that can change anything
+        nxt = min(press_msgs[pi], n_msgs) if pi < len(press_msgs) else n_msgs
+        if encendido != 1:
+            m = nxt                                    # off: nothing happens until a press
+        elif cont1 == 1:
+            m += 1                                     # the next message commands TARGET_A
+        else:
+            m = _first_in_window(servos[0], move[0], m + 1, nxt, every, dt)
 
     base = integrate(drive, segments, N, dt)
     t = base.t
@@ -128,6 +143,28 @@ def run(robot, *, rate=1000.0, duration=25.0, presses=(1.0,), feedback_rate=100.
     res.footprint = footprint(robot)
     res.wall = time.perf_counter() - wall0
     return res
+
+
+def _first_in_window(servo, target, lo, hi, every, dt):
+    """First message in [lo, hi) whose base reading is strictly within ±TOL of ``target`` (else hi).
+
+    Evaluates the same expressions as the per-message check (Servo.at, rad_to_units) on
+    a block of message times at once; once the servo has arrived the reading stays.
+    """
+    import numpy as np
+
+    goal = servo.segments[-1][2]
+    while lo < hi:
+        m = np.arange(lo, min(hi, lo + 512))
+        q = servo.at_many((m * every) * dt)
+        p = sv.rad_to_units_array(q)
+        ok = ((p - TOL) < target) & (target < (p + TOL))
+        if ok.any():
+            return int(m[ok.argmax()])
+        if q[-1] == goal:
+            return hi
+        lo = int(m[-1]) + 1
+    return hi
 
 
 def _verdict(res, robot, drive, arm, segments, commands, swing_cmds, dt, check_collisions):

@@ -87,7 +87,7 @@ def transform(xyz=(0.0, 0.0, 0.0), rpy=(0.0, 0.0, 0.0)) -> Tf:
 
 def pose_T(pose) -> Tf:
     """Transform of a model.Pose (or None = identity)."""
-    if pose is None:
+    if pose is None or pose.is_identity:
         return IDENTITY
     return transform(pose.xyz, pose.rpy)
 
@@ -109,6 +109,10 @@ def rotate(R, v) -> tuple[float, float, float]:
 
 def compose(A: Tf, B: Tf) -> Tf:
     """A then B in A's frame: the 4x4 product A @ B."""
+    if B is IDENTITY:       # most origins are identities: skip the arithmetic
+        return A
+    if A is IDENTITY:
+        return B
     Ra, pa = A
     Rb, pb = B
     q = rotate(Ra, pb)
@@ -140,6 +144,8 @@ def pose_text(T: Tf) -> str:
 
 
 def is_identity(T: Tf, tol: float = 1e-12) -> bool:
+    if T is IDENTITY:
+        return True
     R, p = T
     return (all(abs(v) <= tol for v in p)
             and all(abs(R[i][j] - (1.0 if i == j else 0.0)) <= tol for i in range(3) for j in range(3)))
@@ -148,7 +154,10 @@ def is_identity(T: Tf, tol: float = 1e-12) -> bool:
 # ---------------------------------------------------------------- XML
 def sub(parent, tag: str, text=None, **attrs):
     """Append a child element; ``text`` may be a str, a number or a sequence of numbers."""
-    el = etree.SubElement(parent, tag, {k.rstrip("_"): str(v) for k, v in attrs.items() if v is not None})
+    if attrs:
+        el = etree.SubElement(parent, tag, {k.rstrip("_"): str(v) for k, v in attrs.items() if v is not None})
+    else:
+        el = etree.SubElement(parent, tag)
     if text is not None:
         if isinstance(text, bool):
             el.text = "true" if text else "false"

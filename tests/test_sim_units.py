@@ -96,3 +96,19 @@ def test_support_polygon_and_margin():
     assert margin(sup, (0, 0, 0.2)) == pytest.approx(0.13 / math.sqrt(2))
     # a lateral 1 g pushes the loaded point 0.2 m outward: out of the diamond
     assert margin(sup, (0, 0, 0.2), (0, 9.81)) == pytest.approx((0.13 - 0.2) / math.sqrt(2))
+
+
+@given(st.lists(st.tuples(st.floats(0.0, 3.0), st.floats(-2.5, 2.5)), min_size=1, max_size=6),
+       st.floats(0.1, 5.0))
+def test_servo_vectorised_matches_the_scalar_formulas(cmds, speed):
+    """at_many and rad_to_units_array give the very numbers of at and rad_to_units, and
+    positions equals at between commands (vuelta's message search relies on both)."""
+    s = sv.Servo(0.0, speed, -2.6, 2.6)
+    for t, goal in sorted(cmds):
+        s.command(t, goal)
+    t0 = s.segments[-1][0]
+    times = t0 + np.linspace(0.0, 3.0, 301)
+    q = s.at_many(times)
+    assert q.tolist() == [s.at(float(t)) for t in times]
+    assert sv.rad_to_units_array(q).tolist() == [sv.rad_to_units(float(x)) for x in q]
+    assert s.positions(times) == pytest.approx(q, abs=1e-15)

@@ -17,6 +17,9 @@ from pathlib import Path
 # Distance queries cost ~10 collision tests each; the closest approach is found at the
 # joints' extremes (always probed) plus this many evenly spread poses.
 PROBES = 12
+# The closest-approach search skips a pair whose bounding boxes are farther apart than the
+# closest distance found so far plus this much (room for the distance solver's tolerance).
+SLACK = 1e-3
 
 
 @dataclass
@@ -98,6 +101,16 @@ class ArmCollider:
             for b in self.other_objs:
                 gm.addCollisionPair(pin.CollisionPair(a, b))
         self.gdata = pin.GeometryData(gm)
+        cold_gjk(self.gdata)
+        # Broadphase: Pinocchio's manager runs the exact test only on the active pairs whose
+        # bounding boxes overlap (it says whether any pair collides, not which)
+        self.broadphase = pin.BroadPhaseManager_NaiveCollisionManager(model, gm, self.gdata)
+        # local bounding boxes (centre, half extents) of every object, for distance lower bounds
+        self.box = {}
+        for i in self.arm_objs + self.other_objs:
+            bb = gm.geometryObjects[i].geometry.aabb_local
+            lo, hi = np.asarray(bb.min_), np.asarray(bb.max_)
+            self.box[i] = ((lo + hi) / 2, (hi - lo) / 2)
         self.np = np
         self.coal = coal
 
@@ -120,33 +133,80 @@ class ArmCollider:
             else:
                 active.append(k)
         rep = CollisionReport(checked_configs=len(qarms), pairs=len(active), ignored=ignored)
-        best = (np.inf, None)
-        # distances (the closest approach, informative) cost ten times a collision test: take
-        # PROBES evenly spread poses plus each joint's extremes, where the arm reaches farthest
-        qa_all = np.asarray(qarms)
-        probe = set(np.linspace(0, len(qa_all) - 1, min(PROBES, len(qa_all))).astype(int).tolist())
-        if len(qa_all):
-            probe |= set(qa_all.argmin(axis=0).tolist()) | set(qa_all.argmax(axis=0).tolist())
-        for i, (t, qa) in enumerate(zip(times, qarms)):
-            q = self.arm.full_q(qa)
-            if pin.computeCollisions(model, data, gm, gd, q, False):     # True if any active pair hits
-                for k in active:
-                    if gd.collisionResults[k].isCollision():
-                        cp = gm.collisionPairs[k]
-                        rep.hits.append((float(t), self._name(cp.first), self._name(cp.second)))
-            if i in probe:
-                pin.computeDistances(model, data, gm, gd, q)
-                ds = [gd.distanceResults[k].min_distance for k in active]
-                if ds:
-                    j = int(np.argmin(ds))
-                    if ds[j] < best[0]:
-                        cp = gm.collisionPairs[active[j]]
-                        best = (ds[j], (self._name(cp.first), self._name(cp.second)))
-        for k in range(len(gm.collisionPairs)):
-            gd.activateCollisionPair(k)
-        if best[1] is not None:
-            rep.min_distance, rep.min_pair = float(best[0]), best[1]
+        try:
+            for t, qa in zip(times, qarms):
+                q = self.arm.full_q(qa)
+                if pin.computeCollisions(model, data, self.broadphase, q, False):   # True if any active pair hits
+                    pin.computeCollisions(model, data, gm, gd, q, False)          # every active pair: which
+                    for k in active:
+                        if gd.collisionResults[k].isCollision():
+                            cp = gm.collisionPairs[k]
+                            rep.hits.append((float(t), self._name(cp.first), self._name(cp.second)))
+            # distances (the closest approach, informative) cost ten times a collision test: take
+            # PROBES evenly spread poses plus each joint's extremes, where the arm reaches farthest
+            qa_all = np.asarray(qarms)
+            probe = set(np.linspace(0, len(qa_all) - 1, min(PROBES, len(qa_all))).astype(int).tolist())
+            if len(qa_all):
+                probe |= set(qa_all.argmin(axis=0).tolist()) | set(qa_all.argmax(axis=0).tolist())
+            best = self._closest([qa_all[i] for i in sorted(probe)], active)
+        finally:
+            for k in range(len(gm.collisionPairs)):
+                gd.activateCollisionPair(k)
+        if best is not None:
+            cp = gm.collisionPairs[best[1]]
+            rep.min_distance, rep.min_pair = float(best[0]), (self._name(cp.first), self._name(cp.second))
         return rep
+
+    def _closest(self, poses, active):
+        """(distance, pair) of the closest approach over ``poses``: the smallest distance, on a tie
+        the earlier pose and then the earlier pair (what a full scan in that order keeps).
+
+        Every (pose, pair) gets a lower bound, the gap between the two objects' bounding
+        boxes in the root frame (none when the boxes overlap: the distance is negative when
+        the objects penetrate); distances are computed in the order of those bounds until
+        the next bound exceeds the best distance found (+ SLACK).
+        """
+        import pinocchio as pin
+
+        np = self.np
+        if not poses or not active:
+            return None
+        model, data, gm, gd = self.arm.model, self.arm.data, self.gmodel, self.gdata
+        first = [gm.collisionPairs[k].first for k in active]
+        second = [gm.collisionPairs[k].second for k in active]
+        objs = sorted(set(first) | set(second))
+        col = {i: n for n, i in enumerate(objs)}
+        ia, ib = [col[i] for i in first], [col[i] for i in second]
+        moving = [col[i] for i in objs if i in set(self.arm_objs)]
+        centre, half = np.empty((len(objs), 3)), np.empty((len(objs), 3))
+
+        def place(qa, which):
+            pin.updateGeometryPlacements(model, data, gm, gd, self.arm.full_q(qa))
+            for n in which:
+                M = gd.oMg[objs[n]]
+                c, h = self.box[objs[n]]
+                centre[n] = M.rotation @ c + M.translation
+                half[n] = np.abs(M.rotation) @ h
+
+        lbs = []
+        for p, qa in enumerate(poses):           # objects off the arm stay where they are
+            place(qa, range(len(objs)) if p == 0 else moving)
+            gap = np.maximum(np.abs(centre[ia] - centre[ib]) - half[ia] - half[ib], 0.0)
+            d = np.sqrt((gap * gap).sum(axis=1))
+            lbs.append(np.where(d > 0, d, -np.inf))     # overlapping boxes: any depth of penetration
+        lb = np.concatenate(lbs)
+        best = (np.inf, 0, 0)
+        placed = None
+        for flat in np.argsort(lb, kind="stable").tolist():
+            if lb[flat] > best[0] + SLACK:
+                break
+            p, j = divmod(flat, len(active))
+            if p != placed:
+                pin.updateGeometryPlacements(model, data, gm, gd, self.arm.full_q(poses[p]))
+                placed = p
+            d = pin.computeDistance(gm, gd, active[j]).min_distance
+            best = min(best, (d, p, j))
+        return None if best[0] == np.inf else (best[0], active[best[2]])
 
 
 def unique_configs(t, q, resolution: float = 0.005, limit: int = 1500):
@@ -170,6 +230,18 @@ def unique_configs(t, q, resolution: float = 0.005, limit: int = 1500):
     if len(first) > limit:
         first = first[np.linspace(0, len(first) - 1, limit).astype(int)]
     return t[first], q[first]
+
+
+def cold_gjk(gdata):
+    """No GJK warm start from a pair's previous query: Pinocchio turns it on, and then a result
+    depends on the poses checked before (a 0.3 mm penetration of the gripper into the webcam
+    optics went unseen after about one pose in 50)."""
+    import warnings
+
+    with warnings.catch_warnings():         # coal deprecates the flag, but it is what turns the cache on
+        warnings.simplefilter("ignore", DeprecationWarning)
+        for r in (*gdata.collisionRequests, *gdata.distanceRequests):
+            r.enable_cached_gjk_guess = False
 
 
 def _primitives_only(model, robot):

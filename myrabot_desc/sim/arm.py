@@ -178,14 +178,11 @@ def whole_com(model, data, q):
     import numpy as np
     import pinocchio as pin
 
-    pin.forwardKinematics(model, data, q)
-    m_tot, acc = 0.0, np.zeros(3)
-    for i in range(model.njoints):
-        I = model.inertias[i]
-        M = data.oMi[i]
-        acc += I.mass * (M.rotation @ I.lever + M.translation)
-        m_tot += I.mass
-    return acc / m_tot if m_tot > 0 else acc
+    pin.centerOfMass(model, data, q)         # every body but the universe: data.mass[0], data.com[0]
+    I0 = model.inertias[0]                  # the universe stays at the origin
+    m, m_tot = data.mass[0], data.mass[0] + I0.mass
+    acc = I0.mass * I0.lever + (m * data.com[0] if m > 0 else 0.0)
+    return acc / m_tot if m_tot > 0 else np.zeros(3)
 
 
 def _levenberg_marquardt(res, x0, lo, hi, iters: int = 100):

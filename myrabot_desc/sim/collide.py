@@ -219,13 +219,12 @@ def unique_configs(t, q, resolution: float = 0.005, limit: int = 1500):
     import numpy as np
 
     key = np.round(q / resolution).astype(np.int64)
-    change = np.r_[True, np.any(key[1:] != key[:-1], axis=1)]
-    cand = np.nonzero(change)[0]
-    k = key[cand] - key[cand].min(axis=0)
-    code = np.zeros(len(cand), dtype=np.int64)
+    k = key - key.min(axis=0)
+    code = np.zeros(len(k), dtype=np.int64)
     for col in range(k.shape[1]):          # mixed-radix code of a row (ranges are small)
         code = code * (int(k[:, col].max()) + 1) + k[:, col]
-    _, first = np.unique(code, return_index=True)
+    cand = np.flatnonzero(np.r_[True, code[1:] != code[:-1]])
+    _, first = np.unique(code[cand], return_index=True)
     first = np.sort(cand[first])
     if len(first) > limit:
         first = first[np.linspace(0, len(first) - 1, limit).astype(int)]
@@ -278,12 +277,17 @@ def coal_shape(g):
     return None
 
 
-def collision_check(res, arm, t, arm_q, q_home, name: str, expected: str, scene=()) -> None:
-    """Check the run's arm poses for collisions and append the verdict line to ``res``."""
+def collision_check(res, arm, t, arm_q, q_home, name: str, expected: str, scene=(), poses=None,
+                    collider=None) -> None:
+    """Check the run's arm poses for collisions and append the verdict line to ``res``.
+
+    ``poses``: ``unique_configs(t, arm_q)`` when the caller has it already; ``collider``: an
+    ArmCollider of ``arm`` and ``scene`` to reuse.
+    """
     from myrabot_desc.sim.result import Check
 
-    tt, qq = unique_configs(t, arm_q)
-    col = ArmCollider(arm, scene)
+    tt, qq = unique_configs(t, arm_q) if poses is None else poses
+    col = ArmCollider(arm, scene) if collider is None else collider
     rep = col.check(tt, qq, q_home)
     detail = f"{rep.checked_configs} arm poses, {rep.pairs} pairs"
     if rep.min_pair:

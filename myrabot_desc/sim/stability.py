@@ -99,6 +99,29 @@ def margin(support: Support, com, accel_xy=(0.0, 0.0)) -> float:
     return d
 
 
+def margins(support: Support, coms, accels):
+    """``margin`` of many poses at once (numpy rows: centres of mass (n, 3), accelerations (n, 2));
+    the same operations in the same order, so the same numbers."""
+    import numpy as np
+
+    poly = support.polygon
+    if len(poly) < 3:
+        return np.array([margin(support, c, a) for c, a in zip(coms, accels)])
+    h = coms[:, 2] - support.ground_z
+    px = coms[:, 0] - h / G * accels[:, 0]
+    py = coms[:, 1] - h / G * accels[:, 1]
+    d = np.full(len(coms), math.inf)
+    n = len(poly)
+    for i in range(n):
+        ax, ay = poly[i]
+        bx, by = poly[(i + 1) % n]
+        L = math.hypot(bx - ax, by - ay)
+        if L < 1e-12:
+            continue
+        d = np.minimum(d, ((bx - ax) * (py - ay) - (by - ay) * (px - ax)) / L)
+    return d
+
+
 def _area(p) -> float:
     return 0.5 * sum(p[i][0] * p[(i + 1) % len(p)][1] - p[(i + 1) % len(p)][0] * p[i][1] for i in range(len(p)))
 

@@ -211,23 +211,20 @@ def _verdict(res, robot, drive, arm, segments, commands, swing_cmds, dt, check_c
     # collisions of the arm with the structure
     from myrabot_desc.sim.collide import collision_check, unique_configs
 
-    _, qq = unique_configs(t, res.arm_q)     # distinct arm poses, for the tip-over margin below
+    poses = unique_configs(t, res.arm_q)     # distinct arm poses, for the tip-over margin too
     q_home = np.array([sv.units_to_rad(sv.UNITS_HOME)] * len(arm.names))
     if check_collisions:
         collision_check(res, arm, t, res.arm_q, q_home, "arm collision",
-                        "no contact with the structure while swinging")
+                        "no contact with the structure while swinging", poses=poses)
     # tip-over margin under the turn's centripetal acceleration
     sup = stability.support_polygon(robot, drive)
     mx, my = drive.urdf.axle_mid
     icr = (mx, my + V_CMD / W_CMD)
-    worst = (math.inf, None)
-    for qa in qq:
-        com = arm.com(qa)
-        a = (-W_CMD ** 2 * (com[0] - icr[0]), -W_CMD ** 2 * (com[1] - icr[1]))
-        mg = stability.margin(sup, com, a)
-        if mg < worst[0]:
-            worst = (mg, com, a)
-    mg, com, a = worst
+    coms = np.array([arm.com(qa) for qa in poses[1]])
+    accs = np.column_stack([-W_CMD ** 2 * (coms[:, 0] - icr[0]), -W_CMD ** 2 * (coms[:, 1] - icr[1])])
+    mgs = stability.margins(sup, coms, accs)
+    w = int(np.argmin(mgs))                    # the first worst pose
+    mg, com, a = mgs[w], coms[w], tuple(accs[w])
     res.checks.append(Check("tip-over margin", mg > 0, float(mg), "m",
                             "> 0: centre of mass inside the support polygon",
                             f"COM ({com[0]:.3f}, {com[1]:.3f}, {com[2]:.3f}) m, centripetal "

@@ -341,3 +341,23 @@ def test_broadphase_and_pruned_distances_match_every_pair(arm_and_colliders):
             hit_any |= bool(hits)
             clear_any |= not hits
     assert hit_any and clear_any
+
+
+def test_prepared_robot_gives_the_same_run():
+    """The robot-derived parts (Pinocchio model, collision geometry, support polygon) are built
+    once per Robot; a second run on it and a run on a freshly loaded one agree exactly."""
+    import numpy as np
+
+    from myrabot_desc.loader import load_robot
+    from myrabot_desc.sim import prepared, vuelta
+
+    robot = load_robot(None)
+    a = vuelta.run(robot, duration=8)
+    arm = prepared.arm(robot)
+    b = vuelta.run(robot, duration=8)
+    assert prepared.arm(robot) is arm
+    prepared.clear()
+    c = vuelta.run(load_robot(None), duration=8)
+    for r in (b, c):
+        assert r.as_json() == a.as_json()
+        assert np.array_equal(r.arm_q, a.arm_q) and np.array_equal(r.base.x, a.base.x)

@@ -100,22 +100,27 @@ class ArmCollider:
         for a in self.arm_objs:
             for b in self.other_objs:
                 gm.addCollisionPair(pin.CollisionPair(a, b))
+        self.pairs = [(cp.first, cp.second) for cp in gm.collisionPairs]    # read once: slow through Pinocchio
         self.gdata = pin.GeometryData(gm)
         cold_gjk(self.gdata)
         # Broadphase: Pinocchio's manager runs the exact test only on the active pairs whose
         # bounding boxes overlap (it says whether any pair collides, not which)
         self.broadphase = pin.BroadPhaseManager_NaiveCollisionManager(model, gm, self.gdata)
-        # local bounding boxes (centre, half extents) of every object, for distance lower bounds
-        self.box = {}
+        # local bounding boxes (centres, half extents) of the objects, for distance lower bounds
+        self.box_c, self.box_h = np.zeros((gm.ngeoms, 3)), np.zeros((gm.ngeoms, 3))
         for i in self.arm_objs + self.other_objs:
             bb = gm.geometryObjects[i].geometry.aabb_local
             lo, hi = np.asarray(bb.min_), np.asarray(bb.max_)
-            self.box[i] = ((lo + hi) / 2, (hi - lo) / 2)
+            self.box_c[i], self.box_h[i] = (lo + hi) / 2, (hi - lo) / 2
         self.np = np
         self.coal = coal
 
     def _name(self, i: int) -> str:
         return self.gmodel.geometryObjects[i].name
+
+    def _names(self, k: int) -> tuple[str, str]:
+        a, b = self.pairs[k]
+        return self._name(a), self._name(b)
 
     def check(self, times, qarms, q_ref) -> CollisionReport:
         """Check arm configurations (rows of ``qarms``, at ``times``); q_ref defines resting contacts."""
@@ -126,9 +131,10 @@ class ArmCollider:
         pin.computeCollisions(model, data, gm, gd, self.arm.full_q(q_ref), False)
         ignored = []
         active = []
-        for k, cp in enumerate(gm.collisionPairs):
-            if gd.collisionResults[k].isCollision():
-                ignored.append((self._name(cp.first), self._name(cp.second)))
+        results = gd.collisionResults
+        for k in range(len(self.pairs)):
+            if results[k].isCollision():
+                ignored.append(self._names(k))
                 gd.deactivateCollisionPair(k)
             else:
                 active.append(k)
@@ -140,8 +146,7 @@ class ArmCollider:
                     pin.computeCollisions(model, data, gm, gd, q, False)          # every active pair: which
                     for k in active:
                         if gd.collisionResults[k].isCollision():
-                            cp = gm.collisionPairs[k]
-                            rep.hits.append((float(t), self._name(cp.first), self._name(cp.second)))
+                            rep.hits.append((float(t), *self._names(k)))
             # distances (the closest approach, informative) cost ten times a collision test: take
             # PROBES evenly spread poses plus each joint's extremes, where the arm reaches farthest
             qa_all = np.asarray(qarms)
@@ -150,11 +155,10 @@ class ArmCollider:
                 probe |= set(qa_all.argmin(axis=0).tolist()) | set(qa_all.argmax(axis=0).tolist())
             best = self._closest([qa_all[i] for i in sorted(probe)], active)
         finally:
-            for k in range(len(gm.collisionPairs)):
+            for k in range(len(self.pairs)):
                 gd.activateCollisionPair(k)
         if best is not None:
-            cp = gm.collisionPairs[best[1]]
-            rep.min_distance, rep.min_pair = float(best[0]), (self._name(cp.first), self._name(cp.second))
+            rep.min_distance, rep.min_pair = float(best[0]), self._names(best[1])
         return rep
 
     def _closest(self, poses, active):
@@ -172,35 +176,29 @@ class ArmCollider:
         if not poses or not active:
             return None
         model, data, gm, gd = self.arm.model, self.arm.data, self.gmodel, self.gdata
-        first = [gm.collisionPairs[k].first for k in active]
-        second = [gm.collisionPairs[k].second for k in active]
+        first = [self.pairs[k][0] for k in active]
+        second = [self.pairs[k][1] for k in active]
         objs = sorted(set(first) | set(second))
         col = {i: n for n, i in enumerate(objs)}
-        ia, ib = [col[i] for i in first], [col[i] for i in second]
-        moving = [col[i] for i in objs if i in set(self.arm_objs)]
-        centre, half = np.empty((len(objs), 3)), np.empty((len(objs), 3))
-
-        def place(qa, which):
+        ia, ib = np.array([col[i] for i in first]), np.array([col[i] for i in second])
+        H = []                                   # placements of the objects at each pose
+        for qa in poses:
             pin.updateGeometryPlacements(model, data, gm, gd, self.arm.full_q(qa))
-            for n in which:
-                M = gd.oMg[objs[n]]
-                c, h = self.box[objs[n]]
-                centre[n] = M.rotation @ c + M.translation
-                half[n] = np.abs(M.rotation) @ h
-
-        lbs = []
-        for p, qa in enumerate(poses):           # objects off the arm stay where they are
-            place(qa, range(len(objs)) if p == 0 else moving)
-            gap = np.maximum(np.abs(centre[ia] - centre[ib]) - half[ia] - half[ib], 0.0)
-            d = np.sqrt((gap * gap).sum(axis=1))
-            lbs.append(np.where(d > 0, d, -np.inf))     # overlapping boxes: any depth of penetration
-        lb = np.concatenate(lbs)
+            oMg = gd.oMg
+            H.append([oMg[i].homogeneous for i in objs])
+        H = np.array(H)
+        R = H[..., :3, :3]
+        centre = np.einsum("pnij,nj->pni", R, self.box_c[objs]) + H[..., :3, 3]
+        half = np.einsum("pnij,nj->pni", np.abs(R), self.box_h[objs])
+        gap = np.maximum(np.abs(centre[:, ia] - centre[:, ib]) - half[:, ia] - half[:, ib], 0.0)
+        d = np.sqrt((gap * gap).sum(axis=2))
+        lb = np.where(d > 0, d, -np.inf).ravel()     # overlapping boxes: any depth of penetration
         best = (np.inf, 0, 0)
         placed = None
-        for flat in np.argsort(lb, kind="stable").tolist():
+        for flat in np.argsort(lb, kind="stable"):
             if lb[flat] > best[0] + SLACK:
                 break
-            p, j = divmod(flat, len(active))
+            p, j = divmod(int(flat), len(active))
             if p != placed:
                 pin.updateGeometryPlacements(model, data, gm, gd, self.arm.full_q(poses[p]))
                 placed = p
@@ -218,11 +216,11 @@ def unique_configs(t, q, resolution: float = 0.005, limit: int = 1500):
     """
     import numpy as np
 
-    key = np.round(q / resolution).astype(np.int64)
-    k = key - key.min(axis=0)
-    code = np.zeros(len(k), dtype=np.int64)
-    for col in range(k.shape[1]):          # mixed-radix code of a row (ranges are small)
-        code = code * (int(k[:, col].max()) + 1) + k[:, col]
+    key = np.round(np.ascontiguousarray(q.T) / resolution).astype(np.int64)    # a row per joint
+    code = np.zeros(key.shape[1], dtype=np.int64)
+    for row in key:                        # mixed-radix code of a pose (ranges are small)
+        lo = int(row.min())
+        code = code * (int(row.max()) - lo + 1) + (row - lo)
     cand = np.flatnonzero(np.r_[True, code[1:] != code[:-1]])
     _, first = np.unique(code[cand], return_index=True)
     first = np.sort(cand[first])

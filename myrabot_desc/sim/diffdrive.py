@@ -315,8 +315,6 @@ def integrate(drive: Drive, segments, n_steps: int, dt: float, pose0=(0.0, 0.0, 
 
     N = int(n_steps)
     k = np.arange(N)
-    tgt_l = np.zeros(N)
-    tgt_r = np.zeros(N)
     starts = [max(0, min(N, int(s[0]))) for s in segments]
     rates = []
     for (_, v, w) in segments:
@@ -335,7 +333,6 @@ def integrate(drive: Drive, segments, n_steps: int, dt: float, pose0=(0.0, 0.0, 
         ke = starts[i + 1] if i + 1 < len(starts) else N
         if ke <= ks:
             continue
-        tgt_l[ks:ke], tgt_r[ks:ke] = rl, rr
         if a is not None and a > 0:
             tau = (k[ks:ke] - ks + 0.5) * dt          # mid-step
             ql_arr[ks:ke] = cur_l + np.clip(rl - cur_l, -a * tau, a * tau)

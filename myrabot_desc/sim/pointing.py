@@ -48,9 +48,9 @@ def parse_keys(text: str) -> list[str]:
 def _setup(robot, layout, speed_units):
     import numpy as np
 
-    from myrabot_desc.sim.arm import Arm
+    from myrabot_desc.sim import prepared
 
-    arm = Arm(robot)
+    arm = prepared.arm(robot)
     servos = [sv.Servo(0.0, sv.speed_rad_s(speed_units, arm.velocity[i]), arm.lower[i], arm.upper[i])
               for i in range(len(arm.names))]
     q_home = np.array([sv.units_to_rad(sv.UNITS_HOME)] * len(arm.names))
@@ -148,9 +148,9 @@ def run_escoja(robot, layout_objects, *, which="1", rate=1000.0, duration=None, 
     res.series = [Series(n, np.degrees(arm_q[:, i]), "deg") for i, n in enumerate(arm.names)]
     res.series.append(Series("pointing error", errs, "deg (error)", t=t[ks]))
     res.scene = list(layout_objects)
-    from myrabot_desc.sim.vuelta import footprint
+    from myrabot_desc.sim import prepared
 
-    res.footprint = footprint(robot)
+    res.footprint = prepared.footprint(robot)
     res.wall = time.perf_counter() - wall0
     if progress:
         progress(1.0)
@@ -244,9 +244,9 @@ def run_seguir(robot, layout_objects, *, which="1", keys=DEFAULT_KEYS, rate=1000
     res.series.append(Series("tracking error", errs, "deg (error)", t=t[ks]))
     res.scene = list(others) + [obj]
     res.moving = [(obj.model, path[:, 0], path[:, 1])]
-    from myrabot_desc.sim.vuelta import footprint
+    from myrabot_desc.sim import prepared
 
-    res.footprint = footprint(robot)
+    res.footprint = prepared.footprint(robot)
     res.wall = time.perf_counter() - wall0
     if progress:
         progress(1.0)

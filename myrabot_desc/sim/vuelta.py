@@ -36,13 +36,13 @@ def run(robot, *, rate=1000.0, duration=25.0, presses=(1.0,), feedback_rate=100.
         wheel_speed_max=None, wheel_accel_max=None, check_collisions=True, progress=None) -> SimResult:
     import numpy as np
 
-    from myrabot_desc.sim.arm import Arm
-    from myrabot_desc.sim.diffdrive import find_drive, integrate
+    from myrabot_desc.sim import prepared
+    from myrabot_desc.sim.diffdrive import integrate
 
     wall0 = time.perf_counter()
-    drive = find_drive(robot, wheels)
+    drive = prepared.drive(robot, wheels)
     drive.wheel_speed_max, drive.wheel_accel_max = wheel_speed_max, wheel_accel_max
-    arm = Arm(robot)
+    arm = prepared.arm(robot)
     dt = 1.0 / rate
     N = int(round(duration * rate))
     every = max(1, int(round(rate / feedback_rate)))
@@ -140,7 +140,7 @@ def run(robot, *, rate=1000.0, duration=25.0, presses=(1.0,), feedback_rate=100.
     base_deg = np.degrees(arm_q[:, 0])
     res.series = [Series(n, np.degrees(arm_q[:, i]), "deg") for i, n in enumerate(arm.names)]
     res.info["base joint range"] = f"{base_deg.min():.1f} … {base_deg.max():.1f} deg"
-    res.footprint = footprint(robot)
+    res.footprint = prepared.footprint(robot)
     res.wall = time.perf_counter() - wall0
     return res
 
@@ -170,7 +170,7 @@ def _first_in_window(servo, target, lo, hi, every, dt):
 def _verdict(res, robot, drive, arm, segments, commands, swing_cmds, dt, check_collisions):
     import numpy as np
 
-    from myrabot_desc.sim import stability
+    from myrabot_desc.sim import prepared, stability
     from myrabot_desc.sim.diffdrive import fit_circle
 
     base, t = res.base, res.t
@@ -215,9 +215,10 @@ def _verdict(res, robot, drive, arm, segments, commands, swing_cmds, dt, check_c
     q_home = np.array([sv.units_to_rad(sv.UNITS_HOME)] * len(arm.names))
     if check_collisions:
         collision_check(res, arm, t, res.arm_q, q_home, "arm collision",
-                        "no contact with the structure while swinging", poses=poses)
+                        "no contact with the structure while swinging", poses=poses,
+                        collider=prepared.collider(robot))
     # tip-over margin under the turn's centripetal acceleration
-    sup = stability.support_polygon(robot, drive)
+    sup = prepared.support(robot, drive.wheels)
     mx, my = drive.urdf.axle_mid
     icr = (mx, my + V_CMD / W_CMD)
     coms = np.array([arm.com(qa) for qa in poses[1]])

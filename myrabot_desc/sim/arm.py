@@ -171,6 +171,19 @@ class Arm:
     def com(self, qarm):
         return whole_com(self.model, self.data, self.full_q(qarm))
 
+    def coms(self, qarms):
+        """``com`` of each row of ``qarms`` (the same operations, so the same numbers)."""
+        import numpy as np
+        import pinocchio as pin
+
+        out = np.empty((len(qarms), 3))
+        for n, qa in enumerate(qarms):
+            out[n] = pin.centerOfMass(self.model, self.data, self.full_q(qa))
+        I0, m = self.model.inertias[0], self.data.mass[0]     # the universe; the rest's mass
+        if m > 0:
+            return (I0.mass * I0.lever + m * out) / (m + I0.mass)
+        return np.array([self.com(qa) for qa in qarms]).reshape(-1, 3)     # massless bodies: whole_com's cases
+
 
 def whole_com(model, data, q):
     """Centre of mass of every body, the fixed-base links merged into the universe included

@@ -119,7 +119,7 @@ def run(robot, *, rate=1000.0, duration=None, script=DEFAULT_SCRIPT, wheels="plu
                   Series("w achieved", np.concatenate([base.w, base.w[-1:]]), "rad/s", group="twist")]
     from myrabot_desc.sim.vuelta import footprint
 
-    res.footprint = footprint(robot)
+    res.outline_of = lambda: footprint(robot)
     res.wall = time.perf_counter() - wall0
     if progress:
         progress(1.0)

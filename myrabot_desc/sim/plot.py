@@ -64,7 +64,7 @@ def _top_view(d, res, box):
     b = res.base
     xs = [np.asarray(b.axle_x), np.asarray(b.x)]
     ys = [np.asarray(b.axle_y), np.asarray(b.y)]
-    fp = np.array(res.footprint) if res.footprint else np.zeros((0, 2))
+    fp = np.array(res.outline()) if res.outline() else np.zeros((0, 2))
     n = len(b.t)
     idx = sorted(set(np.linspace(0, n - 1, 9).astype(int).tolist()))
     outlines = []

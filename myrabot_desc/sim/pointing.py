@@ -150,7 +150,7 @@ def run_escoja(robot, layout_objects, *, which="1", rate=1000.0, duration=None, 
     res.scene = list(layout_objects)
     from myrabot_desc.sim import prepared
 
-    res.footprint = prepared.footprint(robot)
+    res.outline_of = lambda: prepared.footprint(robot)
     res.wall = time.perf_counter() - wall0
     if progress:
         progress(1.0)
@@ -246,7 +246,7 @@ def run_seguir(robot, layout_objects, *, which="1", keys=DEFAULT_KEYS, rate=1000
     res.moving = [(obj.model, path[:, 0], path[:, 1])]
     from myrabot_desc.sim import prepared
 
-    res.footprint = prepared.footprint(robot)
+    res.outline_of = lambda: prepared.footprint(robot)
     res.wall = time.perf_counter() - wall0
     if progress:
         progress(1.0)

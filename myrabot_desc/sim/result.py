@@ -50,7 +50,14 @@ class SimResult:
     scene: list = field(default_factory=list)          # scene objects (for the plot)
     moving: list = field(default_factory=list)         # (label, xs, ys) paths of moved objects
     footprint: list = field(default_factory=list)      # robot outline (root frame, convex)
+    outline_of: object = None                          # or a function giving it, called when first needed
     wall: float = 0.0
+
+    def outline(self) -> list:
+        """The robot's outline: only the plot draws it, so a run may leave the computing to here."""
+        if not self.footprint and self.outline_of is not None:
+            self.footprint = self.outline_of()
+        return self.footprint
 
     @property
     def passed(self) -> bool:

@@ -142,11 +142,10 @@ class Servo:
         import numpy as np
 
         times = np.asarray(times, dtype=float)
-        out = np.empty(len(times))
+        seg = np.array(self.segments)
         # segment i holds from its start until the next one starts (the first also before it)
-        cuts = [0, *np.searchsorted(times, [s[0] for s in self.segments[1:]], side="left").tolist(), len(times)]
-        for (t0, q0, goal, s), a, b in zip(self.segments, cuts, cuts[1:]):
-            if b > a:
-                step = s * np.maximum(times[a:b] - t0, 0.0)
-                out[a:b] = q0 + np.clip(goal - q0, -step, step)
-        return out
+        cuts = np.searchsorted(times, seg[1:, 0], side="left")
+        n = np.diff(np.concatenate([[0], cuts, [len(times)]]))
+        t0, q0, d, s = (np.repeat(c, n) for c in (seg[:, 0], seg[:, 1], seg[:, 2] - seg[:, 1], seg[:, 3]))
+        step = s * np.maximum(times - t0, 0.0)
+        return q0 + np.clip(d, -step, step)

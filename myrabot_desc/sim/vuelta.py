@@ -76,6 +76,7 @@ def run(robot, *, rate=1000.0, duration=25.0, presses=(1.0,), feedback_rate=100.
     # swing's next command, or the base reading entering the ±TOL window (found in one
     # vectorised pass over the messages in between, with the same arithmetic as a step by step loop).
     press_msgs = [-(-ks // every) for ks in press_steps]      # a press is handled at the first message at or after it
+    msg_t = (np.arange(n_msgs) * every) * dt                  # as t = k * dt below
     m = 0
     while m < n_msgs:
         k = m * every
@@ -119,7 +120,7 @@ def run(robot, *, rate=1000.0, duration=25.0, presses=(1.0,), feedback_rate=100.
         elif cont1 == 1:
             m += 1                                     # the next message commands TARGET_A
         else:
-            m = _first_in_window(servos[0], move[0], m + 1, nxt, every, dt)
+            m = _first_in_window(servos[0], move[0], m + 1, nxt, msg_t)
 
     base = integrate(drive, segments, N, dt)
     t = base.t
@@ -137,33 +138,30 @@ def run(robot, *, rate=1000.0, duration=25.0, presses=(1.0,), feedback_rate=100.
     if len(press_steps) >= 2 and len(press_steps) % 2 == 0:
         res.notes.append("switched off by the last press: the seed sends no zero twist, so the base keeps "
                          "turning (reproduced)")
-    base_deg = np.degrees(arm_q[:, 0])
     res.series = [Series(n, np.degrees(arm_q[:, i]), "deg") for i, n in enumerate(arm.names)]
+    base_deg = res.series[0].values
     res.info["base joint range"] = f"{base_deg.min():.1f} … {base_deg.max():.1f} deg"
-    res.footprint = prepared.footprint(robot)
+    res.outline_of = lambda: prepared.footprint(robot)
     res.wall = time.perf_counter() - wall0
     return res
 
 
-def _first_in_window(servo, target, lo, hi, every, dt):
+def _first_in_window(servo, target, lo, hi, msg_t):
     """First message in [lo, hi) whose base reading is strictly within ±TOL of ``target`` (else hi).
 
     Evaluates the same expressions as the per-message check (Servo.at, rad_to_units) on
-    a block of message times at once; once the servo has arrived the reading stays.
+    a block of message times (``msg_t``) at once; once the servo has arrived the reading stays.
     """
-    import numpy as np
-
     goal = servo.segments[-1][2]
     while lo < hi:
-        m = np.arange(lo, min(hi, lo + 512))
-        q = servo.at_many((m * every) * dt)
+        q = servo.at_many(msg_t[lo:min(hi, lo + 64)])
         p = sv.rad_to_units_array(q)
         ok = ((p - TOL) < target) & (target < (p + TOL))
         if ok.any():
-            return int(m[ok.argmax()])
+            return lo + int(ok.argmax())
         if q[-1] == goal:
             return hi
-        lo = int(m[-1]) + 1
+        lo += len(q)
     return hi
 
 
@@ -221,7 +219,7 @@ def _verdict(res, robot, drive, arm, segments, commands, swing_cmds, dt, check_c
     sup = prepared.support(robot, drive.wheels)
     mx, my = drive.urdf.axle_mid
     icr = (mx, my + V_CMD / W_CMD)
-    coms = np.array([arm.com(qa) for qa in poses[1]])
+    coms = arm.coms(poses[1])
     accs = np.column_stack([-W_CMD ** 2 * (coms[:, 0] - icr[0]), -W_CMD ** 2 * (coms[:, 1] - icr[1])])
     mgs = stability.margins(sup, coms, accs)
     w = int(np.argmin(mgs))                    # the first worst pose

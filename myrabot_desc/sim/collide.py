@@ -6,6 +6,10 @@ sensors, and the table and cans when a scene is given). Pairs that already touch
 at the reference (home) pose are contacts by design, such as the base servo
 sitting between its mounting plates; they are left out and listed, as an SRDF
 "disable collisions: Default" would.
+
+Every distinct pose goes through a broadphase (bounding boxes) before the exact
+test; the closest approach is searched in the order of bounding-box lower bounds.
+Both report what testing every pair would (tests/test_sim.py checks that).
 """
 
 from __future__ import annotations

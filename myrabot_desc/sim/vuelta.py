@@ -16,7 +16,8 @@ The node's callbacks are reproduced as written:
 servo resting at 718 reads 716 (see servo.py). Messages arrive at
 ``feedback_rate`` (default 100 Hz, the fuerte controller manager's joint-state
 rate) on the fixed step grid. Everything between messages is closed form: the
-servos move at constant speed and the base on arcs (diffdrive.integrate).
+servos move at constant speed and the base on arcs (diffdrive.integrate); messages
+at which nothing can change are skipped, not simulated one by one.
 """
 
 from __future__ import annotations

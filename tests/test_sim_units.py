@@ -112,3 +112,33 @@ def test_servo_vectorised_matches_the_scalar_formulas(cmds, speed):
     assert q.tolist() == [s.at(float(t)) for t in times]
     assert sv.rad_to_units_array(q).tolist() == [sv.rad_to_units(float(x)) for x in q]
     assert s.positions(times) == pytest.approx(q, abs=1e-15)
+
+
+def test_mesh_vertices_fast_path_equals_trimesh(tmp_path):
+    """meshio.vertices reads binary STL itself: the same distinct points trimesh gives, on every
+    bundled mesh; ASCII STL goes through trimesh; broken files are one-line InputErrors."""
+    from pathlib import Path
+
+    import trimesh
+
+    from myrabot_desc import meshio
+    from myrabot_desc.errors import InputError
+
+    meshes = sorted((Path(__file__).resolve().parents[1] / "meshes").glob("*.stl"))
+    assert len(meshes) == 11
+    for p in meshes:
+        ours = meshio.vertices(p)
+        ref = np.unique(np.asarray(trimesh.load(str(p), force="mesh").vertices), axis=0)
+        assert np.array_equal(ours, ref), p.name
+    box = trimesh.creation.box((1, 2, 3))
+    ascii_stl = tmp_path / "box.stl"
+    ascii_stl.write_bytes(trimesh.exchange.stl.export_stl_ascii(box).encode())
+    assert np.allclose(np.sort(meshio.vertices(ascii_stl), axis=0), np.sort(box.vertices, axis=0))
+    good = meshes[0].read_bytes()
+    truncated = tmp_path / "truncated.stl"
+    truncated.write_bytes(good[:-20])           # no longer 84 + 50 n bytes: trimesh decides
+    nan = tmp_path / "nan.stl"
+    nan.write_bytes(good[:84 + 12] + np.array([np.nan] * 3, "<f4").tobytes() + good[84 + 24:])
+    for bad in (truncated, nan, tmp_path / "missing.stl"):
+        with pytest.raises(InputError, match=bad.name):
+            meshio.vertices(bad, None)

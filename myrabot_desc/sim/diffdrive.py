@@ -283,8 +283,8 @@ def _geometry_points(robot, g, loc, n: int = 720):
 
         if g.path is None:
             raise InputError(f"mesh {g.filename} cannot be resolved", loc)
-        m = meshio.load_or_input_error(g.path, loc)   # size/triangle limits; garbage -> one line
-        return np.asarray(m.vertices) * np.asarray(g.scale)
+        # size/triangle limits; garbage -> one line
+        return meshio.vertices(g.path, loc) * np.asarray(g.scale)
     raise InputError(f"unsupported geometry {g.kind}", loc)
 
 

@@ -142,3 +142,22 @@ def test_mesh_vertices_fast_path_equals_trimesh(tmp_path):
     for bad in (truncated, nan, tmp_path / "missing.stl"):
         with pytest.raises(InputError, match=bad.name):
             meshio.vertices(bad, None)
+
+
+def test_convex_hull_square_line_and_random():
+    from myrabot_desc.hull2d import convex_hull
+
+    square = [(0, 0), (1, 0), (1, 1), (0, 1), (0.5, 0.5), (0.5, 0), (1, 0.5), (1e-12, 0)]
+    assert convex_hull(square) == [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)]   # CCW, collinear dropped
+    assert convex_hull([(0, 0), (1, 1), (2, 2), (0.5, 0.5)]) == [(0.0, 0.0), (2.0, 2.0)]  # a line: its ends
+    assert convex_hull([(3, 4), (3, 4)]) == [(3.0, 4.0)]
+    spatial = pytest.importorskip("scipy.spatial")
+    rng = np.random.default_rng(7)
+    for n in (3, 10, 100, 2000):
+        pts = rng.normal(size=(n, 2))
+        ours = convex_hull(pts)
+        ref = spatial.ConvexHull(pts)
+        assert len(ours) == len(ref.vertices)
+        assert {tuple(np.round(p, 9)) for p in pts[ref.vertices]} == set(ours)
+        area = 0.5 * sum(a[0] * b[1] - b[0] * a[1] for a, b in zip(ours, ours[1:] + ours[:1]))
+        assert area == pytest.approx(ref.volume, rel=1e-6)        # positive: counter-clockwise (points rounded)

@@ -56,27 +56,6 @@ def is_mobile(ctx) -> bool:
     return bool(wheels(ctx))
 
 
-def _hull(points):
-    """2-D convex hull (monotone chain), counter-clockwise."""
-    pts = sorted(set((round(float(x), 9), round(float(y), 9)) for x, y in points))
-    if len(pts) <= 2:
-        return pts
-
-    def cross(o, a, b):
-        return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
-
-    lower, upper = [], []
-    for p in pts:
-        while len(lower) >= 2 and cross(lower[-2], lower[-1], p) <= 1e-12:
-            lower.pop()
-        lower.append(p)
-    for p in reversed(pts):
-        while len(upper) >= 2 and cross(upper[-2], upper[-1], p) <= 1e-12:
-            upper.pop()
-        upper.append(p)
-    return lower[:-1] + upper[:-1]
-
-
 def _signed_distance(hull, p) -> float:
     """Distance from p to the polygon's boundary: positive inside, negative outside (2-D)."""
     def seg_dist(a, b):
@@ -100,6 +79,7 @@ def support(ctx):
     """Ground contacts with the base on the ground at q = 0: (ground z, contacts, hull, com)."""
     import numpy as np
 
+    from myrabot_desc.hull2d import convex_hull
     from myrabot_desc.kinematics import center_of_mass
 
     shapes = _collision_world(ctx)
@@ -116,7 +96,7 @@ def support(ctx):
     mass, com = center_of_mass(ctx.robot)
     if not mass > 0:
         return None
-    return zmin, contacts, _hull(pts), np.asarray(com), mass
+    return zmin, contacts, convex_hull(pts), np.asarray(com), mass
 
 
 @rule("P001", "static-support", "error")

@@ -127,19 +127,9 @@ def _area(p) -> float:
 
 
 def _hull(points):
-    """Convex hull in the plane, counter-clockwise."""
+    """Convex hull in the plane, counter-clockwise (``points``: pairs or an (n, 2) array)."""
     import numpy as np
 
-    pts = np.unique(np.round(np.asarray(points, dtype=float).reshape(-1, 2), 9), axis=0)
-    if len(pts) <= 2:
-        return [tuple(map(float, p)) for p in pts]
-    try:
-        from scipy.spatial import ConvexHull
+    from myrabot_desc.hull2d import convex_hull
 
-        h = ConvexHull(pts)
-    except Exception:            # all points on a line
-        d = pts - pts.mean(axis=0)
-        u = np.linalg.svd(d, full_matrices=False)[2][0]
-        s = d @ u
-        return [tuple(map(float, pts[s.argmin()])), tuple(map(float, pts[s.argmax()]))]
-    return [tuple(map(float, pts[i])) for i in h.vertices]     # 2-D hulls come counter-clockwise
+    return convex_hull(np.asarray(points, dtype=float).reshape(-1, 2).tolist())

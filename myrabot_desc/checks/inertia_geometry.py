@@ -180,7 +180,8 @@ def radius_of_gyration(ctx):
 
 
 def _hull_points(ctx, link):
-    """Points bounding the link's geometry (link frame), None if unknown.
+    """Points bounding the link's geometry (link frame), None if unknown; the callers take
+    extremes (extents, farthest distances), which every vertex gives as well as a hull would.
 
     Primitive-only links use collision ∪ visual (cheap, lenient). When meshes are involved only
     the collision shapes are used (visual meshes are the slow ones to load), else the visuals.
@@ -204,7 +205,7 @@ def _hull_points(ctx, link):
             mesh = ctx.mesh(g)
             if mesh is None or isinstance(mesh, str):
                 return None
-            local = np.asarray(mesh.convex_hull.vertices) if len(mesh.vertices) > 2000 else np.asarray(mesh.vertices)
+            local = np.asarray(mesh.vertices)    # the rules use extremes only: no hull needed (nor scipy)
         else:
             local = _primitive_points(g)
         T = it.origin.matrix()

@@ -8,6 +8,9 @@ needs the original markup (``<gazebo>`` blocks, the Electric ``controller:`` /
 ``sensor:`` dialect, transmissions).
 
 Pure Python on purpose (no numpy at import): ``build`` and ``--help`` stay fast.
+The parts are immutable records (``typing.NamedTuple``): read-only like frozen
+dataclasses, but each costs ~0.1 ms to define instead of ~1.3 ms, which was 20 ms of
+every command that loads a model. Like tuples they compare by value, not by type.
 """
 
 from __future__ import annotations
@@ -15,15 +18,14 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 from myrabot_desc.diagnostics import Loc
 
 Vec3 = tuple[float, float, float]
 
 
-@dataclass(frozen=True)
-class Pose:
+class Pose(NamedTuple):
     xyz: Vec3 = (0.0, 0.0, 0.0)
     rpy: Vec3 = (0.0, 0.0, 0.0)
 
@@ -39,27 +41,23 @@ class Pose:
 
 
 # ---------------------------------------------------------------- geometry
-@dataclass(frozen=True)
-class Box:
+class Box(NamedTuple):
     size: Vec3
     kind = "box"
 
 
-@dataclass(frozen=True)
-class Cylinder:
+class Cylinder(NamedTuple):
     radius: float
     length: float
     kind = "cylinder"
 
 
-@dataclass(frozen=True)
-class Sphere:
+class Sphere(NamedTuple):
     radius: float
     kind = "sphere"
 
 
-@dataclass(frozen=True)
-class Mesh:
+class Mesh(NamedTuple):
     filename: str                 # as written in the URDF (package://..., file://..., relative)
     scale: Vec3 = (1.0, 1.0, 1.0)
     path: Path | None = None      # resolved file on disk, or None when it cannot be resolved
@@ -69,16 +67,14 @@ class Mesh:
 Geometry = Box | Cylinder | Sphere | Mesh
 
 
-@dataclass(frozen=True)
-class Material:
+class Material(NamedTuple):
     name: str
     rgba: tuple[float, float, float, float] | None = None
     texture: str | None = None
     loc: Loc | None = None
 
 
-@dataclass(frozen=True)
-class Visual:
+class Visual(NamedTuple):
     origin: Pose
     geometry: Geometry | None
     name: str | None = None
@@ -87,16 +83,14 @@ class Visual:
     loc: Loc | None = None
 
 
-@dataclass(frozen=True)
-class Collision:
+class Collision(NamedTuple):
     origin: Pose
     geometry: Geometry | None
     name: str | None = None
     loc: Loc | None = None
 
 
-@dataclass(frozen=True)
-class Inertial:
+class Inertial(NamedTuple):
     mass: float
     origin: Pose
     ixx: float = 0.0
@@ -116,8 +110,7 @@ class Inertial:
                          [self.ixz, self.iyz, self.izz]], dtype=float)
 
 
-@dataclass(frozen=True)
-class Link:
+class Link(NamedTuple):
     name: str
     inertial: Inertial | None = None
     visuals: tuple[Visual, ...] = ()
@@ -130,23 +123,20 @@ class Link:
 
 
 # ---------------------------------------------------------------- joints
-@dataclass(frozen=True)
-class Limit:
+class Limit(NamedTuple):
     lower: float | None = None
     upper: float | None = None
     effort: float | None = None
     velocity: float | None = None
 
 
-@dataclass(frozen=True)
-class Mimic:
+class Mimic(NamedTuple):
     joint: str
     multiplier: float = 1.0
     offset: float = 0.0
 
 
-@dataclass(frozen=True)
-class Dynamics:
+class Dynamics(NamedTuple):
     damping: float = 0.0
     friction: float = 0.0
 
@@ -154,8 +144,7 @@ class Dynamics:
 JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
 
 
-@dataclass(frozen=True)
-class Joint:
+class Joint(NamedTuple):
     name: str
     type: str
     parent: str
@@ -173,8 +162,7 @@ class Joint:
 
 
 # ---------------------------------------------------------------- gazebo extensions
-@dataclass(frozen=True)
-class Plugin:
+class Plugin(NamedTuple):
     """A Gazebo plugin or Electric-era controller.
 
     ``dialect``: 'electric' for ``<controller:NAME plugin|filename=...>``, 'classic' for
@@ -199,8 +187,7 @@ class Plugin:
         return (self.filename or "").rsplit("/", 1)[-1]
 
 
-@dataclass(frozen=True)
-class Sensor:
+class Sensor(NamedTuple):
     """A ``<sensor type=...>`` (classic/SDF) or Electric ``<sensor:camera|ray ...>``."""
 
     name: str | None
@@ -221,8 +208,7 @@ class Sensor:
         return (el.text or "").strip() or el.get("value")
 
 
-@dataclass(frozen=True)
-class GazeboBlock:
+class GazeboBlock(NamedTuple):
     """One ``<gazebo>`` element. ``properties``: simple children such as material,
     mu1, mu2, kp, kd, fdir1/fdir, selfCollide, turnGravityOff (text or value=)."""
 
@@ -234,8 +220,7 @@ class GazeboBlock:
     loc: Loc | None = None
 
 
-@dataclass(frozen=True)
-class Transmission:
+class Transmission(NamedTuple):
     name: str | None
     element: Any
     joints: tuple[str, ...] = ()

@@ -236,8 +236,14 @@ def _read(root, text, src: Path, locations, package_roots, build_warnings, from_
                 roots[parts[0]] = p
     base = src.parent
 
+    resolved: dict[str, Path | None] = {}
+
     def resolve(uri: str):
-        return resolve_resource_uri(uri, roots, base)
+        # models name the same mesh many times (visual and collision, repeated parts); each
+        # resolution stats and realpaths the candidates
+        if uri not in resolved:
+            resolved[uri] = resolve_resource_uri(uri, roots, base)
+        return resolved[uri]
 
     materials: dict[str, Material] = {}
     for m in root.findall("material"):

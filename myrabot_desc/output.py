@@ -44,7 +44,8 @@ class OutputDir:
     """Stage several output files (e.g. an MJCF plus meshes) and publish them together.
 
     Files are written into a hidden staging folder next to the target; ``commit``
-    moves them into place. If the block raises, the staging folder is removed.
+    moves them into place. If the block raises, the staging folder is removed, and so
+    are the folders created for the target: a failed command leaves nothing behind.
     """
 
     def __init__(self, target_dir: str | os.PathLike):
@@ -53,6 +54,12 @@ class OutputDir:
     def __enter__(self) -> Path:
         import tempfile
 
+        self.created = []                  # folders made here, innermost last
+        p = self.target.absolute()
+        while not p.exists():
+            self.created.append(p)
+            p = p.parent
+        self.created.reverse()
         self.target.mkdir(parents=True, exist_ok=True)
         self.stage = Path(tempfile.mkdtemp(prefix=".staging.", dir=self.target))
         return self.stage
@@ -69,4 +76,10 @@ class OutputDir:
                         os.replace(item, dest)
         finally:
             shutil.rmtree(self.stage, ignore_errors=True)
+            if exc_type is not None:
+                for d in reversed(self.created):
+                    try:
+                        d.rmdir()          # only if still empty
+                    except OSError:
+                        break
         return False

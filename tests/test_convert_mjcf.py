@@ -127,3 +127,19 @@ def test_textured_can_gets_its_texture_colour(tmp_path):
     body = m.geom_rgba[(m.geom_group == 1) & (m.geom_type == mujoco.mjtGeom.mjGEOM_CYLINDER)][0]
     assert body[0] > 0.5 and body[1] < 0.3 and body[2] < 0.3
     assert m.jnt_type[0] == mujoco.mjtJoint.mjJNT_FREE
+
+
+def test_mujoco_warnings_are_ours_and_no_log_file(tmp_path, monkeypatch):
+    """MuJoCo's warnings reach the user as our warnings; its default handler would also append
+    them to MUJOCO_LOG.TXT in the working directory, on success and on failure alike."""
+    bad = Path(__file__).parent / "bad"
+    monkeypatch.chdir(tmp_path)
+    r = CliRunner().invoke(main, ["convert", str(bad / "numbers/ixy_nan.urdf"), "--to", "mjcf",
+                                  "-o", str(tmp_path / "o" / "m.xml")])
+    assert r.exit_code == 0, r.output
+    assert "warning: MuJoCo: XML contains a 'NaN'" in r.output
+    r = CliRunner().invoke(main, ["convert", str(bad / "numbers/box_nan.urdf"), "--to", "mjcf",
+                                  "-o", str(tmp_path / "p" / "m.xml")])
+    assert r.exit_code == 2 and "box_nan.urdf:2: error: MuJoCo rejected the model: Error: nan size" in r.output
+    assert not (tmp_path / "p").exists()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["o"]      # no MUJOCO_LOG.TXT

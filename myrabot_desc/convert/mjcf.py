@@ -352,6 +352,19 @@ def _c_stdout_to(notes):
                     notes.warn("MuJoCo: " + line.removeprefix("WARNING: "))
 
 
+@contextlib.contextmanager
+def _warnings_to(mujoco, notes):
+    """MuJoCo's own warnings ("XML contains a 'NaN'") as our warnings. Its default handler
+    also appends them to MUJOCO_LOG.TXT in the working directory: a file the user never
+    asked for, and written even when the conversion fails."""
+    previous = mujoco.get_mju_user_warning()
+    mujoco.set_mju_user_warning(lambda msg: notes.warn("MuJoCo: " + str(msg).strip()))
+    try:
+        yield
+    finally:
+        mujoco.set_mju_user_warning(previous)
+
+
 def _compile(mujoco, spec, notes):
     """Compile; a mesh too thin to have a volume (a decal, a flat nub) gets shell inertia and we retry."""
     import re
@@ -425,7 +438,7 @@ def convert_mjcf(robot, output: str, base: str = "auto") -> MjcfResult:
         tmp_urdf = folder / ".robot.urdf"
         tmp_urdf.write_text(urdf_text, encoding="utf-8")
         try:
-            with _c_stdout_to(notes):
+            with _c_stdout_to(notes), _warnings_to(mujoco, notes):
                 spec = mujoco.MjSpec.from_file(str(tmp_urdf))
                 model = _compile(mujoco, spec, notes)
                 text = spec.to_xml()

@@ -41,7 +41,8 @@ def build_cmd(inputs, output, deps, resolve_uris, allow_errors, max_input_bytes,
     Limits (flags here, or for every command the environment):
       MYRABOT_DESC_MAX_INPUT_BYTES, MYRABOT_DESC_MAX_INCLUDE_DEPTH,
       MYRABOT_DESC_MAX_MACRO_DEPTH, MYRABOT_DESC_MAX_MACRO_CALLS, MYRABOT_DESC_MAX_ELEMENTS;
-      meshes: MYRABOT_DESC_MAX_MESH_BYTES [50000000], MYRABOT_DESC_MAX_MESH_TRIANGLES [2000000].
+      meshes: MYRABOT_DESC_MAX_MESH_BYTES [50000000], MYRABOT_DESC_MAX_MESH_TRIANGLES [2000000];
+      material scripts: MYRABOT_DESC_MAX_MATERIAL_BYTES [5242880].
 
     \b
     Exit codes: 0 built; 1 built with errors (e.g. X002, nothing written);

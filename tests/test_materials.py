@@ -174,6 +174,18 @@ def test_limits_size_and_depth(tmp_path):
         ogre.parse_file(BRAZO_FER, max_bytes=100)
 
 
+def test_size_limit_from_the_environment(tmp_path, monkeypatch):
+    """Like the other limits, the 5 MB one is set with MYRABOT_DESC_MAX_MATERIAL_BYTES."""
+    big = tmp_path / "big.material"
+    big.write_bytes(b"// padding\n" * (ogre.MAX_BYTES // 11 + 1) + b"material A { }\n")
+    monkeypatch.setenv("MYRABOT_DESC_MAX_MATERIAL_BYTES", str(ogre.MAX_BYTES * 2))
+    assert "A" in ogre.parse_file(big).materials
+    monkeypatch.setenv("MYRABOT_DESC_MAX_MATERIAL_BYTES", "100")
+    r = _run(BRAZO_FER)
+    assert r.exit_code == 2
+    assert "over the 100-byte limit (MYRABOT_DESC_MAX_MATERIAL_BYTES)" in r.output
+
+
 @settings(max_examples=60, deadline=None)
 @given(st.lists(st.floats(min_value=0, max_value=1, allow_nan=False).map(lambda v: round(v, 4)),
                 min_size=4, max_size=4), st.booleans())

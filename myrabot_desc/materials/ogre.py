@@ -54,6 +54,7 @@ from myrabot_desc.errors import InputError
 RGBA = tuple[float, float, float, float]
 
 MAX_BYTES = 5 * 1024 * 1024   # refuse larger scripts (Gazebo's own gazebo.material is 24 kB)
+ENV_BYTES = "MYRABOT_DESC_MAX_MATERIAL_BYTES"
 MAX_DEPTH = 32                # brace nesting; real scripts use 4 (material/technique/pass/unit)
 MAX_IMPORT_DEPTH = 8
 
@@ -424,14 +425,22 @@ def _split_header(node: _Node, file: str) -> tuple[str, str | None]:
     return name, parent
 
 
-def parse_raw(text: str, file: str = "<string>", *, max_bytes: int = MAX_BYTES,
+def limit(max_bytes: int | None = None) -> int:
+    """The size limit for one script: ``max_bytes`` if given, else $MYRABOT_DESC_MAX_MATERIAL_BYTES, else 5 MB."""
+    from myrabot_desc.build import _env_int
+
+    return max_bytes if max_bytes is not None else _env_int(ENV_BYTES, MAX_BYTES)
+
+
+def parse_raw(text: str, file: str = "<string>", *, max_bytes: int | None = None,
               max_depth: int = MAX_DEPTH) -> tuple[list[RawMaterial], list[tuple[str, int]], list[str]]:
     """Parse one script without linking parents.
 
     Returns (materials, imports as (file name, line), warnings).
     """
+    max_bytes = limit(max_bytes)
     if len(text) > max_bytes:
-        raise InputError(f"material script is {len(text)} bytes, over the {max_bytes}-byte limit",
+        raise InputError(f"material script is {len(text)} bytes, over the {max_bytes}-byte limit ({ENV_BYTES})",
                          Loc(file))
     mats: list[RawMaterial] = []
     imports: list[tuple[str, int]] = []
@@ -656,7 +665,7 @@ def _stock_external(name: str) -> Material | None:
 
 
 def parse_text(text: str, file: str = "<string>", *, parents: Callable[[str], Material | None] | None = None,
-               max_bytes: int = MAX_BYTES, max_depth: int = MAX_DEPTH) -> Script:
+               max_bytes: int | None = None, max_depth: int = MAX_DEPTH) -> Script:
     """Parse a script held in memory. Imports are not followed (see :func:`parse_file`).
 
     ``parents`` finds parents defined elsewhere; by default Gazebo's stock materials.
@@ -666,11 +675,13 @@ def parse_text(text: str, file: str = "<string>", *, parents: Callable[[str], Ma
     return Script(file, mats, [i for i, _ in imports], warnings)
 
 
-def read_script_text(path: Path, file: str, max_bytes: int = MAX_BYTES) -> str:
+def read_script_text(path: Path, file: str, max_bytes: int | None = None) -> str:
+    max_bytes = limit(max_bytes)
     try:
         size = path.stat().st_size
         if size > max_bytes:
-            raise InputError(f"material script is {size} bytes, over the {max_bytes}-byte limit", Loc(file))
+            raise InputError(f"material script is {size} bytes, over the {max_bytes}-byte limit ({ENV_BYTES})",
+                             Loc(file))
         data = path.read_bytes()
     except IsADirectoryError:
         raise InputError("is a folder, not a .material file", Loc(file)) from None
@@ -688,7 +699,7 @@ def read_script_text(path: Path, file: str, max_bytes: int = MAX_BYTES) -> str:
 
 
 def parse_file(path: str | Path, *, parents: Callable[[str], Material | None] | None = None,
-               max_bytes: int = MAX_BYTES, max_depth: int = MAX_DEPTH) -> Script:
+               max_bytes: int | None = None, max_depth: int = MAX_DEPTH) -> Script:
     """Parse a .material file, following ``import ... from "x.material"`` next to it.
 
     Imported materials serve as parents only; ``Script.materials`` holds this file's own.

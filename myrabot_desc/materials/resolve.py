@@ -79,7 +79,7 @@ def resolved(mat: ogre.Material, texture_path: Path | None = None) -> ResolvedMa
 class MaterialResolver:
     """Finds material names in the scripts under ``search_dirs`` and in Gazebo's stock table."""
 
-    def __init__(self, search_dirs: list[Path], *, max_bytes: int = ogre.MAX_BYTES):
+    def __init__(self, search_dirs: list[Path], *, max_bytes: int | None = None):
         self.search_dirs = [Path(d) for d in search_dirs]
         self.max_bytes = max_bytes
         self.errors: list[InputError] = []       # unreadable scripts, unknown parents

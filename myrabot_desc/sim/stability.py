@@ -77,39 +77,25 @@ def support_polygon(robot, drive) -> Support:
 
 def margin(support: Support, com, accel_xy=(0.0, 0.0)) -> float:
     """Signed distance (m) of the loaded centre-of-pressure point to the polygon edge (+ inside)."""
+    import numpy as np
+
+    return float(margins(support, np.array([com], dtype=float), np.array([accel_xy], dtype=float))[0])
+
+
+def margins(support: Support, coms, accels):
+    """``margin`` of many poses at once (numpy rows: centres of mass (n, 3), accelerations (n, 2))."""
+    import numpy as np
+
     poly = support.polygon
-    h = float(com[2]) - support.ground_z
-    px = float(com[0]) - h / G * accel_xy[0]
-    py = float(com[1]) - h / G * accel_xy[1]
+    h = coms[:, 2] - support.ground_z
+    px = coms[:, 0] - h / G * accels[:, 0]
+    py = coms[:, 1] - h / G * accels[:, 1]
     if len(poly) < 3:
         if len(poly) == 2:     # a line: never inside
             (ax, ay), (bx, by) = poly
             L = math.hypot(bx - ax, by - ay) or 1.0
-            return -abs((bx - ax) * (py - ay) - (by - ay) * (px - ax)) / L
-        return -math.inf
-    d = math.inf
-    n = len(poly)
-    for i in range(n):
-        ax, ay = poly[i]
-        bx, by = poly[(i + 1) % n]
-        L = math.hypot(bx - ax, by - ay)
-        if L < 1e-12:
-            continue
-        d = min(d, ((bx - ax) * (py - ay) - (by - ay) * (px - ax)) / L)
-    return d
-
-
-def margins(support: Support, coms, accels):
-    """``margin`` of many poses at once (numpy rows: centres of mass (n, 3), accelerations (n, 2));
-    the same operations in the same order, so the same numbers."""
-    import numpy as np
-
-    poly = support.polygon
-    if len(poly) < 3:
-        return np.array([margin(support, c, a) for c, a in zip(coms, accels)])
-    h = coms[:, 2] - support.ground_z
-    px = coms[:, 0] - h / G * accels[:, 0]
-    py = coms[:, 1] - h / G * accels[:, 1]
+            return -np.abs((bx - ax) * (py - ay) - (by - ay) * (px - ax)) / L
+        return np.full(len(coms), -math.inf)
     d = np.full(len(coms), math.inf)
     n = len(poly)
     for i in range(n):

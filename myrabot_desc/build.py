@@ -677,6 +677,16 @@ class _Hooks:
             if inp is not None:
                 return self.saved[(xacro, "parse")](inp, filename)
             asked = b.last_loc
+            uri = str(filename)[str(filename).find("package://"):] if "package://" in str(filename) else None
+            if uri and not Path(filename).is_file():
+                # xacro (ROS 1 and 2) includes paths, not URIs (it joins this one to the including
+                # file's folder): a common slip from mesh filenames
+                from myrabot_desc.packages import split_package_uri
+
+                pkg, rest = split_package_uri(uri) or ("PKG", "")
+                xacro.filestack.pop()
+                raise InputError(f"include of {uri}: xacro includes files by path and does not resolve "
+                                 f"package:// URIs; write $(find {pkg})/{rest}", asked, b._stack())
             path = Path(filename)
             if not path.is_absolute():
                 path = Path(xacro.root_dir) / path

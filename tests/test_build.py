@@ -121,6 +121,16 @@ def test_example_robot_data_xacro_and_find_resolve(tmp_path):
     assert "X003" in [d.code for d in alone.diagnostics]
 
 
+def test_include_of_a_package_uri_says_how_to_write_it():
+    """example-robot-data's own hector quadrotor_base.xacro includes a package:// URI, which no
+    xacro resolves (it joins it to the folder): the error says to use $(find)."""
+    with pytest.raises(InputError) as e:
+        build_file(ERD / "robots/hector_description/robots/quadrotor_base.xacro")
+    msg = str(e.value)
+    assert "quadrotor_base.xacro:3: error: include of package://example-robot-data/robots/" in msg
+    assert "write $(find example-robot-data)/robots/hector_description/urdf/quadrotor_base.urdf.xacro" in msg
+
+
 def test_explicit_package_mapping_wins_and_unknown_package_is_an_error(tmp_path):
     top = tmp_path / "r.urdf.xacro"
     top.write_text('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'

@@ -89,6 +89,29 @@ def test_folder_lints_top_level_models_only():
     assert "X003" in [d["code"] for d in sonar]                   # a macro-only file
 
 
+def test_recursive_finds_every_model_of_a_tree(tmp_path):
+    """-r: the seed's three packages in one call; the parts that the top-level files include
+    are left out (brazo.xacro too: myrabot.urdf.xacro includes it from the other package),
+    hidden and build folders are skipped; without -r a folder holding only folders is a usage
+    error that points at -r."""
+    import shutil
+
+    tree = tmp_path / "ws"
+    shutil.copytree(SEED, tree / "src")
+    shutil.copytree(SEED, tree / "build" / "src")                  # a build tree: skipped
+    shutil.copytree(SEED, tree / ".hidden" / "src")
+    res = invoke(tree, "-r", "--package-path", tree / "src", "--format", "json", "--select", "X")
+    files = sorted(Path(f["file"]).relative_to(tree).as_posix() for f in json.loads(res.stdout)["files"])
+    assert files == ["src/myrabot_fer_modelo/urdf/myrabot.urdf.xacro",
+                     "src/myrabot_fer_modelo/urdf/ultrasonidos.xacro",
+                     "src/objetos_fer_modelos/urdf/lata_cerveza.xacro",
+                     "src/objetos_fer_modelos/urdf/lata_cola.xacro",
+                     "src/objetos_fer_modelos/urdf/mesa.xacro"]
+    res = invoke(tree)
+    assert res.exit_code == 2 and "no .urdf or .xacro model files in this folder (-r looks in its subfolders" \
+        in res.output
+
+
 def test_unprocessable_file_is_exit_2_one_line_others_still_checked(tmp_path):
     bad = tmp_path / "broken.urdf"
     bad.write_text("<robot name='x'><link name='a'></robot>")

@@ -14,16 +14,22 @@ MODEL_SUFFIXES = (".urdf", ".xacro")
 INCLUDE_RE = re.compile(r"""<(?:xacro:)?include\s[^>]*filename\s*=\s*["']([^"']+)["']""")
 
 
-def expand_inputs(files: list[str]) -> list[str]:
-    """Folders become their top-level model files: *.urdf and *.xacro directly inside, minus the
-    xacro files that another file of the folder includes (parts, not robots)."""
+# Never descended into by --recursive: VCS data, build trees, environments.
+SKIP_DIRS = {".git", ".hg", ".svn", "build", "install", "log", "devel", "node_modules", "__pycache__",
+             ".venv", "venv", ".tox"}
+
+
+def expand_inputs(files: list[str], recursive: bool = False) -> list[str]:
+    """Folders become their top-level model files: *.urdf and *.xacro directly inside (with
+    ``recursive``, anywhere below, hidden and build folders skipped), minus the xacro files
+    that another xacro file of the folder includes (parts, not robots)."""
     out: list[str] = []
     for f in files:
         p = Path(f)
         if not p.is_dir():
             out.append(f)
             continue
-        models = sorted(c for c in p.iterdir() if c.is_file() and c.name.endswith(MODEL_SUFFIXES))
+        models = sorted(_model_files(p, recursive))
         included = set()
         for c in models:
             if c.name.endswith(".xacro"):
@@ -34,9 +40,21 @@ def expand_inputs(files: list[str]) -> list[str]:
                 included |= {Path(m).name for m in INCLUDE_RE.findall(text)}
         picked = [str(c) for c in models if c.name not in included or c.name.endswith(".urdf")]
         if not picked:
-            raise click.UsageError(f"{f}: no .urdf or .xacro model files in this folder")
+            hint = "" if recursive else " (-r looks in its subfolders too)"
+            raise click.UsageError(f"{f}: no .urdf or .xacro model files in this folder{hint}")
         out.extend(picked)
     return out
+
+
+def _model_files(folder: Path, recursive: bool):
+    if not recursive:
+        yield from (c for c in folder.iterdir() if c.is_file() and c.name.endswith(MODEL_SUFFIXES))
+        return
+    import os
+
+    for root, dirs, names in os.walk(folder):        # does not follow symlinked folders (no loops)
+        dirs[:] = sorted(d for d in dirs if d not in SKIP_DIRS and not d.startswith("."))
+        yield from (Path(root) / n for n in names if n.endswith(MODEL_SUFFIXES))
 
 
 def check_one(inputs, path, options, select, ignore):
@@ -76,8 +94,10 @@ def check_one(inputs, path, options, select, ignore):
 @click.option("--strict", is_flag=True, help="Warnings fail too (exit 1).")
 @click.option("-o", "--output", type=click.Path(dir_okay=False), default="-", show_default=True,
               help="Write the report to a file instead of stdout.")
+@click.option("-r", "--recursive", is_flag=True,
+              help="Folders: look for models in their subfolders too (hidden and build folders skipped).")
 @click.option("--list-rules", is_flag=True, help="List every rule code and exit.")
-def check_cmd(inputs, inertia, suggest, meshes, fmt, select, ignore, strict, output, list_rules):
+def check_cmd(inputs, inertia, suggest, meshes, fmt, select, ignore, strict, output, recursive, list_rules):
     """Lint robot models: tree, inertia, sensors and frames, Gazebo plugins, meshes, physics.
 
     Each finding has a stable code (X build, T tree, I inertia, S sensors/frames,
@@ -90,6 +110,7 @@ def check_cmd(inputs, inertia, suggest, meshes, fmt, select, ignore, strict, out
       myrabot-desc check robot.urdf.xacro -p my_pkg=../my_pkg
       myrabot-desc check --inertia --suggest robot.urdf
       myrabot-desc check urdf/ --format github        # every top-level model in a folder
+      myrabot-desc check -r . --strict                # every model of a repository (CI)
       myrabot-desc check robot.urdf --select I,P --strict
       myrabot-desc check robot.urdf --format sarif -o check.sarif
 
@@ -112,7 +133,7 @@ def check_cmd(inputs, inertia, suggest, meshes, fmt, select, ignore, strict, out
         sel = [c for s in select for c in s.split(",") if c.strip()]
         ign = [c for s in ignore for c in s.split(",") if c.strip()]
         options = CheckOptions(inertia=inertia, suggest=suggest, meshes=meshes)
-        paths = expand_inputs(inputs.files) if inputs.files else [None]
+        paths = expand_inputs(inputs.files, recursive) if inputs.files else [None]
         results = []
         show_bar = fmt == "text" and output == "-" and len(paths) >= 5 and sys.stderr.isatty()
         if show_bar:

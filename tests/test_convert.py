@@ -458,3 +458,14 @@ def test_diff_drive_dialects(tmp_path, plugin, topic):
     if IGN:
         (tmp_path / "rover.sdf").write_text(text)
         ign_check(tmp_path / "rover.sdf")
+
+
+def test_unreadable_values_are_warned_not_converted_silently(tmp_path):
+    """A NaN the loader cannot take is left out of the SDF, with a warning at its file:line."""
+    bad = Path(__file__).parent / "bad" / "numbers" / "ixy_nan.urdf"
+    r = CliRunner().invoke(main, ["convert", str(bad), "-o", str(tmp_path / "r.sdf")])
+    assert r.exit_code == 0
+    assert f"{bad}:7: warning: T010 <inertia ixy=\"nan\">: not a finite number: left out of the conversion" \
+        in r.output
+    ine = etree.parse(str(tmp_path / "r.sdf")).find(".//link[@name='base_link']/inertial/inertia")
+    assert ine.findtext("ixy") == "0" and ine.findtext("ixx") == "0.02"      # the NaN read as the default 0

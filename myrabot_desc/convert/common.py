@@ -20,6 +20,13 @@ class Notes:
             self.warnings.append(text)
 
 
+def warn_load_issues(robot, notes: Notes, fate: str = "left out of the conversion") -> None:
+    """What the loader could not read (a NaN, a nameless link...): say so at its file:line
+    rather than convert silently around it. ``fate``: what the converter does with it."""
+    for d in robot.load_issues:
+        notes.warn(f"{d.code} {d.message}: {fate} (run check)", d.loc)
+
+
 def num(x: float) -> str:
     """Shortest stable text for a float: 12 significant digits, no -0, no 1e-17 noise."""
     x = float(x)

@@ -23,7 +23,7 @@ from pathlib import Path
 
 from lxml import etree
 
-from myrabot_desc.convert.common import Notes, local, num, nums
+from myrabot_desc.convert.common import Notes, local, num, nums, warn_load_issues
 from myrabot_desc.convert.inertia import describe, repaired
 from myrabot_desc.errors import InputError
 
@@ -425,6 +425,7 @@ def convert_mjcf(robot, output: str, base: str = "auto") -> MjcfResult:
     if not robot.links:
         raise InputError("the model has no links: nothing to convert", robot.loc)
     _check_depth(robot)
+    warn_load_issues(robot, notes, "passed to MuJoCo as written")   # it reads the URDF's XML
     out = Path(output) if output != "-" else None
     mesh_dirname = f"{out.stem}_meshes" if out else "meshes"
     urdf_root, prep, free = prepare_urdf(robot, notes, base, mesh_dirname)

@@ -17,7 +17,8 @@ from lxml import etree
 
 from myrabot_desc.convert.appearance import Appearance, material_element
 from myrabot_desc.convert.common import (EYE3, IDENTITY, Notes, comment, compose, is_identity, matmul3, pose_T,
-                                         pose_text, pretty, sub, transpose3)
+                                         pose_text, pretty, sub, transpose3,
+                                         warn_load_issues)
 from myrabot_desc.convert.gazebo import GazeboProps
 from myrabot_desc.convert.inertia import describe, repaired
 from myrabot_desc.convert.sensors import translate_sensor
@@ -123,6 +124,7 @@ def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = Non
             if end not in robot.links:
                 raise InputError(f"joint '{j.name}' names link '{end}', which does not exist: nothing to "
                                  "attach it to (run check for the whole picture)", j.loc)
+    warn_load_issues(robot, notes)
     props = GazeboProps(robot, notes)
     uris = UriMapper(robot, opts.uri_style, notes)
     look = Appearance(robot, notes)

@@ -47,9 +47,7 @@ def summarize(robot) -> dict:
 
 
 def _tree_order(robot) -> list[str]:
-    children: dict[str, list] = {}
-    for j in robot.joints.values():
-        children.setdefault(j.parent, []).append(j)
+    children = robot.joints_by_parent()
     order, seen = [], set()
     for root in robot.roots or list(robot.links)[:1]:
         stack = [root]
@@ -65,9 +63,7 @@ def _tree_order(robot) -> list[str]:
 
 def tree_lines(robot) -> list[str]:
     """The link tree, drawn with box characters; each child shows the joint that carries it."""
-    children: dict[str, list] = {}
-    for j in robot.joints.values():
-        children.setdefault(j.parent, []).append(j)
+    children = robot.joints_by_parent()
     lines, seen = [], set()
     for root in robot.roots or list(robot.links)[:1]:
         stack = [(root, "", None, True)]          # iterative: chains can be thousands deep

@@ -64,9 +64,7 @@ def world_transforms(robot: Robot, q: dict[str, float] | None = None, root_pose:
     for j in robot.joints.values():
         if j.mimic and j.mimic.joint in q and j.name not in q:
             q[j.name] = q[j.mimic.joint] * j.mimic.multiplier + j.mimic.offset
-    children: dict[str, list[Joint]] = {}
-    for j in robot.joints.values():
-        children.setdefault(j.parent, []).append(j)
+    children = robot.joints_by_parent()
     out: dict[str, np.ndarray] = {}
     base = np.eye(4) if root_pose is None else root_pose
     for root in robot.roots or list(robot.links)[:1]:
@@ -122,14 +120,12 @@ def require_tree(robot: Robot) -> str:
     if len(roots) != 1:
         names = ", ".join(roots[:5]) if roots else "none: the joints form a cycle"
         raise InputError(f"the model needs exactly one root link, it has {len(roots)} ({names})", robot.loc)
-    children: dict[str, list[str]] = {}
-    for j in robot.joints.values():
-        children.setdefault(j.parent, []).append(j.child)
+    children = robot.joints_by_parent()
     seen, stack = set(), [roots[0]]
     while stack:
         n = stack.pop()
         seen.add(n)
-        stack.extend(c for c in children.get(n, ()) if c not in seen)
+        stack.extend(j.child for j in children.get(n, ()) if j.child not in seen)
     if len(seen) != len(robot.links):
         lost = sorted(set(robot.links) - seen)
         raise InputError(f"links {', '.join(lost[:5])} are not reachable from the root '{roots[0]}' "

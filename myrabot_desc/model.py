@@ -257,6 +257,13 @@ class Robot:
     def child_joints(self, link: str) -> list[Joint]:
         return [j for j in self.joints.values() if j.parent == link]
 
+    def joints_by_parent(self) -> dict[str, list[Joint]]:
+        """Parent link -> the joints hanging from it, in document order (for walking the tree)."""
+        out: dict[str, list[Joint]] = {}
+        for j in self.joints.values():
+            out.setdefault(j.parent, []).append(j)
+        return out
+
     def parent_joint(self, link: str) -> Joint | None:
         return next((j for j in self.joints.values() if j.child == link), None)
 

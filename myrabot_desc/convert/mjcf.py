@@ -391,9 +391,7 @@ MAX_BODY_DEPTH = 1000  # MuJoCo fails past 1024 nested bodies, after seconds of 
 
 def _check_depth(robot) -> None:
     """Refuse a body chain MuJoCo cannot take before spending seconds in its compiler."""
-    children: dict[str, list[str]] = {}
-    for j in robot.joints.values():
-        children.setdefault(j.parent, []).append(j.child)
+    children = robot.joints_by_parent()
     child_links = {j.child for j in robot.joints.values()}
     depth: dict[str, int] = {}
     stack = [(name, 1) for name in robot.links if name not in child_links]
@@ -406,7 +404,7 @@ def _check_depth(robot) -> None:
             raise InputError(f"the kinematic chain is over {MAX_BODY_DEPTH} links deep (at link '{name}'): "
                              "MuJoCo cannot nest bodies that deep", robot.links[name].loc
                              if name in robot.links else robot.loc)
-        stack.extend((c, d + 1) for c in children.get(name, ()))
+        stack.extend((j.child, d + 1) for j in children.get(name, ()))
 
 
 def convert_mjcf(robot, output: str, base: str = "auto") -> MjcfResult:

@@ -148,9 +148,7 @@ def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = Non
     host: dict[str, str] = {}
     host_T: dict[str, object] = {}
     lumped_joints = []
-    children: dict[str, list] = {}
-    for j in robot.joints.values():
-        children.setdefault(j.parent, []).append(j)
+    children = robot.joints_by_parent()
     order = [r for r in robot.roots]
     for r in order:
         host[r], host_T[r] = r, IDENTITY

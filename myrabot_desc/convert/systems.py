@@ -31,9 +31,7 @@ def link_transforms(robot):
     todo = list(robot.roots)
     for r in todo:
         out[r] = IDENTITY
-    children = {}
-    for j in robot.joints.values():
-        children.setdefault(j.parent, []).append(j)
+    children = robot.joints_by_parent()
     while todo:
         link = todo.pop()
         for j in children.get(link, []):

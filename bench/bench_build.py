@@ -18,7 +18,7 @@ import tempfile
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _timing import BIN, best_of, bench_env, fmt_s, save, table  # noqa: E402
+from _timing import BIN, bench_env, best_of, fmt_s, save, table  # noqa: E402
 from gen_flat import flat_xacro  # noqa: E402
 from gen_pr2like import write_pr2like  # noqa: E402
 
@@ -44,7 +44,7 @@ def main(argv=None) -> int:
                     help="runs of the xacro CLI on 4,000 calls (about 45 s each) [1]")
     ap.add_argument("--quick", action="store_true", help="skip the xacro CLI on 4,000 calls")
     a = ap.parse_args(argv)
-    from myrabot_desc.loader import data_root
+    from myrabot_desc.build.packages import data_root
 
     ours = [str(BIN / "myrabot-desc"), "build"]
     xacro = [str(BIN / "xacro")]

@@ -40,7 +40,7 @@ def main() -> int:
         print(f"myrabot-desc convert --to sdf (xacro build included): median {statistics.median(ours):.3f} s "
               f"(min {min(ours):.3f})")
         from myrabot_desc.convert.sdf import to_sdf
-        from myrabot_desc.loader import load_robot
+        from myrabot_desc.model.loader import load_robot
 
         lib = []
         for _ in range(args.repeat):

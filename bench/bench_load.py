@@ -19,7 +19,7 @@ import sysconfig
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _timing import BIN, ROOT, best_of, bench_env, fmt_s, have, save, table  # noqa: E402
+from _timing import BIN, ROOT, bench_env, best_of, fmt_s, have, save, table  # noqa: E402
 
 ROBOTS = Path(sysconfig.get_paths()["purelib"]) / "cmeel.prefix" / "share" / "example-robot-data" / "robots"
 

@@ -54,7 +54,8 @@ def main(argv=None):
     res = {"simulated_s": S, "rate_hz": 1000}
 
     t0 = time.perf_counter()
-    from myrabot_desc.loader import data_root, load_robot
+    from myrabot_desc.build.packages import data_root
+    from myrabot_desc.model.loader import load_robot
     from myrabot_desc.sim import pointing, prepared, scene, vuelta
 
     robot = load_robot(None)

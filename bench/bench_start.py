@@ -16,7 +16,7 @@ import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _timing import BIN, ROOT, best_of, bench_env, fmt_s, save, table  # noqa: E402
+from _timing import BIN, ROOT, bench_env, best_of, fmt_s, save, table  # noqa: E402
 
 HEAVY = ("trimesh", "yourdfpy", "pinocchio", "mujoco", "numpy", "scipy", "networkx")
 
@@ -36,7 +36,7 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--repeat", type=int, default=20, help="runs per command (best is kept) [20]")
     a = ap.parse_args(argv)
-    from myrabot_desc.loader import data_root
+    from myrabot_desc.build.packages import data_root
 
     py, cli = str(BIN / "python"), str(BIN / "myrabot-desc")
     small = str(ROOT / "tests" / "fixtures" / "xacro" / "math_yaml.urdf.xacro")

@@ -19,7 +19,18 @@ import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _timing import BIN, OUT, ROOT, best_of, bench_env, fmt_s, have, machine, save, table  # noqa: E402
+from _timing import (  # noqa: E402
+    BIN,
+    OUT,
+    ROOT,
+    bench_env,
+    best_of,
+    fmt_s,
+    have,
+    machine,
+    save,
+    table,
+)
 
 DOC = ROOT / "docs" / "benchmarks.md"
 BEGIN, END = "<!-- targets:begin -->", "<!-- targets:end -->"

@@ -45,7 +45,7 @@ class Inputs:
 
     def load(self, path: str | None = None):
         """Load one model (the first FILE, or the bundled MYRAbot) into a Robot."""
-        from myrabot_desc.loader import load_robot
+        from myrabot_desc.model.loader import load_robot
 
         return load_robot(path if path is not None else self.file, **self.build_options())
 

@@ -6,13 +6,13 @@ import math
 
 import click
 
-from myrabot_desc.build import display
 from myrabot_desc.cli_common import guarded, input_options
+from myrabot_desc.safety import display
 
 
 def summarize(robot) -> dict:
     """Everything ``info`` shows, as plain data (also the --json output)."""
-    from myrabot_desc.kinematics import center_of_mass, world_transforms
+    from myrabot_desc.model.kinematics import center_of_mass, world_transforms
 
     T = world_transforms(robot)
     mass, com = center_of_mass(robot)

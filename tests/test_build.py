@@ -10,7 +10,7 @@ import pytest
 from click.testing import CliRunner
 from lxml import etree
 
-from myrabot_desc.build import build_file
+from myrabot_desc.build.driver import build_file
 from myrabot_desc.cli import main
 from myrabot_desc.errors import InputError
 
@@ -296,10 +296,10 @@ def test_resolve_uris(tmp_path):
 
 def _plain_xacro(path: Path, resolver_paths=()) -> str:
     """What the unmodified xacro library produces (with $(find) mapped to our resolver)."""
-    import xacro
     import xacro.substitution_args as sa
 
-    from myrabot_desc.packages import PackageResolver
+    import xacro
+    from myrabot_desc.build.packages import PackageResolver
 
     resolver = PackageResolver(package_paths=resolver_paths, input_file=path)
     saved = sa._eval_find

@@ -16,9 +16,10 @@ import yaml
 from click.testing import CliRunner
 from lxml import etree
 
+from myrabot_desc.build.packages import data_root
 from myrabot_desc.cli import main as cli
-from myrabot_desc.kinematics import pose_matrix, world_transforms
-from myrabot_desc.loader import data_root, load_robot
+from myrabot_desc.model.kinematics import pose_matrix, world_transforms
+from myrabot_desc.model.loader import load_robot
 
 ROOT = data_root()
 
@@ -186,7 +187,7 @@ def test_frame_positions_match_seed(robot):
 
 
 def test_joint_positions_match_seed(robot):
-    from myrabot_desc.kinematics import joint_world_transforms
+    from myrabot_desc.model.kinematics import joint_world_transforms
 
     T = joint_world_transforms(robot)
     bad = {n: T[n][:3, 3].round(4).tolist() for n, p in SEED_JOINTS.items()
@@ -478,8 +479,8 @@ def test_layouts(layout, models):
 # ---------------------------------------------------------------- generated assets
 
 def test_assets_regenerate_identically(tmp_path):
-    """`python -m myrabot_desc.assets` is deterministic and the committed files are its output."""
-    res = subprocess.run([sys.executable, "-m", "myrabot_desc.assets", "--root", str(tmp_path)],
+    """`python -m tools.make_meshes` is deterministic and the committed files are its output."""
+    res = subprocess.run([sys.executable, "-m", "tools.make_meshes", "--root", str(tmp_path)],
                          capture_output=True, text=True, timeout=120)
     assert res.returncode == 0, res.stderr
     written = sorted(p.relative_to(tmp_path) for p in tmp_path.rglob("*") if p.is_file())

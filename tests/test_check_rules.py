@@ -7,7 +7,7 @@ import textwrap
 import pytest
 
 from myrabot_desc.checks import CheckOptions, run_checks
-from myrabot_desc.loader import load_robot
+from myrabot_desc.model.loader import load_robot
 
 INERT = '<inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>'
 

@@ -14,9 +14,10 @@ import pytest
 from click.testing import CliRunner
 from lxml import etree
 
+from myrabot_desc.build.packages import data_root
 from myrabot_desc.cli import main
 from myrabot_desc.convert.sdf import SdfOptions, to_sdf
-from myrabot_desc.loader import data_root, load_robot
+from myrabot_desc.model.loader import load_robot
 
 FIX = Path(__file__).parent / "fixtures"
 SEED = FIX / "seed_myrabot"

@@ -15,8 +15,9 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from myrabot_desc.convert.common import IDENTITY, compose, is_identity, pose_text, rpy_of, transform
-from myrabot_desc.convert.inertia import eigh3, repaired, tensor
+from myrabot_desc.convert.common import pose_text
+from myrabot_desc.model.inertia import eigh3, repaired, tensor
+from myrabot_desc.model.transforms import IDENTITY, compose, is_identity, rpy_of, transform
 
 angles = st.floats(-math.pi, math.pi, allow_nan=False)
 coords = st.floats(-10, 10, allow_nan=False)

@@ -11,7 +11,7 @@ from click.testing import CliRunner
 
 from myrabot_desc.cli import main
 from myrabot_desc.errors import InputError
-from myrabot_desc.loader import load_robot
+from myrabot_desc.model.loader import load_robot
 
 FIX = Path(__file__).parent / "fixtures"
 ERD = Path(sys.prefix) / "lib" / f"python{sys.version_info.major}.{sys.version_info.minor}" / "site-packages" / \

@@ -15,7 +15,11 @@ from lxml import etree
 from myrabot_desc.errors import InputError
 from myrabot_desc.materials import ogre, stock
 from myrabot_desc.materials.cli import materials_cmd
-from myrabot_desc.materials.resolve import MaterialResolver, resolver_for, search_dirs_for
+from myrabot_desc.materials.resolve import (
+    MaterialResolver,
+    resolver_for,
+    search_dirs_for,
+)
 
 FIX = Path(__file__).parent / "fixtures" / "materials"
 OBJETOS = FIX / "objetos_fer_modelos"
@@ -273,7 +277,7 @@ def test_resolver_for_walks_up_to_the_package_root():
 
 
 def test_resolver_for_a_loaded_seed_model():
-    loader = pytest.importorskip("myrabot_desc.loader")
+    loader = pytest.importorskip("myrabot_desc.model.loader")
     xacro_file = SEED_OBJETOS / "urdf" / "lata_cerveza.xacro"
     robot = loader.load_robot(str(xacro_file))
     res = resolver_for(robot)
@@ -357,7 +361,7 @@ def test_cli_through_the_main_group():
 def test_seed_robot_gazebo_materials_resolve_with_the_arm_script_on_the_path():
     """The seed MYRAbot's <gazebo><material> names: stock ones become colours, the arm's come
     from brazo_fer.material once it is on the media path, and the seed's gaps stay visible."""
-    loader = pytest.importorskip("myrabot_desc.loader")
+    loader = pytest.importorskip("myrabot_desc.model.loader")
     seed = Path(__file__).parent / "fixtures" / "seed_myrabot"
     robot = loader.load_robot(str(seed / "myrabot_fer_modelo/urdf/myrabot.urdf.xacro"),
                               packages={"brazo_fer_modelo": str(seed / "brazo_fer_modelo"),

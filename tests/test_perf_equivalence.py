@@ -18,9 +18,9 @@ from pathlib import Path
 
 import pytest
 
-from myrabot_desc.build import build_file
+from myrabot_desc.build.driver import build_file
+from myrabot_desc.build.packages import data_root
 from myrabot_desc.errors import InputError
-from myrabot_desc.loader import data_root
 
 HERE = Path(__file__).parent
 ROOT = HERE.parent
@@ -35,10 +35,10 @@ from gen_shapes import SHAPES  # noqa: E402
 
 def plain_xacro(path: Path, package_paths=()) -> str:
     """What the unmodified xacro library produces, with $(find) mapped to our package resolver."""
-    import xacro
     import xacro.substitution_args as sa
 
-    from myrabot_desc.packages import PackageResolver
+    import xacro
+    from myrabot_desc.build.packages import PackageResolver
 
     resolver = PackageResolver(package_paths=package_paths, input_file=path)
 
@@ -162,7 +162,7 @@ SHAPE_CASES = ["0.1 + 17 * 0.001", "-3.5e-2 * 2", "(1 + 2) / 4.0", "sin(0.5) * 2
 @pytest.mark.parametrize("expr", SHAPE_CASES)
 def test_vetting_by_shape_agrees_with_the_full_vetting(expr):
     """The shape shortcut (numbers -> 1) gives the same value, or the same refusal, as the full path."""
-    from myrabot_desc import safe_eval as S
+    from myrabot_desc.build import safe_eval as S
 
     def outcome(use_shapes):
         refusals = []

@@ -54,7 +54,7 @@ def test_vuelta_swing_count(vuelta):
     (the AX-12 at 400 units would do 4.65 rad/s) between the reversal readings, which the
     ±110 tolerance puts at 609 and 413 units (the seed's strict inequalities), with
     pose_arm at 100 Hz; reaching 304 costs one more message (cont1 = 1, then 718)."""
-    from myrabot_desc.loader import load_robot
+    from myrabot_desc.model.loader import load_robot
     from myrabot_desc.sim import servo as sv
 
     robot = load_robot(None)
@@ -272,7 +272,8 @@ def test_vuelta_switched_off_mid_swing_hits_the_webcam():
 
 @pytest.fixture(scope="module")
 def arm_and_colliders():
-    from myrabot_desc.loader import data_root, load_robot
+    from myrabot_desc.build.packages import data_root
+    from myrabot_desc.model.loader import load_robot
     from myrabot_desc.sim import collide, scene
     from myrabot_desc.sim.arm import Arm
 
@@ -348,7 +349,7 @@ def test_prepared_robot_gives_the_same_run():
     once per Robot; a second run on it and a run on a freshly loaded one agree exactly."""
     import numpy as np
 
-    from myrabot_desc.loader import load_robot
+    from myrabot_desc.model.loader import load_robot
     from myrabot_desc.sim import prepared, vuelta
 
     robot = load_robot(None)

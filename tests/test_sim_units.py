@@ -121,8 +121,8 @@ def test_mesh_vertices_fast_path_equals_trimesh(tmp_path):
 
     import trimesh
 
-    from myrabot_desc import meshio
     from myrabot_desc.errors import InputError
+    from myrabot_desc.model import meshes as meshio
 
     meshes = sorted((Path(__file__).resolve().parents[1] / "meshes").glob("*.stl"))
     assert len(meshes) == 11
@@ -145,7 +145,7 @@ def test_mesh_vertices_fast_path_equals_trimesh(tmp_path):
 
 
 def test_convex_hull_square_line_and_random():
-    from myrabot_desc.hull2d import convex_hull
+    from myrabot_desc.model.hull2d import convex_hull
 
     square = [(0, 0), (1, 0), (1, 1), (0, 1), (0.5, 0.5), (0.5, 0), (1, 0.5), (1e-12, 0)]
     assert convex_hull(square) == [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)]   # CCW, collinear dropped

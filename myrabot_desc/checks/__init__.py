@@ -2,7 +2,7 @@
 
 Library use::
 
-    from myrabot_desc.loader import load_robot
+    from myrabot_desc.model.loader import load_robot
     from myrabot_desc.checks import run_checks, CheckOptions
     diags = run_checks(load_robot("robot.urdf.xacro"), CheckOptions(inertia=True))
 """

@@ -120,7 +120,13 @@ def check_cmd(inputs, inertia, suggest, meshes, fmt, select, ignore, strict, out
     """
     from myrabot_desc import __version__
     from myrabot_desc.checks import CheckOptions
-    from myrabot_desc.checks.report import render_github, render_json, render_sarif, render_text, rule_table
+    from myrabot_desc.checks.report import (
+        render_github,
+        render_json,
+        render_sarif,
+        render_text,
+        rule_table,
+    )
     from myrabot_desc.output import write_output
 
     with guarded():

@@ -60,7 +60,7 @@ class Context:
     @cached_property
     def world(self) -> dict:
         """link -> 4x4 world pose at q = 0 with the root at the origin."""
-        from myrabot_desc.kinematics import world_transforms
+        from myrabot_desc.model.kinematics import world_transforms
 
         return world_transforms(self.robot)
 
@@ -138,7 +138,7 @@ class Context:
 
     def mesh(self, geom):
         """trimesh.Trimesh for a Mesh geometry (scaled), or None / an error string; cached."""
-        from myrabot_desc.checks import geometry
+        from myrabot_desc.model import shapes as geometry
 
         key = (str(geom.path), tuple(geom.scale))
         if key not in self._mesh_cache:

@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 from functools import lru_cache
 
-from myrabot_desc.checks import geometry as G
+from myrabot_desc.model import shapes as G
 from myrabot_desc.checks.registry import Finding, rule
 
 RATIO_LIMIT = 10.0

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from myrabot_desc.checks import geometry as G
+from myrabot_desc.model import shapes as G
 from myrabot_desc.checks.registry import Finding, rule
 
 CONTACT_TOL = 0.003      # m: geometry this close to the lowest point touches the ground
@@ -13,7 +13,7 @@ SPAWN_TOL = 0.002        # m: penetration Gazebo resolves without a visible jump
 
 def _collision_world(ctx):
     """[(link, item, world pose 4x4, mesh or None)] for every collision shape we can place."""
-    from myrabot_desc.kinematics import pose_matrix
+    from myrabot_desc.model.kinematics import pose_matrix
 
     out = []
     W = ctx.world
@@ -79,8 +79,8 @@ def support(ctx):
     """Ground contacts with the base on the ground at q = 0: (ground z, contacts, hull, com)."""
     import numpy as np
 
-    from myrabot_desc.hull2d import convex_hull
-    from myrabot_desc.kinematics import center_of_mass
+    from myrabot_desc.model.hull2d import convex_hull
+    from myrabot_desc.model.kinematics import center_of_mass
 
     shapes = _collision_world(ctx)
     low = []
@@ -149,7 +149,7 @@ def _tip(ctx, hull, com, zmin):
     import numpy as np
 
     from myrabot_desc.checks.inertia_geometry import _primitive_points
-    from myrabot_desc.kinematics import pose_matrix
+    from myrabot_desc.model.kinematics import pose_matrix
 
     r = ctx.robot
     wheel_joints = [r.joints[n] for n in wheels(ctx) if n in r.joints]
@@ -268,7 +268,7 @@ def mass_summary(ctx):
     """
     if not ctx.tree_ok:
         return
-    from myrabot_desc.kinematics import center_of_mass
+    from myrabot_desc.model.kinematics import center_of_mass
 
     mass, com = center_of_mass(ctx.robot)
     if not mass > 0:

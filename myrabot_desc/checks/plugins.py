@@ -114,7 +114,7 @@ def _wheel_radius(ctx, joint):
     """Radius of the wheel turned by `joint` from its collision geometry (cylinder about the axis, sphere)."""
     import numpy as np
 
-    from myrabot_desc.kinematics import pose_matrix
+    from myrabot_desc.model.kinematics import pose_matrix
 
     link = ctx.robot.links.get(joint.child)
     if link is None:
@@ -146,7 +146,7 @@ def _wheel_radius(ctx, joint):
 
 def _wheel_center(ctx, joint, item):
     """World position of the wheel (its collision centre when known, else the joint origin)."""
-    from myrabot_desc.kinematics import pose_matrix
+    from myrabot_desc.model.kinematics import pose_matrix
 
     W = ctx.world
     if joint.child in W:
@@ -303,7 +303,7 @@ def drive_axis(ctx):
         for side, j in (("left", lj), ("right", rj)):
             if j is None or j.parent not in W:
                 continue
-            from myrabot_desc.kinematics import pose_matrix
+            from myrabot_desc.model.kinematics import pose_matrix
 
             T = W[j.parent] @ pose_matrix(j.origin)
             a = T[:3, :3] @ np.asarray(j.axis, float)

@@ -239,7 +239,7 @@ def joint_type_known(ctx):
     ball joint. Fix: one of the six URDF types (did-you-mean is given).
     """
     from myrabot_desc.checks.urdf_syntax import suggest
-    from myrabot_desc.model import JOINT_TYPES
+    from myrabot_desc.model.parts import JOINT_TYPES
 
     for j in ctx.robot.joints.values():
         if j.type not in JOINT_TYPES:

@@ -24,8 +24,8 @@ from pathlib import Path
 from lxml import etree
 
 from myrabot_desc.convert.common import Notes, local, num, nums, warn_load_issues
-from myrabot_desc.convert.inertia import describe, repaired
 from myrabot_desc.errors import InputError
+from myrabot_desc.model.inertia import describe, repaired
 
 TINY_MASS = 1e-3
 TINY_INERTIA = 1e-6
@@ -83,7 +83,7 @@ class _Prep:
         key = src.resolve()
         if key in self.meshes:
             return self.meshes[key]
-        from myrabot_desc import meshio
+        from myrabot_desc.model import meshes as meshio
 
         ext = src.suffix.lower()
         mesh = None

@@ -16,15 +16,29 @@ from dataclasses import dataclass
 from lxml import etree
 
 from myrabot_desc.convert.appearance import Appearance, material_element
-from myrabot_desc.convert.common import (EYE3, IDENTITY, Notes, comment, compose, is_identity, matmul3, pose_T,
-                                         pose_text, pretty, sub, transpose3,
-                                         warn_load_issues)
+from myrabot_desc.convert.common import (
+    Notes,
+    comment,
+    pose_text,
+    pretty,
+    sub,
+    warn_load_issues,
+)
 from myrabot_desc.convert.gazebo import GazeboProps
-from myrabot_desc.convert.inertia import describe, repaired
 from myrabot_desc.convert.sensors import translate_sensor
 from myrabot_desc.convert.systems import Systems
 from myrabot_desc.convert.uris import UriMapper
 from myrabot_desc.errors import InputError
+from myrabot_desc.model.inertia import describe, repaired
+from myrabot_desc.model.transforms import (
+    EYE3,
+    IDENTITY,
+    compose,
+    is_identity,
+    matmul3,
+    pose_T,
+    transpose3,
+)
 
 SDF_VERSION = "1.9"
 # Placeholder for massless links: 1 g with the inertia of a 5 cm sphere. Enough for DART to

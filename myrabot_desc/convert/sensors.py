@@ -15,8 +15,16 @@ from dataclasses import dataclass, field
 
 from lxml import etree
 
-from myrabot_desc.convert.common import (local, num, sub, to_bool, to_float, to_floats, transform,
-                                         xml_text)
+from myrabot_desc.convert.common import (
+    local,
+    num,
+    sub,
+    to_bool,
+    to_float,
+    to_floats,
+    xml_text,
+)
+from myrabot_desc.model.transforms import transform
 
 SONAR_NOTE = ("gz-sim has no sonar sensor: this is a narrow gpu_lidar with the seed's rays; the old plugin "
               "published sensor_msgs/Range = the minimum over its rays, so take min(ranges) downstream")

@@ -16,9 +16,15 @@ import math
 
 from lxml import etree
 
-from myrabot_desc.convert.common import (IDENTITY, compose, local, num, pose_T, rotate, sub, to_bool, to_float,
-                                         xml_text)
-from myrabot_desc.convert.sensors import imu_from_plugin, plugin_kind, pparam, ros_namespace, ros_remap
+from myrabot_desc.convert.common import local, num, sub, to_bool, to_float, xml_text
+from myrabot_desc.convert.sensors import (
+    imu_from_plugin,
+    plugin_kind,
+    pparam,
+    ros_namespace,
+    ros_remap,
+)
+from myrabot_desc.model.transforms import IDENTITY, compose, pose_T, rotate
 
 DIFF_DRIVE = ("gz-sim-diff-drive-system", "gz::sim::systems::DiffDrive")
 JOINT_STATES = ("gz-sim-joint-state-publisher-system", "gz::sim::systems::JointStatePublisher")

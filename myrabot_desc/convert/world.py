@@ -8,7 +8,6 @@ for cameras and lidars, Imu for IMUs (anchors §6.3).
 
 from __future__ import annotations
 
-
 from lxml import etree
 
 from myrabot_desc.convert.common import Notes, comment, nums, pretty, sub
@@ -37,7 +36,7 @@ SENSOR_SYSTEMS = {
 def read_layout(name: str) -> dict:
     import yaml
 
-    from myrabot_desc.loader import data_root
+    from myrabot_desc.build.packages import data_root
 
     path = data_root() / "layouts" / f"{name}.yaml"
     if not path.is_file():
@@ -99,7 +98,8 @@ def _sun(world):
 def to_world(robot, layout: str, opts: SdfOptions | None = None, load=None) -> tuple[str, SdfResult]:
     """``robot`` is placed where the layout puts its robot; the layout's objects are built from the
     bundled package (``load(path)`` builds one, default ``load_robot``)."""
-    from myrabot_desc.loader import data_root, load_robot
+    from myrabot_desc.build.packages import data_root
+    from myrabot_desc.model.loader import load_robot
 
     opts = opts or SdfOptions()
     data = read_layout(layout)

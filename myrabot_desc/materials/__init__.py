@@ -3,6 +3,10 @@
 ``check`` and ``convert`` use :func:`myrabot_desc.materials.resolve.resolver_for`.
 """
 
-from myrabot_desc.materials.resolve import MaterialResolver, ResolvedMaterial, resolver_for
+from myrabot_desc.materials.resolve import (
+    MaterialResolver,
+    ResolvedMaterial,
+    resolver_for,
+)
 
 __all__ = ["MaterialResolver", "ResolvedMaterial", "resolver_for"]

@@ -427,7 +427,7 @@ def _split_header(node: _Node, file: str) -> tuple[str, str | None]:
 
 def limit(max_bytes: int | None = None) -> int:
     """The size limit for one script: ``max_bytes`` if given, else $MYRABOT_DESC_MAX_MATERIAL_BYTES, else 5 MB."""
-    from myrabot_desc.build import _env_int
+    from myrabot_desc.safety import _env_int
 
     return max_bytes if max_bytes is not None else _env_int(ENV_BYTES, MAX_BYTES)
 

@@ -24,7 +24,13 @@ from __future__ import annotations
 
 from functools import lru_cache
 
-from myrabot_desc.materials.ogre import Material, Pass, Technique, TextureUnit, summarize
+from myrabot_desc.materials.ogre import (
+    Material,
+    Pass,
+    Technique,
+    TextureUnit,
+    summarize,
+)
 
 # name -> (parent, passes); a pass is a dict of the script's values as written.
 # Keys: name, ambient, diffuse, specular (raw: r g b [a] shininess), emissive, lighting,

@@ -34,7 +34,7 @@ class Arm:
         import numpy as np
         import pinocchio as pin
 
-        from myrabot_desc.pin_bridge import build_model
+        from myrabot_desc.model.pin_model import build_model
 
         self.robot = robot
         self.names = []
@@ -87,7 +87,7 @@ class Arm:
         R3 = oMi[j3].rotation
         self.axis_local = R3.T @ d
         # tip: the farthest collision point of the wrist's subtree along the axis
-        from myrabot_desc.kinematics import world_transforms
+        from myrabot_desc.model.kinematics import world_transforms
 
         robot = self.robot
         jname = self.names[3]

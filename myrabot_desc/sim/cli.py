@@ -59,7 +59,7 @@ def _finish(res, as_json, csv_path, plot_path):
 
 def _load(inputs):
     """The model, which must be one tree to move (a broken one fails here with file:line, not deep inside)."""
-    from myrabot_desc.kinematics import require_tree
+    from myrabot_desc.model.kinematics import require_tree
 
     robot = inputs.load()
     require_tree(robot)
@@ -220,7 +220,7 @@ def _pointing_options(f):
 def _layout(name, path):
     from pathlib import Path
 
-    from myrabot_desc.loader import data_root
+    from myrabot_desc.build.packages import data_root
     from myrabot_desc.sim.scene import load_layout
 
     return load_layout(Path(path) if path else data_root() / "layouts" / f"{name}.yaml")

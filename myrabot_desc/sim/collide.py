@@ -17,7 +17,6 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from pathlib import Path
 
-
 # Distance queries cost ~10 collision tests each; the closest approach is found at the
 # joints' extremes (always probed) plus this many evenly spread poses.
 PROBES = 12

@@ -209,7 +209,7 @@ def _guess_wheel_joints(robot) -> tuple[str, str]:
 def urdf_wheels(robot, left: str, right: str) -> UrdfDrive:
     import numpy as np
 
-    from myrabot_desc.kinematics import world_transforms
+    from myrabot_desc.model.kinematics import world_transforms
 
     tf = world_transforms(robot)
     out = []
@@ -279,7 +279,7 @@ def _geometry_points(robot, g, loc, n: int = 720):
         return np.vstack([np.column_stack([r * c, r * s, 0 * a]), np.column_stack([r * c, 0 * a, r * s]),
                           np.column_stack([0 * a, r * c, r * s])])
     if g.kind == "mesh":
-        from myrabot_desc import meshio
+        from myrabot_desc.model import meshes as meshio
 
         if g.path is None:
             raise InputError(f"mesh {g.filename} cannot be resolved", loc)

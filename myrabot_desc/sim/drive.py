@@ -160,7 +160,7 @@ def _stance(robot, drive) -> dict:
     try:
         import pinocchio as pin
 
-        from myrabot_desc.pin_bridge import build_model
+        from myrabot_desc.model.pin_model import build_model
         from myrabot_desc.sim import stability
         from myrabot_desc.sim.arm import whole_com
 

@@ -95,8 +95,9 @@ def load_layout(path: Path, robot_pose=None) -> list[SceneObject]:
     import numpy as np
     import yaml
 
-    from myrabot_desc.kinematics import world_transforms
-    from myrabot_desc.loader import data_root, load_robot
+    from myrabot_desc.build.packages import data_root
+    from myrabot_desc.model.kinematics import world_transforms
+    from myrabot_desc.model.loader import load_robot
 
     path = Path(path)
     try:

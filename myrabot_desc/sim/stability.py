@@ -36,7 +36,7 @@ class Support:
 def support_polygon(robot, drive) -> Support:
     import numpy as np
 
-    from myrabot_desc.kinematics import world_transforms
+    from myrabot_desc.model.kinematics import world_transforms
     from myrabot_desc.sim.diffdrive import _geometry_points
 
     tf = world_transforms(robot)
@@ -116,6 +116,6 @@ def _hull(points):
     """Convex hull in the plane, counter-clockwise (``points``: pairs or an (n, 2) array)."""
     import numpy as np
 
-    from myrabot_desc.hull2d import convex_hull
+    from myrabot_desc.model.hull2d import convex_hull
 
     return convex_hull(np.asarray(points, dtype=float).reshape(-1, 2).tolist())

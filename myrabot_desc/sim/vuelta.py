@@ -236,7 +236,7 @@ def footprint(robot):
     """Convex outline (root frame, xy) of the robot's primitive collision geometry at the zero pose."""
     import numpy as np
 
-    from myrabot_desc.kinematics import world_transforms
+    from myrabot_desc.model.kinematics import world_transforms
     from myrabot_desc.sim.diffdrive import _geometry_points
     from myrabot_desc.sim.stability import _hull
 

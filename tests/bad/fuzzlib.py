@@ -60,8 +60,8 @@ def bundled_urdf() -> Path:
 
     dest = Path(tempfile.gettempdir()) / "myrabot_fuzz_seed" / "myrabot.urdf"
     if not dest.is_file():
-        from myrabot_desc.build import build_file
-        from myrabot_desc.loader import bundled_path
+        from myrabot_desc.build.driver import build_file
+        from myrabot_desc.build.packages import bundled_path
 
         dest.parent.mkdir(parents=True, exist_ok=True)
         dest.write_text(build_file(bundled_path()).text)

@@ -18,12 +18,12 @@ Each case is (path, targets, expect, what):
 from __future__ import annotations
 
 import json
-from xml.sax.saxutils import quoteattr
 import os
 import random
 import shutil
 import struct
 from pathlib import Path
+from xml.sax.saxutils import quoteattr
 
 HERE = Path(__file__).resolve().parent
 CASES: list[dict] = []

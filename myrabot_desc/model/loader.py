@@ -9,36 +9,37 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+from myrabot_desc.build.packages import BUNDLED_ASSEMBLY, bundled_path, data_root  # noqa: F401  (library API)
 from myrabot_desc.diagnostics import Diagnostic, Loc
 from myrabot_desc.errors import InputError
-from myrabot_desc.model import (
-    Box, Collision, Cylinder, Dynamics, GazeboBlock, Inertial, Joint, Limit, Link, Material, Mesh, Mimic,
-    Plugin, Pose, Robot, Sensor, Sphere, Transmission, Visual,
+from myrabot_desc.model.parts import (
+    Box,
+    Collision,
+    Cylinder,
+    Dynamics,
+    GazeboBlock,
+    Inertial,
+    Joint,
+    Limit,
+    Link,
+    Material,
+    Mesh,
+    Mimic,
+    Plugin,
+    Pose,
+    Robot,
+    Sensor,
+    Sphere,
+    Transmission,
+    Visual,
 )
 
-BUNDLED_ASSEMBLY = "xacro/myrabot.urdf.xacro"
 ELECTRIC_SUFFIXES = ("#controller", "#sensor", "#interface")
 # Sizes, offsets, masses and inertias beyond this (SI units) are typing errors or attacks: 1e300
 # overflows volumes and inertias downstream. Joint limits and dynamics are exempt (1e16 is a
 # common "unlimited").
 MAX_MAGNITUDE = 1e6
 
-
-def data_root() -> Path:
-    """Folder of the bundled ROS package ``myrabot_description``.
-
-    In a source checkout it is the repository top (package.xml beside the
-    package folder); in an installed wheel it is ``myrabot_desc/share/...``.
-    """
-    here = Path(__file__).resolve().parent
-    shipped = here / "share" / "myrabot_description"
-    if (shipped / "package.xml").is_file():
-        return shipped
-    return here.parent
-
-
-def bundled_path(relative: str = BUNDLED_ASSEMBLY) -> Path:
-    return data_root() / relative
 
 
 def is_xacro(path: Path) -> bool:
@@ -53,7 +54,7 @@ def load_robot(path=None, **build_options) -> Robot:
     if src.is_dir():
         raise InputError(f"{src} is a folder; give a .urdf or .xacro file")
     if is_xacro(src):
-        from myrabot_desc.build import build_file
+        from myrabot_desc.build.driver import build_file
 
         result = build_file(src, build_options.pop("mappings", None), **build_options)
         return read_urdf_text(result.text, src, locations=result.locations, package_roots=result.package_roots,
@@ -61,7 +62,7 @@ def load_robot(path=None, **build_options) -> Robot:
                               build_warnings=result.diagnostics, from_xacro=True,
                               packages=build_options.get("packages"),
                               package_paths=build_options.get("package_paths", ()))
-    from myrabot_desc.build import Limits
+    from myrabot_desc.safety import Limits
 
     limit = (build_options.get("limits") or Limits()).max_input_bytes
     try:
@@ -76,7 +77,7 @@ def load_robot(path=None, **build_options) -> Robot:
 
 
 def read_urdf_bytes(data: bytes, src: Path, packages=None, package_paths=()) -> Robot:
-    from myrabot_desc.build import parse_xml_bytes
+    from myrabot_desc.safety import parse_xml_bytes
 
     root = parse_xml_bytes(data, str(src))
     text = data.decode("utf-8", errors="replace")
@@ -86,7 +87,7 @@ def read_urdf_bytes(data: bytes, src: Path, packages=None, package_paths=()) -> 
 def read_urdf_text(text: str, src: Path, locations=None, package_roots=None, build_warnings=None,
                    from_xacro=False, packages=None, package_paths=(), root=None) -> Robot:
     """Read URDF text into a Robot; ``root`` is the text already parsed (the build hands it over)."""
-    from myrabot_desc.build import parse_xml_bytes
+    from myrabot_desc.safety import parse_xml_bytes
 
     if root is None:
         root = parse_xml_bytes(text.encode("utf-8"), str(src))
@@ -182,7 +183,7 @@ class _Reader:
             fn = shape.get("filename", "")
             path = resolve(fn) if fn else None
             if fn and path is None:
-                from myrabot_desc.packages import outside_roots
+                from myrabot_desc.build.packages import outside_roots
 
                 if outside_roots(fn, package_roots, robot_src_dir) is not None:
                     self.issue(shape, f"mesh {fn} lies outside the model's package and folder: not read "
@@ -213,7 +214,11 @@ class _Reader:
 
 def _read(root, text, src: Path, locations, package_roots, build_warnings, from_xacro, packages,
           package_paths) -> Robot:
-    from myrabot_desc.packages import PackageResolver, resolve_resource_uri, split_package_uri
+    from myrabot_desc.build.packages import (
+        PackageResolver,
+        resolve_resource_uri,
+        split_package_uri,
+    )
 
     if root.tag != "robot":
         raise InputError(f"the root element is <{root.tag}>, not <robot>: not a URDF file",

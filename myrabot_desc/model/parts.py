@@ -35,7 +35,7 @@ class Pose(NamedTuple):
 
     def matrix(self):
         """4x4 homogeneous transform (numpy), URDF convention R = Rz(y) Ry(p) Rx(r)."""
-        from myrabot_desc.kinematics import pose_matrix
+        from myrabot_desc.model.kinematics import pose_matrix
 
         return pose_matrix(self)
 
@@ -295,14 +295,14 @@ class Robot:
 
     def resolve_uri(self, uri: str) -> Path | None:
         """package://, file:// or a relative path -> a file on disk, or None."""
-        from myrabot_desc.packages import resolve_resource_uri
+        from myrabot_desc.build.packages import resolve_resource_uri
 
         base = self.source.parent if self.source else Path.cwd()
         return resolve_resource_uri(uri, self.package_roots, base)
 
     def pinocchio(self, floating: bool = False):
         """A Pinocchio model of this robot (built on demand; see pin_bridge)."""
-        from myrabot_desc.pin_bridge import build_model
+        from myrabot_desc.model.pin_model import build_model
 
         return build_model(self, floating=floating)
 

@@ -65,7 +65,7 @@ _MAX_CACHED = 512
 def load_mesh(g):
     """Load a mesh file as one trimesh.Trimesh with the URDF scale applied; str on failure (cached)."""
     try:
-        from myrabot_desc import meshio
+        from myrabot_desc.model import meshes as meshio
 
         key = (str(g.path), g.path.stat().st_mtime_ns, tuple(g.scale), meshio.limits())
     except OSError as exc:
@@ -78,7 +78,7 @@ def load_mesh(g):
 
 
 def _load_mesh(g):
-    from myrabot_desc import meshio
+    from myrabot_desc.model import meshes as meshio
 
     try:  # size and triangle limits, one-line reasons (meshio.py)
         m = meshio.load(g.path, process=True)

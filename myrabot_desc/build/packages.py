@@ -76,6 +76,27 @@ def _python_prefix_shares() -> list[Path]:
     return out
 
 
+BUNDLED_ASSEMBLY = "xacro/myrabot.urdf.xacro"
+
+
+def data_root() -> Path:
+    """Folder of the bundled ROS package ``myrabot_description``.
+
+    In a source checkout it is the repository top (package.xml beside the
+    package folder); in an installed wheel it is ``myrabot_desc/share/...``.
+    """
+    here = Path(__file__).resolve().parent.parent   # myrabot_desc/
+    shipped = here / "share" / "myrabot_description"
+    if (shipped / "package.xml").is_file():
+        return shipped
+    return here.parent
+
+
+def bundled_path(relative: str = BUNDLED_ASSEMBLY) -> Path:
+    return data_root() / relative
+
+
+
 class PackageResolver:
     """Resolves package names to folders; remembers what it resolved (``used``)."""
 
@@ -111,7 +132,7 @@ class PackageResolver:
                 for marker in sorted(index.iterdir()):
                     if (share / marker.name).is_dir():
                         found.setdefault(marker.name, share / marker.name)
-        from myrabot_desc.loader import data_root
+        from myrabot_desc.build.packages import data_root
 
         found.setdefault("myrabot_description", data_root())
         return found
@@ -153,7 +174,7 @@ def resource_roots(base: Path, package_roots: dict[str, Path]) -> list[Path]:
 
 @functools.lru_cache(maxsize=256)
 def _base_roots(base: Path) -> tuple[Path, ...]:
-    from myrabot_desc.loader import data_root
+    from myrabot_desc.build.packages import data_root
 
     own = own_package(base)
     return tuple(Path(r).resolve() for r in (own[1] if own else base.parent, base, data_root()))

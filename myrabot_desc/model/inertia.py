@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import math
 
-from myrabot_desc.convert.common import Mat3, matmul3, transpose3
+from myrabot_desc.model.transforms import Mat3, matmul3, transpose3
 
 # Pure Python like the transforms in common.py: a 3x3 symmetric eigenproblem is a few
 # Jacobi sweeps, far cheaper than importing numpy for it.

@@ -56,7 +56,8 @@ def build_cmd(inputs, output, deps, resolve_uris, allow_errors, max_input_bytes,
     # interpreter's final collection at exit would free them one by one (another ~0.4 s):
     # GC stays off, and what the build left is frozen out of that last collection.
     gc.disable()
-    from myrabot_desc.build import Limits, build_file
+    from myrabot_desc.build.driver import build_file
+    from myrabot_desc.safety import Limits
     from myrabot_desc.output import write_output
 
     with guarded():
@@ -73,7 +74,7 @@ def build_cmd(inputs, output, deps, resolve_uris, allow_errors, max_input_bytes,
             limits.max_output_elements = max_elements
         src = inputs.file
         if src is None:
-            from myrabot_desc.loader import bundled_path  # imports the model classes (~25 ms): only when needed
+            from myrabot_desc.model.loader import bundled_path  # imports the model classes (~25 ms): only when needed
 
             src = str(bundled_path())
         result = build_file(src, inputs.mappings, packages=inputs.packages, package_paths=inputs.package_paths,
@@ -103,7 +104,7 @@ def _resolve_uris(result) -> str:
     """package://pkg/x -> file:///abs/x for every resolvable URI (others stay)."""
     import re
 
-    from myrabot_desc.packages import resolve_resource_uri
+    from myrabot_desc.build.packages import resolve_resource_uri
 
     def sub(m):
         uri = m.group(2)

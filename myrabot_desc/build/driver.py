@@ -27,50 +27,11 @@ from pathlib import Path
 
 from myrabot_desc.diagnostics import Diagnostic, Loc
 from myrabot_desc.errors import InputError
+from myrabot_desc.safety import Limits, _short, display, parse_xml_bytes, safe_parser
 
 SRC_ATTR = "_mdsrc"
 XSRC_ATTR = "xacro:mdsrc"   # on xacro elements; xacro itself strips xacro:* attributes
 
-
-def _env_int(name: str, default: int) -> int:
-    import os
-
-    raw = os.environ.get(name, "").strip()
-    if not raw:
-        return default
-    try:
-        value = int(raw.replace("_", ""))
-    except ValueError:
-        raise InputError(f"{name}={raw!r} is not a whole number") from None
-    if value <= 0:
-        raise InputError(f"{name}={raw!r} must be positive")
-    return value
-
-
-# Every limit can be set from the environment (any command) and some by ``build`` flags.
-LIMIT_ENV = {
-    "max_input_bytes": "MYRABOT_DESC_MAX_INPUT_BYTES",
-    "max_include_depth": "MYRABOT_DESC_MAX_INCLUDE_DEPTH",
-    "max_macro_depth": "MYRABOT_DESC_MAX_MACRO_DEPTH",
-    "max_macro_calls": "MYRABOT_DESC_MAX_MACRO_CALLS",
-    "max_output_elements": "MYRABOT_DESC_MAX_ELEMENTS",
-}
-
-
-@dataclass
-class Limits:
-    """Guards against hostile input; each is configurable (``build`` flags, or the environment
-    variables of LIMIT_ENV for every command). Mesh limits live in meshio.py."""
-
-    max_input_bytes: int = 20_000_000      # one file
-    max_include_depth: int = 32
-    max_macro_depth: int = 200             # nested macro calls (xacro dies near 400)
-    max_macro_calls: int = 20_000          # macro calls in one build (5x the 4,000-call benchmark)
-    max_output_elements: int = 200_000     # counted while macros expand (2^n call bombs stop early)
-
-    def __post_init__(self):
-        for attr, env in LIMIT_ENV.items():
-            setattr(self, attr, _env_int(env, getattr(self, attr)))
 
 
 @dataclass
@@ -125,7 +86,7 @@ def build_file(path, mappings: dict | None = None, *, packages: dict | None = No
 class _Build:
     def __init__(self, src, mappings, packages, package_paths, legacy, unsafe_eval, no_env, allow_paths,
                  limits, resolve_uris):
-        from myrabot_desc.packages import PackageResolver
+        from myrabot_desc.build.packages import PackageResolver
 
         if legacy not in ("auto", "on", "off"):
             raise InputError(f"--legacy must be auto, on or off, not {legacy!r}")
@@ -189,7 +150,7 @@ class _Build:
             root = self.read_tree(path)
         except InputError:
             return  # reported properly when xacro reaches the include
-        from myrabot_desc import legacy as lg
+        from myrabot_desc.build import legacy as lg
 
         for name in lg.macro_names(root):
             self.macro_names.add(name)
@@ -224,7 +185,7 @@ class _Build:
 
         from lxml import etree
 
-        from myrabot_desc import legacy as lg
+        from myrabot_desc.build import legacy as lg
 
         original = self.read_tree(path, asked_at)
         # The prescan cache is shared; work on a copy so a file included twice is fresh.
@@ -377,7 +338,7 @@ class _Build:
         The annotations are read off and left out while writing (xacro_fast.pretty_xml)."""
         import xml.dom.minidom
 
-        from myrabot_desc.xacro_fast import pretty_xml
+        from myrabot_desc.build.fast import pretty_xml
 
         banner = [xml.dom.minidom.Comment(c) for c in [
             " %s " % ("=" * 83),
@@ -434,7 +395,7 @@ class _Build:
             self.diagnostics.append(Diagnostic(
                 "X003", "warning", f"this file defines {len(names)} macro(s) ({shown}) and instantiates none: "
                 "the URDF has no links", Loc(display(self.src), 1)))
-        from myrabot_desc.packages import split_package_uri
+        from myrabot_desc.build.packages import split_package_uri
 
         seen = set()
         for el in elements:
@@ -450,24 +411,13 @@ class _Build:
         return root
 
 
-def display(path) -> str:
-    """A path as users like to read it: relative to the working folder when inside it."""
-    import os
-
-    p = Path(path)
-    try:
-        rel = os.path.relpath(p.resolve(), Path.cwd())
-    except ValueError:
-        return str(p)
-    return rel if not rel.startswith("..") else str(p.resolve())
-
 
 def _check_yaml_aliases(path: Path, loc) -> None:
     """A YAML "billion laughs" (aliases of aliases) is small on disk and expands to 10^9 items in
     xacro's wrappers: count the expanded nodes on the composed graph (aliases shared) first."""
     import yaml
 
-    from myrabot_desc.safe_eval import MAX_SEQUENCE_LEN
+    from myrabot_desc.build.safe_eval import MAX_SEQUENCE_LEN
 
     try:
         text = path.read_text(encoding="utf-8", errors="replace")
@@ -509,10 +459,6 @@ def _check_yaml_aliases(path: Path, loc) -> None:
         raise InputError(f"{path.name}: YAML aliases expand to over {MAX_SEQUENCE_LEN} items (an alias bomb)", loc)
 
 
-def _short(text: str, n: int = 200) -> str:
-    """Hostile inputs carry huge expressions: keep error messages to one readable line."""
-    return text if len(text) <= n else text[:n] + f"... ({len(text)} characters)"
-
 
 def _inside(el, tag: str) -> bool:
     p = el.getparent()
@@ -548,42 +494,6 @@ def _copy_tree(root):
     return copy.deepcopy(root)
 
 
-def safe_parser():
-    from lxml import etree
-
-    return etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False, dtd_validation=False,
-                           huge_tree=False, remove_blank_text=False, collect_ids=False)
-
-
-def parse_xml_bytes(data: bytes, name: str):
-    """Parse XML bytes safely; refuse DTDs/entities; InputError with file:line on failure."""
-    from lxml import etree
-
-    if not data.strip():
-        raise InputError("empty file", Loc(name))
-    head = data[:4096].lstrip()
-    if b"<!DOCTYPE" in data[:65536] or b"<!ENTITY" in data[:65536]:
-        line = data[:data.find(b"<!")].count(b"\n") + 1 if b"<!" in data else 1
-        raise InputError("DTDs and entity declarations are not allowed in model files", Loc(name, line))
-    if head.startswith(b"\x00") or b"\x00" in data[:1024]:
-        raise InputError("not an XML file (binary data)", Loc(name, 1))
-    try:
-        root = etree.fromstring(data, parser=safe_parser())
-    except etree.XMLSyntaxError as exc:
-        line = exc.position[0] if exc.position else None
-        msg = exc.msg or str(exc)
-        msg = re.sub(r", line \d+, column \d+$", "", msg)
-        raise InputError(f"malformed XML: {msg}", Loc(name, line)) from None
-    except ValueError as exc:
-        raise InputError(f"malformed XML: {exc}", Loc(name)) from None
-    except RecursionError:
-        raise InputError("malformed XML: elements nest too deeply", Loc(name)) from None
-    # The byte check above misses a DOCTYPE behind 64 kB of comment or in another encoding (UTF-7)
-    info = root.getroottree().docinfo
-    if info.internalDTD is not None or info.externalDTD is not None or info.doctype:
-        raise InputError("DTDs and entity declarations are not allowed in model files", Loc(name, 1))
-    return root
-
 
 class _Hooks:
     """Install our hooks into the xacro module for one build; restore them after."""
@@ -595,7 +505,7 @@ class _Hooks:
         import xacro
         import xacro.substitution_args as sa
 
-        from myrabot_desc import safe_eval, xacro_fast
+        from myrabot_desc.build import fast as xacro_fast, safe_eval
 
         b = self.b
         self.saved = {
@@ -681,7 +591,7 @@ class _Hooks:
             if uri and not Path(filename).is_file():
                 # xacro (ROS 1 and 2) includes paths, not URIs (it joins this one to the including
                 # file's folder): a common slip from mesh filenames
-                from myrabot_desc.packages import split_package_uri
+                from myrabot_desc.build.packages import split_package_uri
 
                 pkg, rest = split_package_uri(uri) or ("PKG", "")
                 xacro.filestack.pop()
@@ -778,7 +688,7 @@ class _Hooks:
         import xacro
         import xacro.substitution_args as sa
 
-        from myrabot_desc import xacro_fast
+        from myrabot_desc.build import fast as xacro_fast
 
         for (mod, name), value in self.saved.items():
             setattr(mod, name, value)

@@ -27,7 +27,7 @@ class MeshError(ValueError):
 
 
 def limits() -> tuple[int, int]:
-    from myrabot_desc.build import _env_int
+    from myrabot_desc.safety import _env_int
 
     return _env_int(ENV_BYTES, MAX_MESH_BYTES), _env_int(ENV_TRIANGLES, MAX_MESH_TRIANGLES)
 

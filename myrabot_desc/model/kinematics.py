@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 
-from myrabot_desc.model import Joint, Pose, Robot
+from myrabot_desc.model.parts import Joint, Pose, Robot
 
 
 def rpy_matrix(rpy) -> np.ndarray:

@@ -1,0 +1,1 @@
+"""Build: xacro sources -> URDF text, without ROS (driver.py runs xacro with our hooks)."""

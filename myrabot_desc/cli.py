@@ -11,6 +11,7 @@ import importlib
 import click
 
 from myrabot_desc import __version__
+from myrabot_desc.safety import limits_help
 
 # name -> (module, attribute, one-line help shown by --help without importing)
 COMMANDS = {
@@ -54,14 +55,10 @@ FILE defaults to the bundled MYRAbot assembly. Exit codes: 0 ok, 1 findings
 \b
 Model files are untrusted: ${} runs through an allow-list, files are read only
 from the model's folder and package roots, and these limits apply (environment):
-  MYRABOT_DESC_MAX_INPUT_BYTES [20000000]   MYRABOT_DESC_MAX_INCLUDE_DEPTH [32]
-  MYRABOT_DESC_MAX_MACRO_DEPTH [200]        MYRABOT_DESC_MAX_MACRO_CALLS [20000]
-  MYRABOT_DESC_MAX_ELEMENTS [200000]        MYRABOT_DESC_MAX_MESH_BYTES [50000000]
-  MYRABOT_DESC_MAX_MESH_TRIANGLES [2000000] MYRABOT_DESC_MAX_MATERIAL_BYTES [5242880]
 """
 
 
-@click.group(cls=LazyGroup, epilog=EPILOG, context_settings={"help_option_names": ["-h", "--help"]})
+@click.group(cls=LazyGroup, epilog=EPILOG + limits_help() + "\n", context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(__version__, prog_name="myrabot-desc")
 def main():
     """Robot descriptions without ROS: build xacro (old and new), check what is

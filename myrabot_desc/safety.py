@@ -8,8 +8,8 @@ environment variable (read by every command) and, for some, a ``build`` flag.
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
 from pathlib import Path
+from typing import NamedTuple
 
 from myrabot_desc.diagnostics import Loc
 from myrabot_desc.errors import InputError
@@ -30,30 +30,57 @@ def _env_int(name: str, default: int) -> int:
     return value
 
 
-# Every limit can be set from the environment (any command) and some by ``build`` flags.
-LIMIT_ENV = {
-    "max_input_bytes": "MYRABOT_DESC_MAX_INPUT_BYTES",
-    "max_include_depth": "MYRABOT_DESC_MAX_INCLUDE_DEPTH",
-    "max_macro_depth": "MYRABOT_DESC_MAX_MACRO_DEPTH",
-    "max_macro_calls": "MYRABOT_DESC_MAX_MACRO_CALLS",
-    "max_output_elements": "MYRABOT_DESC_MAX_ELEMENTS",
-}
+class Limit(NamedTuple):
+    field: str          # attribute of Limits
+    env: str            # environment variable (every command reads it)
+    default: int
+    flag: str | None    # ``build`` flag, where there is one
+    help: str
 
 
-@dataclass
+# THE table of limits: every reader of a limit asks Limits (or limit()), none reads the environment itself.
+LIMITS: tuple[Limit, ...] = (
+    Limit("max_input_bytes", "MYRABOT_DESC_MAX_INPUT_BYTES", 20_000_000, "--max-input-bytes",
+          "largest model file (URDF, xacro, YAML) read"),
+    Limit("max_include_depth", "MYRABOT_DESC_MAX_INCLUDE_DEPTH", 32, "--max-include-depth",
+          "deepest include nesting"),
+    Limit("max_macro_depth", "MYRABOT_DESC_MAX_MACRO_DEPTH", 200, "--max-macro-depth",
+          "deepest macro call nesting (xacro itself dies near 400)"),
+    Limit("max_macro_calls", "MYRABOT_DESC_MAX_MACRO_CALLS", 20_000, "--max-macro-calls",
+          "most macro calls in one build (5x the 4,000-call benchmark)"),
+    Limit("max_output_elements", "MYRABOT_DESC_MAX_ELEMENTS", 200_000, "--max-elements",
+          "most elements a build may produce, counted as macros expand"),
+    Limit("max_mesh_bytes", "MYRABOT_DESC_MAX_MESH_BYTES", 50_000_000, None, "largest mesh file read"),
+    Limit("max_mesh_triangles", "MYRABOT_DESC_MAX_MESH_TRIANGLES", 2_000_000, None, "most triangles in one mesh"),
+    Limit("max_material_bytes", "MYRABOT_DESC_MAX_MATERIAL_BYTES", 5 * 1024 * 1024, None,
+          "largest OGRE material script (Gazebo's own gazebo.material is 24 kB)"),
+)
+LIMIT_ENV = {lim.field: lim.env for lim in LIMITS}
+
+
+def limit(field: str) -> int:
+    """One limit's value now: its environment variable, else the default."""
+    lim = next(lim for lim in LIMITS if lim.field == field)
+    return _env_int(lim.env, lim.default)
+
+
 class Limits:
-    """Guards against hostile input; each is configurable (``build`` flags, or the environment
-    variables of LIMIT_ENV for every command). Mesh limits live in meshio.py."""
+    """The limits of one run: the table's defaults, the environment over them, flags over both."""
 
-    max_input_bytes: int = 20_000_000      # one file
-    max_include_depth: int = 32
-    max_macro_depth: int = 200             # nested macro calls (xacro dies near 400)
-    max_macro_calls: int = 20_000          # macro calls in one build (5x the 4,000-call benchmark)
-    max_output_elements: int = 200_000     # counted while macros expand (2^n call bombs stop early)
+    __slots__ = tuple(lim.field for lim in LIMITS)
 
-    def __post_init__(self):
-        for attr, env in LIMIT_ENV.items():
-            setattr(self, attr, _env_int(env, getattr(self, attr)))
+    def __init__(self, **overrides):
+        for lim in LIMITS:
+            value = overrides.pop(lim.field, None)
+            setattr(self, lim.field, value if value else _env_int(lim.env, lim.default))
+        if overrides:
+            raise TypeError(f"unknown limits: {', '.join(overrides)}")
+
+
+def limits_help() -> str:
+    """The table as ``--help`` shows it: one ``VARIABLE [default]  what`` line per limit."""
+    width = max(len(lim.env) + len(str(lim.default)) for lim in LIMITS) + 3
+    return "\n".join(f"  {f'{lim.env} [{lim.default}]':<{width}}  {lim.help}" for lim in LIMITS)
 
 
 def display(path) -> str:

@@ -171,7 +171,7 @@ def test_limits_size_and_depth(tmp_path):
         ogre.parse_text(deep, "deep.material")
     ogre.parse_text("material A\n" + "{ x\n" * 30 + "}\n" * 30, "ok.material")      # 31 levels is fine
     big = tmp_path / "big.material"
-    big.write_bytes(b"// padding\n" * (ogre.MAX_BYTES // 11 + 1))
+    big.write_bytes(b"// padding\n" * ((5 * 1024 * 1024) // 11 + 1))
     with pytest.raises(InputError, match="over the 5242880-byte limit"):
         ogre.parse_file(big)
     with pytest.raises(InputError, match="over the 100-byte limit"):
@@ -181,8 +181,8 @@ def test_limits_size_and_depth(tmp_path):
 def test_size_limit_from_the_environment(tmp_path, monkeypatch):
     """Like the other limits, the 5 MB one is set with MYRABOT_DESC_MAX_MATERIAL_BYTES."""
     big = tmp_path / "big.material"
-    big.write_bytes(b"// padding\n" * (ogre.MAX_BYTES // 11 + 1) + b"material A { }\n")
-    monkeypatch.setenv("MYRABOT_DESC_MAX_MATERIAL_BYTES", str(ogre.MAX_BYTES * 2))
+    big.write_bytes(b"// padding\n" * ((5 * 1024 * 1024) // 11 + 1) + b"material A { }\n")
+    monkeypatch.setenv("MYRABOT_DESC_MAX_MATERIAL_BYTES", str((5 * 1024 * 1024) * 2))
     assert "A" in ogre.parse_file(big).materials
     monkeypatch.setenv("MYRABOT_DESC_MAX_MATERIAL_BYTES", "100")
     r = _run(BRAZO_FER)

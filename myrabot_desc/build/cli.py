@@ -5,6 +5,16 @@ from __future__ import annotations
 import click
 
 from myrabot_desc.cli_common import guarded, input_options
+from myrabot_desc.safety import LIMITS
+
+
+def limit_options(func):
+    """A ``--max-*`` flag for every limit of the table that has one."""
+    for lim in reversed(LIMITS):
+        if lim.flag:
+            func = click.option(lim.flag, type=click.IntRange(min=1), default=None,
+                                help=f"{lim.help[0].upper()}{lim.help[1:]} [{lim.default}].")(func)
+    return func
 
 
 @click.command("build")
@@ -14,13 +24,8 @@ from myrabot_desc.cli_common import guarded, input_options
 @click.option("--deps", is_flag=True, help="List the files the build reads (input, includes, YAML), one per line.")
 @click.option("--resolve-uris", is_flag=True, help="Rewrite package:// URIs into absolute file:// paths.")
 @click.option("--allow-errors", is_flag=True, help="Write the URDF even when the build reports errors (X002).")
-@click.option("--max-input-bytes", type=int, default=None, help="Largest input file accepted [20000000].")
-@click.option("--max-include-depth", type=int, default=None, help="Deepest include nesting [32].")
-@click.option("--max-macro-depth", type=int, default=None, help="Deepest macro call nesting [200].")
-@click.option("--max-macro-calls", type=int, default=None, help="Most macro calls in one build [20000].")
-@click.option("--max-elements", type=int, default=None, help="Most elements macros may produce [200000].")
-def build_cmd(inputs, output, deps, resolve_uris, allow_errors, max_input_bytes, max_include_depth,
-              max_macro_depth, max_macro_calls, max_elements):
+@limit_options
+def build_cmd(inputs, output, deps, resolve_uris, allow_errors, **limit_flags):
     """Expand a xacro file into URDF, with no ROS installed.
 
     FILE defaults to the bundled MYRAbot (xacro/myrabot.urdf.xacro). Files written
@@ -38,11 +43,8 @@ def build_cmd(inputs, output, deps, resolve_uris, allow_errors, max_input_bytes,
       myrabot-desc build robot.urdf.xacro --deps
 
     \b
-    Limits (flags here, or for every command the environment):
-      MYRABOT_DESC_MAX_INPUT_BYTES, MYRABOT_DESC_MAX_INCLUDE_DEPTH,
-      MYRABOT_DESC_MAX_MACRO_DEPTH, MYRABOT_DESC_MAX_MACRO_CALLS, MYRABOT_DESC_MAX_ELEMENTS;
-      meshes: MYRABOT_DESC_MAX_MESH_BYTES [50000000], MYRABOT_DESC_MAX_MESH_TRIANGLES [2000000];
-      material scripts: MYRABOT_DESC_MAX_MATERIAL_BYTES [5242880].
+    Limits: the --max-* flags here; for every command the environment variables
+    listed by `myrabot-desc --help` (MYRABOT_DESC_MAX_*).
 
     \b
     Exit codes: 0 built; 1 built with errors (e.g. X002, nothing written);
@@ -57,21 +59,11 @@ def build_cmd(inputs, output, deps, resolve_uris, allow_errors, max_input_bytes,
     # GC stays off, and what the build left is frozen out of that last collection.
     gc.disable()
     from myrabot_desc.build.driver import build_file
-    from myrabot_desc.safety import Limits
+    from myrabot_desc.safety import LIMITS, Limits
     from myrabot_desc.output import write_output
 
     with guarded():
-        limits = Limits()
-        if max_input_bytes:
-            limits.max_input_bytes = max_input_bytes
-        if max_include_depth:
-            limits.max_include_depth = max_include_depth
-        if max_macro_depth:
-            limits.max_macro_depth = max_macro_depth
-        if max_macro_calls:
-            limits.max_macro_calls = max_macro_calls
-        if max_elements:
-            limits.max_output_elements = max_elements
+        limits = Limits(**{lim.field: limit_flags[lim.flag[2:].replace("-", "_")] for lim in LIMITS if lim.flag})
         src = inputs.file
         if src is None:
             from myrabot_desc.model.loader import bundled_path  # imports the model classes (~25 ms): only when needed

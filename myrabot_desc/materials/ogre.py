@@ -53,7 +53,6 @@ from myrabot_desc.errors import InputError
 
 RGBA = tuple[float, float, float, float]
 
-MAX_BYTES = 5 * 1024 * 1024   # refuse larger scripts (Gazebo's own gazebo.material is 24 kB)
 ENV_BYTES = "MYRABOT_DESC_MAX_MATERIAL_BYTES"
 MAX_DEPTH = 32                # brace nesting; real scripts use 4 (material/technique/pass/unit)
 MAX_IMPORT_DEPTH = 8
@@ -427,9 +426,9 @@ def _split_header(node: _Node, file: str) -> tuple[str, str | None]:
 
 def limit(max_bytes: int | None = None) -> int:
     """The size limit for one script: ``max_bytes`` if given, else $MYRABOT_DESC_MAX_MATERIAL_BYTES, else 5 MB."""
-    from myrabot_desc.safety import _env_int
+    from myrabot_desc.safety import limit as table_limit
 
-    return max_bytes if max_bytes is not None else _env_int(ENV_BYTES, MAX_BYTES)
+    return max_bytes if max_bytes is not None else table_limit("max_material_bytes")
 
 
 def parse_raw(text: str, file: str = "<string>", *, max_bytes: int | None = None,

@@ -3,10 +3,8 @@
 check (--inertia, --meshes), convert --to mjcf and sim read meshes named by model files. A
 mesh is refused before trimesh sees it when the file is larger than ``max_mesh_bytes`` or a
 binary STL header announces more than ``max_mesh_triangles`` faces; after loading, when it
-holds more triangles than that. Both limits come from the environment:
-
-  MYRABOT_DESC_MAX_MESH_BYTES      largest mesh file read  [50000000]
-  MYRABOT_DESC_MAX_MESH_TRIANGLES  most triangles per mesh [2000000]
+holds more triangles than that. Both limits are in safety.LIMITS
+(MYRABOT_DESC_MAX_MESH_BYTES, MYRABOT_DESC_MAX_MESH_TRIANGLES).
 """
 
 from __future__ import annotations
@@ -16,8 +14,6 @@ from pathlib import Path
 
 from myrabot_desc.errors import InputError
 
-MAX_MESH_BYTES = 50_000_000
-MAX_MESH_TRIANGLES = 2_000_000
 ENV_BYTES = "MYRABOT_DESC_MAX_MESH_BYTES"
 ENV_TRIANGLES = "MYRABOT_DESC_MAX_MESH_TRIANGLES"
 
@@ -27,9 +23,9 @@ class MeshError(ValueError):
 
 
 def limits() -> tuple[int, int]:
-    from myrabot_desc.safety import _env_int
+    from myrabot_desc.safety import limit
 
-    return _env_int(ENV_BYTES, MAX_MESH_BYTES), _env_int(ENV_TRIANGLES, MAX_MESH_TRIANGLES)
+    return limit("max_mesh_bytes"), limit("max_mesh_triangles")
 
 
 def precheck(path: Path) -> int:

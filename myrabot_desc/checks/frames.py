@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from myrabot_desc.checks.registry import Finding, rule
+from myrabot_desc.checks.rule import Finding, rule
 
 FRAME_PARAMS = ("bodyName", "frameName", "frameId", "frame_name", "robotBaseFrame", "robot_base_frame",
                 "gz_frame_id", "ignition_frame_id", "optical_frame_id")

@@ -10,7 +10,7 @@ import math
 from functools import lru_cache
 
 from myrabot_desc.model import shapes as G
-from myrabot_desc.checks.registry import Finding, rule
+from myrabot_desc.checks.rule import Finding, rule
 
 RATIO_LIMIT = 10.0
 MARKER_SIZE = 0.005                 # m: geometry smaller than this is a frame marker; findings drop to info

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from myrabot_desc.checks.registry import Finding, rule
+from myrabot_desc.checks.rule import Finding, rule
 
 
 def _mesh_uses(ctx):

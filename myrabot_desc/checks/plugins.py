@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from myrabot_desc.checks.registry import Finding, rule
+from myrabot_desc.checks.rule import Finding, rule
 
 
 @dataclass(frozen=True)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from collections import Counter
 
-from myrabot_desc.checks.registry import Finding, rule
+from myrabot_desc.checks.rule import Finding, rule
 
 
 @rule("T001", "single-root", "error")

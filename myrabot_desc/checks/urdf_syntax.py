@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import difflib
 
-from myrabot_desc.checks.registry import Finding, rule
+from myrabot_desc.checks.rule import Finding, rule
 
 # element -> (allowed attributes, allowed children); None = anything (free-form body)
 SCHEMA: dict[str, tuple[set[str], set[str] | None]] = {

@@ -6,6 +6,89 @@ from dataclasses import dataclass
 
 from myrabot_desc.checks.rule import Finding, rule
 
+# Example snippets (placed in checks.rule.TEMPLATE, whose only link is base_link): a diff-drive
+# base with wheels of radius 0.08 m at y ±0.15 and a caster, standing on base_link's origin (z 0);
+# the ROS 1 plugin's numbers match it.
+_WHEEL = """<link name="{side}_wheel">
+  <inertial>
+    <mass value="0.5"/>
+    <inertia ixx="0.00087" ixy="0" ixz="0" iyy="0.00087" iyz="0" izz="0.0016"/>
+  </inertial>
+  <collision>
+    <origin rpy="1.5708 0 0"/>
+    <geometry><cylinder radius="0.08" length="0.04"/></geometry>
+  </collision>
+</link>
+<joint name="{side}_wheel_joint" type="{jtype}">
+  <origin xyz="{x} {y} {z}"/>
+  <parent link="base_link"/>
+  <child link="{side}_wheel"/>
+  <axis xyz="{axis}"/>
+</joint>"""
+_CASTER = """<link name="caster">
+  <inertial>
+    <mass value="0.1"/>
+    <inertia ixx="6.4e-05" ixy="0" ixz="0" iyy="6.4e-05" iyz="0" izz="6.4e-05"/>
+  </inertial>
+  <collision><geometry><sphere radius="0.04"/></geometry></collision>
+</link>
+<joint name="caster_joint" type="fixed">
+  <origin xyz="-0.12 0 0.04"/>
+  <parent link="base_link"/>
+  <child link="caster"/>
+</joint>"""
+_PLUGIN = """<gazebo>
+  <plugin name="diff_drive" filename="libgazebo_ros_diff_drive.so">
+    <legacyMode>false</legacyMode>
+    <leftJoint>{left}</leftJoint>
+    <rightJoint>right_wheel_joint</rightJoint>
+    <wheelSeparation>{sep}</wheelSeparation>
+    <wheelDiameter>{dia}</wheelDiameter>
+    <wheelTorque>5</wheelTorque>{extra}
+    <commandTopic>cmd_vel</commandTopic>
+    <odometryTopic>odom</odometryTopic>
+    <odometryFrame>odom</odometryFrame>
+    <robotBaseFrame>base_link</robotBaseFrame>
+  </plugin>
+</gazebo>"""
+
+
+def _drive(sep="0.3", dia="0.16", left="left_wheel_joint", jtype="continuous", axis="0 1 0", extra="",
+           z="0.08", caster=True, x="0"):
+    extra = "".join(f"\n    {line}" for line in extra.splitlines())
+    return "\n".join([_WHEEL.format(side="left", x=x, y="0.15", z=z, jtype=jtype, axis=axis),
+                      _WHEEL.format(side="right", x=x, y="-0.15", z=z, jtype="continuous", axis="0 1 0"),
+                      *([_CASTER] if caster else []), _PLUGIN.format(left=left, sep=sep, dia=dia, extra=extra)])
+
+
+_ELECTRIC = """<?xml version="1.0"?>
+<robot name="example" xmlns:controller="http://playerstage.sourceforge.net/gazebo/xmlschema/#controller"
+       xmlns:interface="http://playerstage.sourceforge.net/gazebo/xmlschema/#interface">
+  <link name="base_link">
+    <inertial>
+      <mass value="1"/>
+      <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/>
+    </inertial>
+  </link>
+  <gazebo>
+    <controller:gazebo_ros_imu name="imu_controller" {attr}="libgazebo_ros_imu.so">
+      <alwaysOn>true</alwaysOn>
+      <updateRate>50</updateRate>
+      <bodyName>base_link</bodyName>
+      <topicName>imu/data</topicName>
+      <interface:position name="imu_position"/>
+    </controller:gazebo_ros_imu>
+  </gazebo>
+</robot>
+"""
+_MODERN_IMU = """<gazebo>
+  <plugin name="imu_controller" filename="libgazebo_ros_imu.so">
+    <updateRate>50</updateRate>
+    <bodyName>base_link</bodyName>
+    <topicName>imu/data</topicName>
+  </plugin>
+</gazebo>"""
+
 
 @dataclass(frozen=True)
 class DriveSpec:
@@ -167,7 +250,11 @@ def _pair(ctx, p, spec):
     return lj, rj
 
 
-@rule("G001", "drive-wheel-separation", "error")
+@rule("G001", "drive-wheel-separation", "error",
+      bad=_drive(sep="0.4"),
+      message="wheelSeparation 0.4 m, but the wheel joints left_wheel_joint and right_wheel_joint are 0.3 m apart "
+              "(y 0.15 and -0.15): the robot turns at 1.33× the commanded rate (before any diameter error)",
+      good=_drive())
 def wheel_separation(ctx):
     """A diff-drive plugin's wheel separation must match the distance between the wheels in the URDF.
 
@@ -205,7 +292,11 @@ def wheel_separation(ctx):
                            "fix": round(real, 6)})
 
 
-@rule("G002", "drive-wheel-size", "error")
+@rule("G002", "drive-wheel-size", "error",
+      bad=_drive(dia="0.2"),
+      message="wheelDiameter 0.2 m, but wheel left_wheel (joint left_wheel_joint) has a collision diameter of "
+              "0.16 m: the robot drives at 0.8× the commanded speed",
+      good=_drive())
 def wheel_size(ctx):
     """A diff-drive plugin's wheel diameter (or radius) must match the wheel's collision geometry.
 
@@ -235,7 +326,11 @@ def wheel_size(ctx):
                 break
 
 
-@rule("G003", "drive-joints-exist", "error")
+@rule("G003", "drive-joints-exist", "error",
+      bad=_drive(left="left_wheel_jiont"),
+      message="gazebo_ros_diff_drive (ROS 1): leftJoint 'left_wheel_jiont' is not a joint of this robot; "
+              "did you mean left_wheel_joint?",
+      good=_drive())
 def drive_joints_exist(ctx):
     """The joints a drive plugin names must exist in the URDF.
 
@@ -257,7 +352,11 @@ def drive_joints_exist(ctx):
             yield Finding(f"{spec.label}: no {spec.left[0]}/{spec.right[0]} given", p.loc, {"plugin": p.name})
 
 
-@rule("G004", "drive-joints-continuous", "error")
+@rule("G004", "drive-joints-continuous", "error",
+      bad=_drive(jtype="fixed"),
+      message="gazebo_ros_diff_drive (ROS 1): leftJoint left_wheel_joint is fixed: fixed joints are merged away "
+              "in URDF→SDF conversion, so the plugin cannot find it",
+      good=_drive())
 def drive_joints_continuous(ctx):
     """Wheel joints of a drive plugin must be continuous (revolute stops at its limits; fixed is gone).
 
@@ -285,7 +384,11 @@ def drive_joints_continuous(ctx):
                               {"plugin": p.name, "joint": name, "type": j.type}, severity=sev)
 
 
-@rule("G005", "drive-axis-across-travel", "error")
+@rule("G005", "drive-axis-across-travel", "error",
+      bad=_drive(axis="0 0 1"),
+      message="gazebo_ros_diff_drive (ROS 1): left wheel joint left_wheel_joint turns about (0 0 1) in base_link: "
+              "not across the direction of travel (y)",
+      good=_drive())
 def drive_axis(ctx):
     """Drive wheels must turn about an axis across the direction of travel (the base's y).
 
@@ -322,7 +425,10 @@ def drive_axis(ctx):
                               {"joint": j.name, "y": float(y)}, severity="warning")
 
 
-@rule("G007", "plugin-unknown-parameter", "warning")
+@rule("G007", "plugin-unknown-parameter", "warning",
+      bad=_drive(extra="<torque>5</torque>"),
+      message="gazebo_ros_diff_drive (ROS 1) does not read <torque> (ROS 1 gazebo_ros_diff_drive reads wheelTorque)",
+      good=_drive())
 def unknown_params(ctx):
     """A parameter that the (recognised) plugin does not read.
 
@@ -354,7 +460,11 @@ def unknown_params(ctx):
             yield Finding(msg, p.loc, {"plugin": p.name, "param": k, "suggestion": guess})
 
 
-@rule("G008", "electric-plugin-attribute", "error")
+@rule("G008", "electric-plugin-attribute", "error",
+      bad=_ELECTRIC.format(attr="filename"),
+      message='controller imu_controller declares its library with filename="libgazebo_ros_imu.so"; the Electric '
+              "controller loader reads plugin=, so it is never loaded",
+      good=_ELECTRIC.format(attr="plugin"))
 def electric_filename(ctx):
     """An Electric-era `<controller:...>` must name its library with `plugin=`, not `filename=`.
 
@@ -369,7 +479,10 @@ def electric_filename(ctx):
                           {"plugin": p.name, "fix": f'plugin="{p.filename}"'})
 
 
-@rule("G009", "material-resolves", "warning")
+@rule("G009", "material-resolves", "warning",
+      bad='<gazebo reference="base_link">\n  <material>MyRobot/Black</material>\n</gazebo>',
+      message="material MyRobot/Black (on base_link) is not a stock Gazebo material nor in any script found (0 read)",
+      good='<gazebo reference="base_link">\n  <material>Gazebo/Black</material>\n</gazebo>')
 def material_resolves(ctx):
     """A Gazebo material name must resolve: a stock `Gazebo/*` name or a script the model ships.
 
@@ -404,25 +517,83 @@ def material_resolves(ctx):
 TOPIC_KEYS = ("topicName", "topic", "imageTopicName", "cameraInfoTopicName", "pointCloudTopicName",
               "depthImageTopicName", "depthImageCameraInfoTopicName", "odometryTopic", "commandTopic",
               "odom_topic", "tf_topic")
+# Plugins built on gazebo_ros's camera utilities: they advertise every topic on a node handle in
+# <robotNamespace>/<cameraName> (ROS 1 GazeboRosCameraUtils), so cameras with the same
+# imageTopicName but their own cameraName do not collide.
+CAMERA_LIBS = ("gazebo_ros_camera", "gazebo_ros_multicamera", "gazebo_ros_depth_camera", "gazebo_ros_openni_kinect",
+               "gazebo_ros_kinect", "gazebo_ros_prosilica", "gazebo_ros_triggered_camera",
+               "gazebo_ros_triggered_multicamera", "gazebo_ros_wideanglecamera")
 
 
-@rule("G010", "topic-unique", "warning")
+def _namespace(p) -> str:
+    """The plugin's ROS namespace: ROS 1 robotNamespace, or the ROS 2 <ros><namespace>."""
+    ns = p.params.get("robotNamespace")
+    if not ns:
+        from myrabot_desc.checks.urdf_syntax import local
+
+        ros = next((c for c in p.element if local(c.tag) == "ros"), None) if p.element is not None else None
+        inner = next((c for c in ros if local(c.tag) == "namespace"), None) if ros is not None else None
+        ns = (inner.text or "") if inner is not None else ""
+    return ns.strip().strip("/")
+
+
+def published_topics(p) -> list[tuple[str, str]]:
+    """[(full topic, parameter)] the plugin publishes, from the topic parameters it gives."""
+    ns = _namespace(p)
+    lib = p.library.lower()
+    camera = (p.params.get("cameraName") or "").strip().strip("/")
+    if not any(c in lib for c in CAMERA_LIBS) or "$" in camera:
+        camera = ""
+    out = []
+    for key in TOPIC_KEYS:
+        if key == "commandTopic":
+            continue                      # subscribers may share
+        t = p.params.get(key)
+        if not t or "$" in t:
+            continue
+        full = t if t.startswith("/") else "/" + "/".join(x for x in (ns, camera, t) if x)
+        out.append((full, key))
+    return out
+
+
+def _two_lasers(topic2: str) -> str:
+    """Example snippet: two lasers on their own links, publishing `scan` and `topic2`."""
+    out = []
+    for name, topic, y in (("front_laser", "scan", "0.1"), ("rear_laser", topic2, "-0.1")):
+        out.append(f'''<link name="{name}"/>
+<joint name="{name}_joint" type="fixed">
+  <origin xyz="0 {y} 0.2"/>
+  <parent link="base_link"/>
+  <child link="{name}"/>
+</joint>
+<gazebo reference="{name}">
+  <sensor type="ray" name="{name}">
+    <plugin name="{name}_controller" filename="libgazebo_ros_laser.so">
+      <topicName>{topic}</topicName>
+      <frameName>{name}</frameName>
+    </plugin>
+  </sensor>
+</gazebo>''')
+    return "\n".join(out)
+
+
+@rule("G010", "topic-unique", "warning",
+      bad=_two_lasers("scan"),
+      message="topic /scan is published by 2 plugins: front_laser_controller (topicName), "
+              "rear_laser_controller (topicName)",
+      good=_two_lasers("scan_rear"))
 def topic_unique(ctx):
     """Two sensors or plugins publish on the same topic.
 
     Two publishers of one topic interleave their messages (two LaserScans on /scan from
-    different frames): consumers see both. Fix: distinct topicName values or namespaces.
+    different frames): consumers see both. Topics are resolved as the plugins do: under
+    the robot namespace, and for gazebo_ros camera plugins under their `<cameraName>`
+    (two cameras publishing `image_raw` under their own names do not collide). Fix:
+    distinct topicName values or namespaces.
     """
     seen: dict[str, list] = {}
     for p in ctx.robot.plugins():
-        ns = (p.params.get("robotNamespace") or "").strip("/")
-        for key in TOPIC_KEYS:
-            if key == "commandTopic":
-                continue                      # subscribers may share
-            t = p.params.get(key)
-            if not t or "$" in t:
-                continue
-            full = t if t.startswith("/") else "/" + "/".join(x for x in (ns, t) if x)
+        for full, key in published_topics(p):
             seen.setdefault(full, []).append((p, key))
     for t, users in sorted(seen.items()):
         if len(users) > 1:
@@ -431,7 +602,11 @@ def topic_unique(ctx):
                           {"topic": t, "publishers": names})
 
 
-@rule("G011", "electric-dialect", "info")
+@rule("G011", "electric-dialect", "info",
+      bad=_ELECTRIC.format(attr="plugin"),
+      message="1 Electric-era controllers and 0 sensors (<controller:…>/<sensor:…>): today's Gazebo ignores them; "
+              "`myrabot-desc convert` translates them",
+      good=_MODERN_IMU)
 def electric_dialect(ctx):
     """The model uses the pre-SDF Electric dialect (`<controller:…>`, `<sensor:…>`, `<interface:…>`).
 
@@ -448,7 +623,10 @@ def electric_dialect(ctx):
                       {"controllers": n_ctrl, "sensors": n_sens})
 
 
-@rule("G012", "drive-parameter-conflict", "warning")
+@rule("G012", "drive-parameter-conflict", "warning",
+      bad=_drive(extra="<torque>10</torque>"),
+      message="gazebo_ros_diff_drive (ROS 1): <torque> 10 and <wheelTorque> 5 disagree; the plugin reads wheelTorque (5)",
+      good=_drive())
 def drive_conflict(ctx):
     """Two parameters for the same thing with different values (torque 10 vs wheelTorque 5).
 

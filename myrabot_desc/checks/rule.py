@@ -94,7 +94,7 @@ class Rule:
         return (self.func.__doc__ or "").strip()
 
 
-def rule(code: str, name: str, severity: str, *, bad: str = "", message: str = "", good: str | None = None,
+def rule(code: str, name: str, severity: str, *, bad: str, message: str, good: str | None,
          needs: str | None = None, options: tuple = (), files: dict | None = None,
          filename: str = "robot.urdf", note: str = ""):
     """Mark ``func`` as rule ``code`` with its example (see the module docstring)."""

@@ -95,3 +95,14 @@ def test_cli_prints_the_documented_line(code, tmp_path, monkeypatch):
     sev = RULES[code].severity
     assert res.exit_code == (1 if any(d["severity"] == "error" for d in f["diagnostics"]) else 0)
     assert {d["severity"] for d in hits} <= {sev, "error", "warning", "info"}
+
+
+def test_docs_show_each_example_as_tested():
+    """docs/rules.md is generated from these examples (python -m myrabot_desc.checks.docs)."""
+    from myrabot_desc.checks.docs import render
+
+    text = (Path(__file__).parent.parent / "docs" / "rules.md").read_text()
+    assert text == render(), "regenerate: python -m myrabot_desc.checks.docs > docs/rules.md"
+    for code, ex in EXAMPLES.items():
+        section = text.split(f"### {code}\n", 1)[1].split("\n### ", 1)[0]
+        assert ex.bad.rstrip("\n") in section and ex.message in section, code

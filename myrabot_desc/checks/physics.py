@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import math
 
-from myrabot_desc.model import shapes as G
 from myrabot_desc.checks.plugins import _drive
 from myrabot_desc.checks.rule import Finding, rule
+from myrabot_desc.model import shapes as G
 
 _FINGER = """<link name="finger">{inertial}</link>
 <joint name="finger_joint" type="revolute">

@@ -9,7 +9,8 @@ from __future__ import annotations
 import math
 from functools import lru_cache
 
-from myrabot_desc.checks.rule import Finding, rule, tetrahedron_stl
+from myrabot_desc.checks.examples import tetrahedron_stl
+from myrabot_desc.checks.rule import Finding, rule
 from myrabot_desc.model import shapes as G
 
 

@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from myrabot_desc.checks.rule import Finding, rule, tetrahedron_stl
+from myrabot_desc.checks.examples import tetrahedron_stl
+from myrabot_desc.checks.rule import Finding, rule
 
 
 def _shell(geometry: str, kind: str = "collision", name: str = "cover") -> str:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from myrabot_desc.checks.plugins import _drive
+from myrabot_desc.checks.examples import drive_example as _drive
 from myrabot_desc.checks.rule import Finding, rule
 from myrabot_desc.model import shapes as G
 

@@ -4,91 +4,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from myrabot_desc.checks.examples import ELECTRIC_IMU, MODERN_IMU, drive_example as _drive
 from myrabot_desc.checks.rule import Finding, rule
-
-# Example snippets (placed in checks.rule.TEMPLATE, whose only link is base_link): a diff-drive
-# base with wheels of radius 0.08 m at y ±0.15 and a caster, standing on base_link's origin (z 0);
-# the ROS 1 plugin's numbers match it.
-_WHEEL = """<link name="{side}_wheel">
-  <inertial>
-    <mass value="0.5"/>
-    <inertia ixx="0.00087" ixy="0" ixz="0" iyy="0.00087" iyz="0" izz="0.0016"/>
-  </inertial>
-  <collision>
-    <origin rpy="1.5708 0 0"/>
-    <geometry><cylinder radius="0.08" length="0.04"/></geometry>
-  </collision>
-</link>
-<joint name="{side}_wheel_joint" type="{jtype}">
-  <origin xyz="{x} {y} {z}"/>
-  <parent link="base_link"/>
-  <child link="{side}_wheel"/>
-  <axis xyz="{axis}"/>
-</joint>"""
-_CASTER = """<link name="caster">
-  <inertial>
-    <mass value="0.1"/>
-    <inertia ixx="6.4e-05" ixy="0" ixz="0" iyy="6.4e-05" iyz="0" izz="6.4e-05"/>
-  </inertial>
-  <collision><geometry><sphere radius="0.04"/></geometry></collision>
-</link>
-<joint name="caster_joint" type="fixed">
-  <origin xyz="-0.12 0 0.04"/>
-  <parent link="base_link"/>
-  <child link="caster"/>
-</joint>"""
-_PLUGIN = """<gazebo>
-  <plugin name="diff_drive" filename="libgazebo_ros_diff_drive.so">
-    <legacyMode>false</legacyMode>
-    <leftJoint>{left}</leftJoint>
-    <rightJoint>right_wheel_joint</rightJoint>
-    <wheelSeparation>{sep}</wheelSeparation>
-    <wheelDiameter>{dia}</wheelDiameter>
-    <wheelTorque>5</wheelTorque>{extra}
-    <commandTopic>cmd_vel</commandTopic>
-    <odometryTopic>odom</odometryTopic>
-    <odometryFrame>odom</odometryFrame>
-    <robotBaseFrame>base_link</robotBaseFrame>
-  </plugin>
-</gazebo>"""
-
-
-def _drive(sep="0.3", dia="0.16", left="left_wheel_joint", jtype="continuous", axis="0 1 0", extra="",
-           z="0.08", caster=True, x="0"):
-    extra = "".join(f"\n    {line}" for line in extra.splitlines())
-    return "\n".join([_WHEEL.format(side="left", x=x, y="0.15", z=z, jtype=jtype, axis=axis),
-                      _WHEEL.format(side="right", x=x, y="-0.15", z=z, jtype="continuous", axis="0 1 0"),
-                      *([_CASTER] if caster else []), _PLUGIN.format(left=left, sep=sep, dia=dia, extra=extra)])
-
-
-_ELECTRIC = """<?xml version="1.0"?>
-<robot name="example" xmlns:controller="http://playerstage.sourceforge.net/gazebo/xmlschema/#controller"
-       xmlns:interface="http://playerstage.sourceforge.net/gazebo/xmlschema/#interface">
-  <link name="base_link">
-    <inertial>
-      <mass value="1"/>
-      <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/>
-    </inertial>
-  </link>
-  <gazebo>
-    <controller:gazebo_ros_imu name="imu_controller" {attr}="libgazebo_ros_imu.so">
-      <alwaysOn>true</alwaysOn>
-      <updateRate>50</updateRate>
-      <bodyName>base_link</bodyName>
-      <topicName>imu/data</topicName>
-      <interface:position name="imu_position"/>
-    </controller:gazebo_ros_imu>
-  </gazebo>
-</robot>
-"""
-_MODERN_IMU = """<gazebo>
-  <plugin name="imu_controller" filename="libgazebo_ros_imu.so">
-    <updateRate>50</updateRate>
-    <bodyName>base_link</bodyName>
-    <topicName>imu/data</topicName>
-  </plugin>
-</gazebo>"""
-
 
 @dataclass(frozen=True)
 class DriveSpec:
@@ -461,10 +378,10 @@ def unknown_params(ctx):
 
 
 @rule("G008", "electric-plugin-attribute", "error",
-      bad=_ELECTRIC.format(attr="filename"),
+      bad=ELECTRIC_IMU.format(attr="filename"),
       message='controller imu_controller declares its library with filename="libgazebo_ros_imu.so"; the Electric '
               "controller loader reads plugin=, so it is never loaded",
-      good=_ELECTRIC.format(attr="plugin"))
+      good=ELECTRIC_IMU.format(attr="plugin"))
 def electric_filename(ctx):
     """An Electric-era `<controller:...>` must name its library with `plugin=`, not `filename=`.
 
@@ -603,10 +520,10 @@ def topic_unique(ctx):
 
 
 @rule("G011", "electric-dialect", "info",
-      bad=_ELECTRIC.format(attr="plugin"),
+      bad=ELECTRIC_IMU.format(attr="plugin"),
       message="1 Electric-era controllers and 0 sensors (<controller:…>/<sensor:…>): today's Gazebo ignores them; "
               "`myrabot-desc convert` translates them",
-      good=_MODERN_IMU)
+      good=MODERN_IMU)
 def electric_dialect(ctx):
     """The model uses the pre-SDF Electric dialect (`<controller:…>`, `<sensor:…>`, `<interface:…>`).
 

@@ -107,21 +107,3 @@ def rule(code: str, name: str, severity: str, *, bad: str, message: str, good: s
 
     return deco
 
-
-def tetrahedron_stl(size: float, flipped: bool = False, open_: bool = False) -> str:
-    """An ASCII STL tetrahedron with corners at the origin and on the three axes at ``size`` m, for
-    mesh examples: faces wound outward, or inward (``flipped``), or with the slanted face missing
-    (``open_``, not watertight)."""
-    s = size
-    faces = [((0, 0, 0), (0, s, 0), (s, 0, 0)), ((0, 0, 0), (s, 0, 0), (0, 0, s)),
-             ((0, 0, 0), (0, 0, s), (0, s, 0)), ((s, 0, 0), (0, s, 0), (0, 0, s))]
-    if open_:
-        faces = faces[:3]
-    if flipped:
-        faces = [f[::-1] for f in faces]
-    out = ["solid tetrahedron"]
-    for f in faces:
-        out += ["  facet normal 0 0 0", "    outer loop"]
-        out += [f"      vertex {x:g} {y:g} {z:g}" for x, y, z in f]
-        out += ["    endloop", "  endfacet"]
-    return "\n".join(out + ["endsolid tetrahedron", ""])

@@ -292,3 +292,55 @@ def test_dynamics_finding_points_at_the_first_massless_joint(tmp_path):
 """)
     (d,) = [d for d in run_checks(load_robot(p), CheckOptions()) if d.code == "P003"]
     assert d.loc.line == line_of(p, 'joint name="l_gripper_joint"') and "l_gripper_joint" in d.message
+
+
+# ---------------------------------------------------------------- the same on the real-robot corpus
+CORPUS = Path(__file__).parent / "corpus"
+needs_corpus = pytest.mark.skipif(not (CORPUS / "robots.yaml").is_file(),
+                                  reason="tests/corpus (the real-robot corpus) is not merged yet")
+
+
+def corpus_check(*args):
+    res = CliRunner().invoke(main, ["check", "--format", "json", "--package-path", str(CORPUS), *map(str, args)])
+    assert res.exit_code in (0, 1), res.output[-2000:]
+    return json.loads(res.stdout)["files"]
+
+
+@needs_corpus
+@pytest.mark.parametrize("top", ["turtlebot3_burger.urdf.xacro", "turtlebot3_waffle_pi.urdf.xacro"])
+def test_corpus_turtlebot3_full_scan_is_not_degrees(top):
+    gz = CORPUS / "turtlebot3_description" / "urdf" / top.replace(".urdf.", ".gazebo.")
+    assert "<max_angle>6.28319</max_angle>" in gz.read_text()
+    (f,) = corpus_check(CORPUS / "turtlebot3_description" / "urdf" / top, "--select", "S006")
+    assert f["links"] > 5 and f["diagnostics"] == []
+
+
+@needs_corpus
+def test_corpus_pr2_cameras_and_gripper_dynamics():
+    (f,) = corpus_check(CORPUS / "pr2_description" / "robots" / "pr2.urdf.xacro", "--select", "G010,P003")
+    cams = [p for p in f["diagnostics"] if p["code"] == "G010"]
+    assert cams == []                                   # 7 cameras publish image_raw under their cameraName
+    (p3,) = [p for p in f["diagnostics"] if p["code"] == "P003"]
+    src = CORPUS / "pr2_description" / "urdf" / "gripper_v0" / "gripper.urdf.xacro"
+    assert Path(p3["file"]).name == src.name
+    assert 'name="${side}_gripper_joint"' in src.read_text().splitlines()[p3["line"] - 1]
+
+
+@needs_corpus
+def test_corpus_firefly_gazebo_top_file_builds_with_args():
+    args = ("mav_name:=firefly namespace:=firefly enable_logging:=false enable_ground_truth:=true "
+            "enable_mavlink_interface:=false log_file:=firefly wait_to_record_bag:=false").split()
+    (f,) = corpus_check(CORPUS / "rotors_description" / "urdf" / "mav_generic_odometry_sensor.gazebo", *args)
+    assert (f["robot"], f["links"], f["joints"]) == ("firefly", 12, 11)
+    assert not [d for d in f["diagnostics"] if d["code"] in ("T001", "T017")]
+
+
+@needs_corpus
+def test_corpus_parts_files_named_on_the_command_line_are_not_errors():
+    parts = [CORPUS / "turtlebot3_description" / "urdf" / "common_properties.xacro",
+             CORPUS / "pr2_description" / "urdf" / "sensors" / "wge100_camera.gazebo.xacro"]
+    res = CliRunner().invoke(main, ["check", "--format", "json", "--package-path", str(CORPUS), *map(str, parts)])
+    assert res.exit_code == 0, res.output[-2000:]
+    for f in json.loads(res.stdout)["files"]:
+        assert f["links"] == 0 and f["counts"]["error"] == 0
+        assert ("T017", "info") in [(d["code"], d["severity"]) for d in f["diagnostics"]]

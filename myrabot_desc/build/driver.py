@@ -530,6 +530,26 @@ def _to_stream(f, name: str, build: _Build, print_location):
     return wrapper
 
 
+def _install_messages(build: _Build, print_location) -> dict:
+    """Route the file's ``xacro.message``/``warning``/``error``/``print_location`` calls to the
+    build's stream (in the symbol table in use now); returns what to put back."""
+    import xacro
+
+    ns = xacro._global_symbols.get("xacro")
+    saved = {}
+    if ns is not None:
+        for name, f in _message_functions(print_location).items():
+            if name in ns:
+                saved[name] = (ns, ns[name])
+                dict.__setitem__(ns, name, _to_stream(f, name, build, print_location))
+    return saved
+
+
+def _restore_messages(saved: dict) -> None:
+    for name, (ns, f) in saved.items():
+        dict.__setitem__(ns, name, f)
+
+
 class _Hooks:
     """Install our hooks into the xacro module for one build; restore them after."""
 
@@ -697,13 +717,6 @@ class _Hooks:
 
         if self.saved_yaml[0] is not None:
             dict.__setitem__(g["xacro"], "load_yaml", guarded_yaml(self.saved_yaml[0]))
-        self.saved_messages = {}
-        if "xacro" in g:
-            where = self.saved[(xacro, "print_location")]
-            for name, f in _message_functions(where).items():
-                if name in g["xacro"]:
-                    self.saved_messages[name] = g["xacro"][name]
-                    dict.__setitem__(g["xacro"], name, _to_stream(f, name, b, where))
         if self.saved_yaml[1] is not None:
             dict.__setitem__(g, "load_yaml", guarded_yaml(self.saved_yaml[1]))
         xacro.parse = parse
@@ -726,12 +739,15 @@ class _Hooks:
             sa._eval_optenv = refuse_env
             sa._eval_dict["env"] = refuse_env
             sa._eval_dict["optenv"] = refuse_env
+        self.saved_messages = _install_messages(b, self.saved[(xacro, "print_location")])
         return self
 
     def __exit__(self, *exc):
         import xacro.substitution_args as sa
 
         import xacro
+
+        _restore_messages(self.saved_messages)
         from myrabot_desc.build import fast as xacro_fast
 
         for (mod, name), value in self.saved.items():
@@ -741,8 +757,6 @@ class _Hooks:
         g = xacro._global_symbols
         if "xacro" in g and self.saved_yaml[0] is not None:
             dict.__setitem__(g["xacro"], "load_yaml", self.saved_yaml[0])
-        for name, f in self.saved_messages.items():
-            dict.__setitem__(g["xacro"], name, f)
         if "load_yaml" in g and self.saved_yaml[1] is not None:
             dict.__setitem__(g, "load_yaml", self.saved_yaml[1])
         sys.setrecursionlimit(self.saved_recursion)

@@ -112,6 +112,21 @@ def read_urdf_text(text: str, src: Path, locations=None, package_roots=None, bui
                  packages, package_paths)
 
 
+# What a file that is not a URDF robot is, by its root element (for the message that refuses it).
+DOCUMENT_KINDS = {"sdf": "an SDF model", "gazebo": "an SDF model (old <gazebo> root)", "mujoco": "a MuJoCo MJCF model",
+                  "launch": "a roslaunch file", "world": "a world file", "html": "an HTML page"}
+
+
+def what_document(tag: str) -> str:
+    """'an SDF model (root <sdf>, not <robot>)'... for a root element tag (lxml's: {ns}name)."""
+    if tag.startswith("{"):
+        ns, name = tag[1:].split("}", 1)
+        return f"the root element is <{name}> in namespace {ns}, not a plain <robot>"
+    if tag in DOCUMENT_KINDS:
+        return f"{DOCUMENT_KINDS[tag]} (root <{tag}>, not <robot>)"
+    return f"the root element is <{tag}>, not <robot>"
+
+
 # ---------------------------------------------------------------- reading
 class _Reader:
     def __init__(self, root, src: Path, locations):
@@ -238,8 +253,9 @@ def _read(root, text, src: Path, locations, package_roots, build_warnings, from_
     )
 
     if root.tag != "robot":
-        raise InputError(f"the root element is <{root.tag}>, not <robot>: not a URDF file",
-                         Loc(str(src), root.sourceline))
+        loc = locations[0] if locations and locations[0] is not None else Loc(str(src), root.sourceline)
+        raise InputError(f"{what_document(root.tag)}: check, convert, info and sim read URDF robots; "
+                         "`build` expands any xacro file", loc)
     r = _Reader(root, src, locations)
 
     # Resolve every package named by a package:// URI (meshes, textures).

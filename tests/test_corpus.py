@@ -3,10 +3,10 @@
 For each robot of tests/corpus/robots.yaml:
   - `build` (default mode) is byte-identical to the real xacro CLI (PyPI `xacro`, ROS 2 branch) run
     with tests/corpus_shim on PYTHONPATH, which answers its `$(find pkg)` from CORPUS_PACKAGE_PATH;
-    files in ROS Electric/Fuerte syntax (`legacy: true`) are compared with `--legacy off`, since
-    the default build upgrades what xacro 2.x copies verbatim;
+    files in ROS Electric/Fuerte syntax (`legacy: true`) are compared with `--legacy off
+    --allow-errors`, since the default build upgrades what xacro 2.x copies verbatim;
   - `check --inertia`, `info`, `convert --to sdf`, `convert --to mjcf` end with exit 0 or 1, no
-    traceback.
+    traceback; `info` counts the links the build makes; `check`'s errors are the reviewed real ones.
 
 Where today's tool refuses a robot, its cases are xfail(strict=True) naming the construct (XFAIL
 below): a fix makes them pass and strict xfail then fails until the entry is removed.
@@ -32,18 +32,22 @@ ROBOTS = yaml.safe_load((CORPUS / "robots.yaml").read_text())["robots"]
 XACRO = Path(sys.executable).with_name("xacro")
 
 _DICT = "X005: the safe evaluator refuses the call dict(...) (xacro built-in; a ros2_control initial_positions dict)"
-_SPLIT = "X005: the safe evaluator refuses str methods: ${xyz.split(' ')[0]} in franka_description/robots/common/utils.xacro:93"
+_SPLIT = ("X005: the safe evaluator refuses str methods: ${xyz.split(' ')[0]} (franka_description/robots/common/"
+          "utils.xacro:84-86, reported at its use, utils.xacro:93)")
 _SUFFIX = ("a xacro file not named .xacro (rotors' .gazebo top file, built with args) is read as plain URDF by "
            "check/info/convert: robot '$(arg mav_name)', 0 links, while build expands it to 12 links")
 _ALL = ("build", "check", "info", "sdf", "mjcf")
 # robot id -> {case: reason}: what fails today. The refused builds fail every case (each needs the build).
 XFAIL = {
-    "ur5e_mocked": dict.fromkeys(_ALL, _DICT + " in ur_description/urdf/ur_mocked.urdf.xacro:60"),
-    "gen3_robotiq_2f_85": dict.fromkeys(_ALL, _DICT + " in kortex_description/robots/gen3.xacro:58"),
+    "ur5e_mocked": dict.fromkeys(_ALL, _DICT + " (ur_description/urdf/ros2_control_mock_hardware.xacro:11, "
+                                                   "reported at the call, ur_mocked.urdf.xacro:60)"),
+    "gen3_robotiq_2f_85": dict.fromkeys(_ALL, _DICT + " (kortex_description/robots/kortex_robot.xacro:29, "
+                                                          "reported at the call, gen3.xacro:58)"),
     "panda": dict.fromkeys(_ALL, _SPLIT),
     "fr3": dict.fromkeys(_ALL, _SPLIT),
     "husky_pacs": dict.fromkeys(_ALL, "X005: the safe evaluator refuses str methods: ${name.upper()} in "
-                                      "husky_description/urdf/pacs.urdf.xacro:434 (PACS accessory, HUSKY_PACS_ENABLED=true)"),
+                                      "husky_description/urdf/pacs.urdf.xacro:434, reported at its use :444 "
+                                      "(PACS accessory, HUSKY_PACS_ENABLED=true)"),
     "husky_pacs_risers": dict.fromkeys(_ALL, "X005: the safe evaluator refuses ${name.upper()} (pacs.urdf.xacro:434); this "
                                              "variant also needs levels.split(','), levels.pop(0).strip(), "
                                              "python.isinstance, python.range, int(), str(), float() (pacs.urdf.xacro:250-492)"),
@@ -110,20 +114,17 @@ def test_manifest_is_complete():
         assert set(r) <= {"id", "top", "args", "env", "kind", "ros", "build", "package_path", "legacy", "drive"}
 
 
-def test_shim_resolves_like_our_resolver():
-    """The test-only ament shim and `build`'s resolver agree on every corpus package."""
-    from myrabot_desc.packages import PackageResolver
-
+def test_shim_resolves_every_corpus_package():
+    """The test-only ament shim maps each package name to its folder (package.xml <name>)."""
     sys.path.insert(0, str(SHIM))
     try:
         os.environ["CORPUS_PACKAGE_PATH"] = str(CORPUS)
         from ament_index_python.packages import PackageNotFoundError, get_package_share_directory
 
-        ours = PackageResolver(package_paths=[CORPUS], use_environment=False)
         names = [p.parent.name for p in CORPUS.glob("*/package.xml")]
         assert len(names) >= 20
         for name in names:
-            assert Path(get_package_share_directory(name)) == ours.find(name) == CORPUS / name
+            assert Path(get_package_share_directory(name)) == CORPUS / name
         with pytest.raises(PackageNotFoundError):
             get_package_share_directory("no_such_package")
     finally:

@@ -154,10 +154,9 @@ NON_ROBOT_ROOTS = ["pr2_description/urdf/sensors/projector_wg6802418.urdf.xacro"
                    "pr2_description/urdf/sensors/prosilica_gc2450_camera.gazebo.xacro"]
 
 
-@pytest.mark.xfail(strict=True, reason="build refuses a top file whose root is <root>, not <robot> "
-                                       "('not a URDF or xacro robot file'); xacro expands any XML")
 @pytest.mark.parametrize("rel", NON_ROBOT_ROOTS)
 def test_build_non_robot_root(rel):
+    """`build` expands any XML xacro expands, not only <robot> files."""
     robot = {"id": rel, "top": rel}
     want = _xacro(robot)
     assert want.lstrip().startswith("<?xml") and "<root" in want

@@ -50,6 +50,8 @@ LIMITS: tuple[Limit, ...] = (
           "most macro calls in one build (5x the 4,000-call benchmark)"),
     Limit("max_output_elements", "MYRABOT_DESC_MAX_ELEMENTS", 200_000, "--max-elements",
           "most elements a build may produce, counted as macros expand"),
+    Limit("max_eval_seconds", "MYRABOT_DESC_MAX_EVAL_SECONDS", 3, None,
+          "seconds all ${} expressions of one build may take together"),
     Limit("max_mesh_bytes", "MYRABOT_DESC_MAX_MESH_BYTES", 50_000_000, None, "largest mesh file read"),
     Limit("max_mesh_triangles", "MYRABOT_DESC_MAX_MESH_TRIANGLES", 2_000_000, None, "most triangles in one mesh"),
     Limit("max_material_bytes", "MYRABOT_DESC_MAX_MATERIAL_BYTES", 5 * 1024 * 1024, None,
@@ -136,3 +138,107 @@ def parse_xml_bytes(data: bytes, name: str):
         raise InputError("DTDs and entity declarations are not allowed in model files", Loc(name, 1))
     return root
 
+
+
+# ------------------------------------------------------------------ may I open this path?
+class PathRefused(InputError):
+    """A path outside the allowed folders, or not a regular file (code X006)."""
+
+    def __init__(self, message: str, loc: Loc | None = None, stack=None):
+        super().__init__(message, loc, stack, code="X006")
+
+
+def is_pseudo(path) -> bool:
+    """A path that names no folder of files: /dev/stdin, /proc/self/fd/0, a pipe, ``-``."""
+    s = str(path)
+    return s == "-" or s.startswith(("/dev/", "/proc/")) or not Path(s).resolve().parent.is_dir() \
+        or Path(s).resolve() == Path("/") or str(Path(s).resolve().parent) in ("/dev", "/proc")
+
+
+def check_path(path, roots=None, what: str = "file") -> Path:
+    """THE answer to "may I open this path?" for every reader of model-named files.
+
+    Symlinks are resolved and the real path must lie inside one of ``roots`` (when given); it
+    must be a regular file (no FIFO, device, socket or folder: those block or never end).
+    Returns the resolved path; raises PathRefused (outside / not a regular file) or InputError
+    (no such file)."""
+    import os
+    import stat
+
+    p = Path(path)
+    try:
+        real = p.resolve()
+    except (OSError, RuntimeError, ValueError):
+        raise InputError(f"cannot read {_short(str(p), 120)}: unresolvable path") from None
+    if roots is not None and not any(real == r or real.is_relative_to(r) for r in _real_roots(roots)):
+        if not _exists(real):
+            raise InputError(f"no such {what}: {_short(str(p), 200)}")
+        raise PathRefused(f"refusing to read {_short(str(p), 200)}: outside the allowed folders (the input's "
+                          "folder and package roots; use --allow-path DIR or -p NAME=DIR to allow it)")
+    try:
+        st = os.stat(real)
+    except (OSError, ValueError) as exc:
+        if isinstance(exc, FileNotFoundError):
+            raise InputError(f"no such {what}: {_short(str(p), 200)}") from None
+        raise InputError(f"cannot read {_short(str(p), 200)}: {getattr(exc, 'strerror', None) or exc}") from None
+    if not stat.S_ISREG(st.st_mode):
+        kind = "a folder" if stat.S_ISDIR(st.st_mode) else "a FIFO" if stat.S_ISFIFO(st.st_mode) else \
+            "a device" if stat.S_ISCHR(st.st_mode) or stat.S_ISBLK(st.st_mode) else "a socket or special file"
+        raise PathRefused(f"refusing to read {_short(str(p), 200)}: {kind}, not a regular file")
+    return real
+
+
+def _exists(p: Path) -> bool:
+    try:
+        return p.exists()
+    except (OSError, ValueError):
+        return False
+
+
+def _real_roots(roots) -> list[Path]:
+    out = []
+    for r in roots:
+        try:
+            out.append(Path(r).resolve())
+        except (OSError, RuntimeError):
+            continue
+    return out
+
+
+def may_open(path, roots=None) -> bool:
+    """check_path as a yes/no (for scans that skip what they may not read)."""
+    try:
+        check_path(path, roots)
+        return True
+    except InputError:
+        return False
+
+
+def open_checked(path, roots=None, what: str = "file"):
+    """Open a checked path for binary reading without following a swap to a FIFO (O_NONBLOCK,
+    then fstat): the check and the open see the same regular file."""
+    import os
+    import stat
+
+    real = check_path(path, roots, what)
+    try:
+        fd = os.open(real, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0))
+    except OSError as exc:
+        raise InputError(f"cannot read {_short(str(path), 200)}: {exc.strerror}") from None
+    if not stat.S_ISREG(os.fstat(fd).st_mode):
+        os.close(fd)
+        raise PathRefused(f"refusing to read {_short(str(path), 200)}: not a regular file")
+    return os.fdopen(fd, "rb")
+
+
+def read_checked(path, roots=None, max_bytes: int | None = None, what: str = "file") -> bytes:
+    """Read a whole checked file, refusing it past ``max_bytes`` (read as it grows, not trusted
+    from stat: /proc files report 0 bytes)."""
+    with open_checked(path, roots, what) as f:
+        if max_bytes is None:
+            return f.read()
+        data = f.read(max_bytes + 1)
+    if len(data) > max_bytes:
+        raise InputError(f"{display(path)} is over the {max_bytes}-byte limit "
+                         "(see MYRABOT_DESC_MAX_INPUT_BYTES)")
+    return data

@@ -412,54 +412,6 @@ class _Build:
 
 
 
-def _check_yaml_aliases(path: Path, loc) -> None:
-    """A YAML "billion laughs" (aliases of aliases) is small on disk and expands to 10^9 items in
-    xacro's wrappers: count the expanded nodes on the composed graph (aliases shared) first."""
-    import yaml
-
-    from myrabot_desc.build.safe_eval import MAX_SEQUENCE_LEN
-
-    try:
-        text = path.read_text(encoding="utf-8", errors="replace")
-    except OSError:
-        return  # xacro reports it
-    if "&" not in text or "*" not in text:
-        return
-    try:
-        node = yaml.compose(text, Loader=yaml.SafeLoader)
-    except RecursionError:
-        raise InputError(f"{path.name}: YAML nests too deeply", loc) from None
-    except yaml.YAMLError:
-        return  # malformed: xacro reports it with its line
-    memo: dict[int, int] = {}
-
-    def size(n) -> int:
-        if id(n) in memo:
-            return memo[id(n)]
-        memo[id(n)] = MAX_SEQUENCE_LEN + 1   # a node reaching itself is too large
-        total = 1
-        if isinstance(n, yaml.SequenceNode):
-            for c in n.value:
-                total += size(c)
-                if total > MAX_SEQUENCE_LEN:
-                    break
-        elif isinstance(n, yaml.MappingNode):
-            for k, v in n.value:
-                total += size(k) + size(v)
-                if total > MAX_SEQUENCE_LEN:
-                    break
-        memo[id(n)] = total
-        return total
-
-    try:
-        too_big = node is not None and size(node) > MAX_SEQUENCE_LEN
-    except RecursionError:
-        raise InputError(f"{path.name}: YAML nests too deeply", loc) from None
-    if too_big:
-        raise InputError(f"{path.name}: YAML aliases expand to over {MAX_SEQUENCE_LEN} items (an alias bomb)", loc)
-
-
-
 def _inside(el, tag: str) -> bool:
     p = el.getparent()
     while p is not None:
@@ -519,8 +471,6 @@ class _Hooks:
             (sa, "_eval_env"): sa._eval_env, (sa, "_eval_optenv"): sa._eval_optenv, (sa, "_eval"): sa._eval,
         }
         self.saved_dict = dict(sa._eval_dict)
-        g = xacro._global_symbols
-        self.saved_yaml = (g["xacro"].get("load_yaml") if "xacro" in g else None, g.get("load_yaml"))
         self.saved_recursion = sys.getrecursionlimit()
         sys.setrecursionlimit(max(self.saved_recursion, b.limits.max_macro_depth * 12 + 2000))
         xacro_fast.reset()
@@ -641,27 +591,27 @@ class _Hooks:
                 return str(value)
             return str(eval(s, {"__builtins__": {}}, sa._DictWrapper(context["arg"], functions)))
 
-        def guarded_yaml(orig_load_yaml):
-            def load_yaml(filename):
-                check_yaml(filename)
-                return orig_load_yaml(filename)
-            return load_yaml
+        def load_yaml(filename):
+            """xacro's load_yaml through our YAML loader and path check (xacro's own registers
+            unsandboxed tag constructors on PyYAML's shared SafeLoader)."""
+            from myrabot_desc.build import yaml_load
+            from myrabot_desc.safety import read_checked
 
-        def check_yaml(filename):
             spec = xacro.abs_filename_spec(filename)
             p = Path(spec)
-            if not b.allowed(p):
-                raise InputError(f"refusing to read {p}: outside the input's folder and the package roots "
-                                 "(use --allow-path DIR to allow it)", b.last_loc, b._stack(), code="X006")
-            if p.is_file() and p.stat().st_size > b.limits.max_input_bytes:
-                raise InputError(f"{p} is over the {b.limits.max_input_bytes}-byte limit", b.last_loc)
-            if p.is_file():
-                _check_yaml_aliases(p, b.last_loc)
+            try:
+                data = read_checked(p, b.allow_roots + b.resolver.roots(), b.limits.max_input_bytes, "YAML file")
+                value = yaml_load.loads(data.decode("utf-8", errors="replace"), display(p))
+            except InputError as exc:
+                line = f":{exc.loc.line}" if exc.loc and exc.loc.line and exc.loc.file == display(p) else ""
+                msg = exc.message if exc.message.startswith(("refusing", "no such", "cannot read")) else \
+                    f"{p.name}{line}: {exc.message}"
+                raise InputError(msg, b.last_loc, b._stack(), code=exc.code) from None
+            xacro.all_includes.append(spec)
+            return xacro.YamlListWrapper.wrap(value)
 
-        if self.saved_yaml[0] is not None:
-            dict.__setitem__(g["xacro"], "load_yaml", guarded_yaml(self.saved_yaml[0]))
-        if self.saved_yaml[1] is not None:
-            dict.__setitem__(g, "load_yaml", guarded_yaml(self.saved_yaml[1]))
+        self.saved_globals = xacro._global_symbols
+        xacro._global_symbols = safe_eval.fresh_namespace(load_yaml)   # nothing a build does reaches the next
         xacro.parse = parse
         xacro.eval_all = eval_all
         xacro.handle_macro_call = handle_macro_call
@@ -673,7 +623,8 @@ class _Hooks:
         xacro.eval_text = xacro_fast.make_eval_text()
         xacro_fast.install_clone()
         if not b.unsafe_eval:
-            xacro.safe_eval = safe_eval.make_safe_eval(self.saved[(xacro, "safe_eval")], refuse)
+            xacro.safe_eval = safe_eval.make_safe_eval(self.saved[(xacro, "safe_eval")], refuse,
+                                                       b.limits.max_eval_seconds)
         sa._eval_find = eval_find
         sa._eval_dict["find"] = eval_find
         sa._eval = subst_eval
@@ -694,11 +645,10 @@ class _Hooks:
             setattr(mod, name, value)
         sa._eval_dict.clear()
         sa._eval_dict.update(self.saved_dict)
-        g = xacro._global_symbols
-        if "xacro" in g and self.saved_yaml[0] is not None:
-            dict.__setitem__(g["xacro"], "load_yaml", self.saved_yaml[0])
-        if "load_yaml" in g and self.saved_yaml[1] is not None:
-            dict.__setitem__(g, "load_yaml", self.saved_yaml[1])
+        from myrabot_desc.build import yaml_load
+
+        xacro._global_symbols = self.saved_globals
+        yaml_load.scrub_globals()
         sys.setrecursionlimit(self.saved_recursion)
         xacro_fast.uninstall_clone()
         xacro_fast.reset()

@@ -124,6 +124,8 @@ class _Build:
         key = path.resolve()
         if key in self.trees:
             return self.trees[key]
+        from myrabot_desc.safety import read_checked
+
         try:
             size = path.stat().st_size
         except OSError as exc:
@@ -131,10 +133,10 @@ class _Build:
         if size > self.limits.max_input_bytes:
             raise InputError(f"{path} is {size} bytes, over the {self.limits.max_input_bytes}-byte limit "
                              "(see --max-input-bytes or MYRABOT_DESC_MAX_INPUT_BYTES)", asked_at)
-        try:
-            data = path.read_bytes()
-        except OSError as exc:
-            raise InputError(f"cannot read {path}: {exc.strerror}", asked_at) from None
+        try:    # a regular file only (a FIFO would block), read no further than the limit
+            data = read_checked(path, None, self.limits.max_input_bytes)
+        except InputError as exc:
+            raise InputError(exc.message, asked_at or exc.loc, code=exc.code) from None
         root = parse_xml_bytes(data, display(path))
         self.trees[key] = root
         return root
@@ -421,22 +423,33 @@ def _inside(el, tag: str) -> bool:
     return False
 
 
+MAX_NEARBY_FILES = 500
+MAX_NEARBY_BYTES = 2_000_000
+
+
 def _defined_nearby(name: str, src: Path, roots) -> str | None:
-    """A .xacro file next to the input (or in a resolved package) that defines macro ``name``."""
-    pattern = re.compile(r"<(?:xacro:)?macro\s[^>]*name\s*=\s*[\"']%s[\"']" % re.escape(name))
+    """A .xacro file next to the input (or in a resolved package) that defines macro ``name``.
+    Regular files inside each folder only (no FIFO, no symlink out), a linear scan of each."""
+    from myrabot_desc.safety import may_open, read_checked, scan_tag_attr
+
     folders = [src.parent] + [Path(r) for r in roots]
-    seen = set()
+    seen: set = set()
     for folder in folders:
-        top = folder.resolve()
-        for f in sorted(folder.rglob("*.xacro")) if folder.is_dir() else []:
-            if f in seen or len(seen) > 500 or not f.resolve().is_relative_to(top):  # no symlinks out
+        if not folder.is_dir():
+            continue
+        top = [folder.resolve()]
+        for f in sorted(folder.rglob("*.xacro")):
+            if f in seen or len(seen) > MAX_NEARBY_FILES:
                 continue
             seen.add(f)
-            try:
-                if f.stat().st_size < 2_000_000 and pattern.search(f.read_text(errors="replace")):
-                    return str(f)
-            except OSError:
+            if not may_open(f, top):
                 continue
+            try:
+                text = read_checked(f, None, MAX_NEARBY_BYTES).decode("utf-8", errors="replace")
+            except InputError:
+                continue
+            if name in text and name in scan_tag_attr(text, "macro", "name"):
+                return str(f)
     return None
 
 

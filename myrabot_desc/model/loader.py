@@ -65,13 +65,15 @@ def load_robot(path=None, **build_options) -> Robot:
     from myrabot_desc.safety import Limits
 
     limit = (build_options.get("limits") or Limits()).max_input_bytes
+    from myrabot_desc.safety import read_input
+
     try:
         size = src.stat().st_size
-        if size > limit:
-            raise InputError(f"{src} is {size} bytes, over the {limit}-byte limit")
-        data = src.read_bytes()
     except OSError as exc:
         raise InputError(f"cannot read {src}: {exc.strerror}") from None
+    if size > limit:
+        raise InputError(f"{src} is {size} bytes, over the {limit}-byte limit")
+    data = read_input(src, limit)       # bounded: /dev/zero or an endless pipe stops at the limit
     return read_urdf_bytes(data, src, packages=build_options.get("packages"),
                            package_paths=build_options.get("package_paths", ()))
 
@@ -186,7 +188,7 @@ class _Reader:
                 from myrabot_desc.build.packages import outside_roots
 
                 if outside_roots(fn, package_roots, robot_src_dir) is not None:
-                    self.issue(shape, f"mesh {fn} lies outside the model's package and folder: not read "
+                    self.issue(shape, f"mesh {fn} lies outside the allowed folders (the model's package and folder): not read "
                                "(a model may only use files of its own package or of the packages it names)",
                                code="X006")
             return Mesh(fn, self.vec(shape, "scale", (1.0, 1.0, 1.0)), path)

@@ -635,6 +635,13 @@ class _Hooks:
         xacro.remove_previous_comments = xacro_fast.remove_previous_comments
         xacro.eval_text = xacro_fast.make_eval_text()
         xacro_fast.install_clone()
+
+        def too_many_elements():
+            raise InputError(f"the expansion produces over {b.limits.max_output_elements} elements (macro bodies "
+                             "and blocks inserted); is a macro or block repeating itself? (see --max-elements "
+                             "or MYRABOT_DESC_MAX_ELEMENTS)", b.last_loc, b._stack())
+
+        xacro_fast.set_clone_limit(b.limits.max_output_elements, too_many_elements)
         if not b.unsafe_eval:
             xacro.safe_eval = safe_eval.make_safe_eval(self.saved[(xacro, "safe_eval")], refuse,
                                                        b.limits.max_eval_seconds)
@@ -664,6 +671,7 @@ class _Hooks:
         yaml_load.scrub_globals()
         sys.setrecursionlimit(self.saved_recursion)
         xacro_fast.uninstall_clone()
+        xacro_fast.set_clone_limit(float("inf"), lambda: None)
         xacro_fast.reset()
         xacro.substitution_args_context["arg"] = {}
         return False

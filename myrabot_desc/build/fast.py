@@ -229,6 +229,9 @@ def clone_node(node, deep, doc):
     """
     t = node.nodeType
     if t == ELEMENT:
+        _clone_left[0] -= 1
+        if _clone_left[0] < 0:      # the element limit, counted as the tree grows (build.py sets it)
+            _clone_left[1]()
         qn = node.tagName
         clone = _new(_Element)
         clone.ownerDocument = doc
@@ -293,6 +296,15 @@ ELEMENT = xml.dom.Node.ELEMENT_NODE
 _orig_clone = None
 _new = object.__new__
 _Element = _Attr = _Text = _Comment = _NodeList = None
+
+
+_clone_left: list = [float("inf"), lambda: None]   # elements clones may still make, what to do past it
+
+
+def set_clone_limit(n, over) -> None:
+    """Every element cloned (macro bodies, inserted blocks, at any nesting) counts against ``n``;
+    past it ``over()`` is called (it raises)."""
+    _clone_left[0], _clone_left[1] = n, over
 
 
 def install_clone():

@@ -364,7 +364,13 @@ class _Build:
         Returns the parsed URDF root, which the loader reuses."""
         from lxml import etree
 
-        root = etree.fromstring(text.encode("utf-8"), parser=safe_parser())
+        try:
+            root = etree.fromstring(text.encode("utf-8"), parser=safe_parser())
+        except etree.XMLSyntaxError as exc:   # e.g. a 15 MB attribute value built by ${}s (lxml's 10 MB cap)
+            line = exc.position[0] if exc.position else "?"
+            why = re.sub(r",? line \d+, column \d+$", "", " ".join((exc.msg or str(exc)).split())).strip()
+            raise InputError(f"the expanded document is not well-formed XML (line {line} of the output: "
+                             f"{_short(why, 200)})", Loc(display(self.src))) from None
         elements = [el for el in root.iter() if isinstance(el.tag, str)]
         loc_of = dict(zip(map(id, elements), locations))
         found_links = False

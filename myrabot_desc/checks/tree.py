@@ -97,20 +97,12 @@ def no_cycle(ctx):
             js = [j.get("name") for j in raw if j.find("child") is not None and j.find("child").get("link") == link]
             yield Finding(f"link {link} is the child of {n} joints ({', '.join(js)}): a link has one parent",
                           ctx.loc_of(raw[[j.get('name') for j in raw].index(js[1])]), {"link": link, "joints": js})
-    # cycles: follow parents upward from every link
-    parent = {j.child: j.parent for j in r.joints.values()}
-    reported = set()
-    for start in r.links:
-        seen, cur = [], start
-        while cur in parent and cur not in seen:
-            seen.append(cur)
-            cur = parent[cur]
-        if cur in seen:
-            cyc = tuple(sorted(seen[seen.index(cur):]))
-            if cyc not in reported:
-                reported.add(cyc)
-                yield Finding(f"the joints form a cycle through links {' -> '.join(seen[seen.index(cur):] + [cur])}",
-                              r.links[cur].loc, {"links": list(cyc)})
+    # cycles: each link walked once (model/tree.py; the walk per link was cubic in a chain's length)
+    from myrabot_desc.model.tree import cycles
+
+    for cyc in cycles({j.child: j.parent for j in r.joints.values()}, r.links):
+        yield Finding(f"the joints form a cycle through links {' -> '.join(cyc + [cyc[0]])}",
+                      r.links[cyc[0]].loc, {"links": sorted(cyc)})
 
 
 @rule("T003", "joint-links-exist", "error",

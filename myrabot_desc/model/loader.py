@@ -45,6 +45,7 @@ MAX_MAGNITUDE = 1e6
 _XACRO_NS = re.compile(rb"""xmlns:([A-Za-z_][\w.-]*)\s*=\s*["']https?://(?:www\.|wiki\.)?ros\.org/(?:wiki/)?xacro/?["']""")
 _SUBSTITUTION = re.compile(rb"\$\{|\$\((?:arg|find|env|optenv|eval|dirname|cwd)\s")
 _COMMENT = re.compile(rb"<!--.*?(?:-->|\Z)", re.S)
+_PREFIXED_TAG = re.compile(rb"<([A-Za-z_][\w.-]*):[A-Za-z_]")
 
 
 def is_xacro(path: Path, data: bytes | None = None) -> bool:
@@ -58,7 +59,9 @@ def is_xacro(path: Path, data: bytes | None = None) -> bool:
     text = _COMMENT.sub(b"", data)
     if _SUBSTITUTION.search(text):
         return True
-    return any(re.search(rb"<" + re.escape(m.group(1)) + rb":[A-Za-z_]", text) for m in _XACRO_NS.finditer(text))
+    prefixes = {m.group(1) for m in _XACRO_NS.finditer(text)}
+    # one pass over the prefixed tags (a search per declaration would be quadratic on hostile files)
+    return bool(prefixes) and any(m.group(1) in prefixes for m in _PREFIXED_TAG.finditer(text))
 
 
 def load_robot(path=None, **build_options) -> Robot:
@@ -72,14 +75,16 @@ def load_robot(path=None, **build_options) -> Robot:
     if not is_xacro(src):
         from myrabot_desc.safety import Limits
 
+        from myrabot_desc.safety import read_input
+
         limit = (build_options.get("limits") or Limits()).max_input_bytes
         try:
             size = src.stat().st_size
-            if size > limit:
-                raise InputError(f"{src} is {size} bytes, over the {limit}-byte limit")
-            data = src.read_bytes()
         except OSError as exc:
             raise InputError(f"cannot read {src}: {exc.strerror}") from None
+        if size > limit:
+            raise InputError(f"{src} is {size} bytes, over the {limit}-byte limit")
+        data = read_input(src, limit)       # bounded: /dev/zero or an endless pipe stops at the limit
     if data is None or is_xacro(src, data):
         from myrabot_desc.build.driver import build_file
 
@@ -218,7 +223,7 @@ class _Reader:
                 from myrabot_desc.build.packages import outside_roots
 
                 if outside_roots(fn, package_roots, robot_src_dir) is not None:
-                    self.issue(shape, f"mesh {fn} lies outside the model's package and folder: not read "
+                    self.issue(shape, f"mesh {fn} lies outside the allowed folders (the model's package and folder): not read "
                                "(a model may only use files of its own package or of the packages it names)",
                                code="X006")
             return Mesh(fn, self.vec(shape, "scale", (1.0, 1.0, 1.0)), path)

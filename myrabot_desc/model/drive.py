@@ -293,10 +293,12 @@ def from_plugin(p, spec: Spec) -> Drive:
 
 # ------------------------------------------------------------------ ros_control
 VELOCITY_IFACES = ("VelocityJointInterface",)
+POSITION_IFACES = ("PositionJointInterface",)
 
 
 def velocity_joints(robot) -> tuple[list[str], str | None]:
-    """Joints with a velocity command interface, in file order, and where they were declared."""
+    """Joints commanded in velocity (a velocity interface and no position one), in file order, and
+    where they were declared ('ros_control' transmissions or 'ros2_control' blocks)."""
     out, source = [], None
     for t in robot.transmissions:
         el = t.element
@@ -306,7 +308,8 @@ def velocity_joints(robot) -> tuple[list[str], str | None]:
             if _local(j.tag) != "joint" or not j.get("name"):
                 continue
             ifaces = [(h.text or "").strip().rsplit("/", 1)[-1] for h in j if _local(h.tag) == "hardwareInterface"]
-            if any(i in VELOCITY_IFACES for i in ifaces) and j.get("name") not in out:
+            if any(i in VELOCITY_IFACES for i in ifaces) and not any(i in POSITION_IFACES for i in ifaces) \
+                    and j.get("name") not in out:
                 out.append(j.get("name"))
                 source = source or "ros_control"
     root = robot.root_element
@@ -318,24 +321,24 @@ def velocity_joints(robot) -> tuple[list[str], str | None]:
                 if _local(j.tag) != "joint" or not j.get("name"):
                     continue
                 cmds = [c.get("name") for c in j if _local(c.tag) == "command_interface"]
-                if "velocity" in cmds and j.get("name") not in out:
+                if "velocity" in cmds and "position" not in cmds and j.get("name") not in out:
                     out.append(j.get("name"))
                     source = source or "ros2_control"
     return out, source
 
 
 def position_joints(robot) -> list[str]:
-    """Joints with a position (or effort) command interface: what a position controller may drive."""
+    """Joints commanded in position by ros2_control (a ``position`` command interface), in file order."""
     out = []
-    for t in robot.transmissions:
-        el = t.element
-        if el is None:
+    root = robot.root_element
+    if root is None:
+        return out
+    for block in root.iter():
+        if _local(block.tag) != "ros2_control":
             continue
-        for j in el.iter():
-            if _local(j.tag) != "joint" or not j.get("name"):
-                continue
-            ifaces = [(h.text or "").strip().rsplit("/", 1)[-1] for h in j if _local(h.tag) == "hardwareInterface"]
-            if any(i in ("PositionJointInterface", "EffortJointInterface") for i in ifaces) and j.get("name") not in out:
+        for j in block:
+            if _local(j.tag) == "joint" and j.get("name") and j.get("name") not in out and \
+                    "position" in [c.get("name") for c in j if _local(c.tag) == "command_interface"]:
                 out.append(j.get("name"))
     return out
 

@@ -170,7 +170,6 @@ def surface_points(g, n: int = 32, mesh=None, loc=None):
     raise InputError(f"unsupported geometry {g.kind}", loc)
 
 
-
 def lowest_points(g, T, mesh=None, tol: float = 1e-3):
     """(min z, [xyz points within tol of it]) of a shape placed by world pose T, or None."""
     import numpy as np

@@ -200,6 +200,14 @@ EXAMPLES: dict[str, tuple[str, str, str]] = {
     "G012": ("<torque>10</torque>\n<wheelTorque>5</wheelTorque>",
              "gazebo_ros_diff_drive (ROS 1): <torque> 10 and <wheelTorque> 5 disagree; the plugin reads wheelTorque (5)",
              "<wheelTorque>5</wheelTorque>"),
+    "G013": ('<plugin name="diff_drive" filename="libgazebo_ros_diff_drive.so">  <!-- no <legacyMode> -->',
+             "gazebo_ros_diff_drive (ROS 1): no <legacyMode> given: it defaults to true, so the plugin drives "
+             "left_wheel_joint (y 0.15) with the right wheel's speed and right_wheel_joint (y -0.15) with the left "
+             "one's: the robot turns the wrong way (a commanded 0.5 rad/s turns at -0.5 rad/s, turn ratio -1; ...)",
+             "<legacyMode>false</legacyMode>"),
+    "G014": ("<leftJoint>left_wheel_joint</leftJoint>\n<rightJoint>right_wheel_joint</rightJoint>",
+             "drive: gazebo_ros_diff_drive (ROS 1) turns left_wheel_joint (left) and right_wheel_joint (right); "
+             "separation 0.3 m, wheel radius 0.08 m on the URDF", "(information: nothing to fix)"),
 }
 
 EXTERNAL_DOC = {

@@ -201,6 +201,33 @@ def drive_legacy_mode(ctx):
                               "turn_ratio": -1.0, "fix": "false"})
 
 
+@rule("G014", "drive-summary", "info")
+def drive_summary(ctx):
+    """The drive the model declares, as convert and sim see it (information).
+
+    One line per drive (model/drive.py: a plugin of any dialect, or ros_control /
+    ros2_control velocity wheels): its wheel joints, and the wheel separation and radius
+    measured on the URDF (the numbers `convert` writes into the gz DiffDrive system and
+    `sim drive` moves the robot with).
+    """
+    r = ctx.robot
+    for d in D.find(r):
+        g = _geometry(ctx, d)
+        if not g.left or not g.right:
+            continue
+        nums = []
+        if g.separation is not None:
+            nums.append(f"separation {g.separation:.4g} m")
+        if g.radius is not None:
+            nums.append(f"wheel radius {g.radius:.4g} m")
+        loc = d.loc or r.joints[g.left[0].joint].loc
+        yield Finding(f"drive: {d.label} turns {', '.join(d.left)} (left) and {', '.join(d.right)} (right)"
+                      + (f"; {', '.join(nums)} on the URDF" if nums else ""), loc,
+                      {"source": d.source, "drive": d.label, "left": list(d.left), "right": list(d.right),
+                       "separation": g.separation, "radius": g.radius,
+                       "plugin_separation": d.separation, "plugin_radius": d.radius, "legacy": d.legacy})
+
+
 @rule("G007", "plugin-unknown-parameter", "warning")
 def unknown_params(ctx):
     """A parameter that the (recognised) plugin does not read.

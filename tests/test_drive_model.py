@@ -158,9 +158,16 @@ def test_check_convert_and_sim_see_the_same_drive(tmp_path, robot):
     # and its plugin-geometry run, when the plugin gives numbers, uses the plugin's
     if d.source == "plugin" and d.separation is not None and d.radius is not None:
         r = invoke("sim", "drive", "--json", "--twist", "0.2,0.5,1", *args)
-        info = json.loads(r.stdout)["info"]
+        doc = json.loads(r.stdout)
+        info = doc["info"]
         assert info["plugin wheel separation"] == pytest.approx(d.separation)
         assert info["plugin wheel radius"] == pytest.approx(d.radius)
+        # the ratios it measures are the drive model's: r_urdf / r_plugin, times s_plugin / s_urdf turning
+        kv = g.radius / d.radius
+        kw = kv * d.separation / g.separation * D.turn_sign(d)
+        ratios = {c["name"]: c["value"] for c in doc["checks"]}
+        assert ratios["speed ratio"] == pytest.approx(kv, rel=1e-4)
+        assert ratios["turn-rate ratio"] == pytest.approx(kw, rel=1e-4)
 
 
 def test_dialect_numbers_and_units(tmp_path):

@@ -206,7 +206,7 @@ EXAMPLES: dict[str, tuple[str, str, str]] = {
              "one's: the robot turns the wrong way (a commanded 0.5 rad/s turns at -0.5 rad/s, turn ratio -1; ...)",
              "<legacyMode>false</legacyMode>"),
     "G014": ("<leftJoint>left_wheel_joint</leftJoint>\n<rightJoint>right_wheel_joint</rightJoint>",
-             "drive: gazebo_ros_diff_drive (ROS 1) turns left_wheel_joint (left) and right_wheel_joint (right); "
+             "drive (gazebo_ros_diff_drive (ROS 1)): left left_wheel_joint, right right_wheel_joint; "
              "separation 0.3 m, wheel radius 0.08 m on the URDF", "(information: nothing to fix)"),
 }
 

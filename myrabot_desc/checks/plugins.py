@@ -221,7 +221,7 @@ def drive_summary(ctx):
         if g.radius is not None:
             nums.append(f"wheel radius {g.radius:.4g} m")
         loc = d.loc or r.joints[g.left[0].joint].loc
-        yield Finding(f"drive: {d.label} turns {', '.join(d.left)} (left) and {', '.join(d.right)} (right)"
+        yield Finding(f"drive ({d.label}): left {', '.join(d.left)}, right {', '.join(d.right)}"
                       + (f"; {', '.join(nums)} on the URDF" if nums else ""), loc,
                       {"source": d.source, "drive": d.label, "left": list(d.left), "right": list(d.right),
                        "separation": g.separation, "radius": g.radius,

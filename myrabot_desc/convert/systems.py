@@ -17,7 +17,7 @@ import copy
 
 from lxml import etree
 
-from myrabot_desc.convert.common import local, num, sub, to_bool, to_float, xml_text
+from myrabot_desc.convert.common import local, num, sub, to_bool, xml_text
 from myrabot_desc.convert.sensors import (
     imu_from_plugin,
     imu_sensor_on,

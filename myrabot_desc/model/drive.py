@@ -421,9 +421,9 @@ def main_drive(robot, left=(), right=(), guess: bool = False) -> Drive | None:
 # ------------------------------------------------------------------ geometry (pure Python)
 def link_transforms(robot) -> dict:
     """World transform (R, p) of every link at q = 0 with each root at the origin."""
-    cached = getattr(robot, "_drive_link_tf", None)
-    if cached is not None:
-        return cached
+    cache = getattr(robot, "derived", None)
+    if cache is not None and "drive.link_transforms" in cache:
+        return cache["drive.link_transforms"]
     out = {}
     todo = list(robot.roots)
     for r in todo:
@@ -436,10 +436,8 @@ def link_transforms(robot) -> dict:
                 continue
             out[j.child] = compose(out[link], pose_T(j.origin))
             todo.append(j.child)
-    try:
-        robot._drive_link_tf = out
-    except AttributeError:
-        pass
+    if cache is not None:
+        cache["drive.link_transforms"] = out
     return out
 
 
@@ -479,12 +477,13 @@ def wheel(robot, joint_name: str, T=None) -> Wheel | None:
         elif g.kind == "cylinder" and abs(_dot((Rs[0][2], Rs[1][2], Rs[2][2]), axis)) > ALIGNED:
             r, rnd = g.radius, True
         else:
-            r, rnd = _radial_extent(g, it, Rs, ps, pj, axis), False
-            if r is None:
+            pts = _world_points(g, it, Rs, ps)
+            if not pts:
                 continue
+            r, rnd = _radial_extent(pts, pj, axis), False
         if best is None or r > best:
             best, best_item, best_round = r, it, rnd
-            centre = ps if rnd else _axial_mid(g, it, Rs, ps, pj, axis)
+            centre = ps if rnd else _axial_mid(pts, pj, axis)
     fwd = axis[1]          # (axis × z)[0]: a positive rate about +y rolls the base forward
     return Wheel(joint_name, j.child, pj, axis, centre, best, best_item, best_round,
                  math.copysign(1.0, fwd) if fwd else 1.0)
@@ -504,10 +503,8 @@ def _rows(pts):
     return pts.tolist() if hasattr(pts, "tolist") else pts
 
 
-def _radial_extent(g, it, Rs, ps, origin, axis):
-    pts = _world_points(g, it, Rs, ps)
-    if not pts:
-        return None
+def _radial_extent(pts, origin, axis) -> float:
+    """The farthest of the points from the axis line through origin."""
     best = 0.0
     for q in pts:
         d = (q[0] - origin[0], q[1] - origin[1], q[2] - origin[2])
@@ -516,11 +513,8 @@ def _radial_extent(g, it, Rs, ps, origin, axis):
     return math.sqrt(max(best, 0.0))
 
 
-def _axial_mid(g, it, Rs, ps, origin, axis):
-    """The wheel's mid-plane point on its axis (the middle of the shape's extent along the axis)."""
-    pts = _world_points(g, it, Rs, ps)
-    if not pts:
-        return origin
+def _axial_mid(pts, origin, axis):
+    """The wheel's mid-plane point on its axis (the middle of the points' extent along the axis)."""
     s = [_dot((q[0] - origin[0], q[1] - origin[1], q[2] - origin[2]), axis) for q in pts]
     m = (min(s) + max(s)) / 2
     return tuple(origin[k] + m * axis[k] for k in range(3))

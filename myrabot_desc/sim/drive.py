@@ -110,7 +110,7 @@ def run(robot, *, rate=1000.0, duration=None, script=DEFAULT_SCRIPT, wheels="plu
     if drive.plugin is not None and wheels == "plugin":
         p = drive.plugin
         kv = u.radius / p.radius
-        kw = kv * p.separation / u.separation
+        kw = kv * p.separation / u.separation * (-1.0 if p.swapped else 1.0)   # legacy mode swaps the turn
         res.info["predicted ratios"] = f"speed {kv:.4f} (URDF r / plugin r), turn {kw:.4f} (× plugin sep / URDF sep)"
     res.info.update(_stance(robot, drive))
     res.moving = [("expected", ex, ey)]

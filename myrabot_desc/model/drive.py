@@ -314,7 +314,7 @@ def velocity_joints(robot) -> tuple[list[str], str | None]:
                 source = source or "ros_control"
     root = robot.root_element
     if root is not None:
-        for block in root.iter():
+        for block in root:                      # <ros2_control> sits directly in <robot>
             if _local(block.tag) != "ros2_control":
                 continue
             for j in block:
@@ -333,7 +333,7 @@ def position_joints(robot) -> list[str]:
     root = robot.root_element
     if root is None:
         return out
-    for block in root.iter():
+    for block in root:
         if _local(block.tag) != "ros2_control":
             continue
         for j in block:

@@ -87,9 +87,30 @@ def _robots():
                 "tiago_pro_description/robots/tiago_pro.urdf"):
         out.append(pytest.param([str(ERD / rel)], id=rel.rsplit("/", 1)[-1]))
     out += [pytest.param(name, id=name) for name in DIALECTS]
-    corpus = Path(__file__).parent / "corpus"
-    for f in sorted(corpus.glob("*/robot.urdf")) if corpus.is_dir() else ():
-        out.append(pytest.param([str(f)], id=f"corpus-{f.parent.name}"))
+    out += [pytest.param(args, id=f"corpus-{rid}") for rid, args in _corpus_robots()]
+    return out
+
+
+CORPUS = Path(__file__).parent / "corpus"
+
+
+def _corpus_robots():
+    """The real-robot corpus's wheeled robots with a diff or skid-steer drive (its robots.yaml says which)."""
+    index = CORPUS / "robots.yaml"
+    if not index.is_file():
+        return []
+    import yaml
+
+    out = []
+    for r in yaml.safe_load(index.read_text())["robots"]:
+        drive = r.get("drive") or {}
+        if not drive.get("wheels") or r.get("env"):
+            continue
+        args = [str(CORPUS / r["top"]), "--package-path", str(CORPUS / r.get("package_path", "."))]
+        args += (r.get("args") or "").split()
+        if r.get("legacy"):
+            args += ["--legacy", "on"]
+        out.append((r["id"], args))
     return out
 
 
@@ -100,10 +121,20 @@ def _args(tmp_path, robot):
 def _load(args):
     if not args:
         return load_robot()
-    if "-p" in args:
-        k, v = args[2].split("=", 1)
-        return load_robot(args[0], mappings={k: v})
-    return load_robot(args[0])
+    opts, mappings, rest = {}, {}, list(args[1:])
+    while rest:
+        a = rest.pop(0)
+        if a == "-p":
+            k, v = rest.pop(0).split("=", 1)
+            opts.setdefault("packages", {})[k] = v
+        elif a == "--package-path":
+            opts.setdefault("package_paths", []).append(rest.pop(0))
+        elif a == "--legacy":
+            opts["legacy"] = rest.pop(0)
+        else:
+            k, v = a.split(":=", 1)
+            mappings[k] = v
+    return load_robot(args[0], mappings=mappings or None, **opts)
 
 
 def invoke(*args):
@@ -157,12 +188,13 @@ def test_check_convert_and_sim_see_the_same_drive(tmp_path, robot):
     assert head[-2:] == [d.left[0], d.right[0]]
     # and its plugin-geometry run, when the plugin gives numbers, uses the plugin's
     if d.source == "plugin" and d.separation is not None and d.radius is not None:
-        r = invoke("sim", "drive", "--json", "--twist", "0.2,0.5,1", *args)
+        r = invoke("sim", "drive", "--json", "--twist", "0.2,0,1", "--twist", "0,0.5,1", *args)
         doc = json.loads(r.stdout)
         info = doc["info"]
         assert info["plugin wheel separation"] == pytest.approx(d.separation)
         assert info["plugin wheel radius"] == pytest.approx(d.radius)
-        # the ratios it measures are the drive model's: r_urdf / r_plugin, times s_plugin / s_urdf turning
+        # the ratios it measures (straight, then turning on the spot) are the drive model's:
+        # r_urdf / r_plugin, times s_plugin / s_urdf turning (times -1 in legacy mode)
         kv = g.radius / d.radius
         kw = kv * d.separation / g.separation * D.turn_sign(d)
         ratios = {c["name"]: c["value"] for c in doc["checks"]}

@@ -9,7 +9,7 @@ sources (gazebo_ros_pkgs ``gazebo_ros_diff_drive.cpp`` ROS 1 and ROS 2,
 ``gazebo_ros_skid_steer_drive.cpp``, kobuki_gazebo_plugins, gz-sim ``DiffDrive.cc``):
 
 * Gazebo 0.x Electric controllers ``gazebo_ros_create``/``gazebo_ros_roomba`` (the bundled
-  MYRAbot): ``left_wheel_joint``/``right_wheel_joint``, ``wheel_separation``,
+  MYRAbot) and ``gazebo_ros_kobuki`` (rosbuild): ``left_wheel_joint``/``right_wheel_joint``, ``wheel_separation``,
   ``wheel_diameter``, ``torque``; ``front_castor_joint``/``rear_castor_joint`` name casters.
 * ROS 1 ``gazebo_ros_diff_drive``: ``leftJoint``/``rightJoint``, ``wheelSeparation``
   (default 0.34 m), ``wheelDiameter`` (0.15 m), ``wheelTorque`` (5 N·m), ``updateRate`` (100 Hz),
@@ -121,7 +121,9 @@ SKID = Spec(
         "wheelDiameter", "torque", "commandTopic", "odometryTopic", "odometryFrame", "robotBaseFrame",
         "updateRate", "broadcastTF", "covariance_x", "covariance_y", "covariance_yaw"}),
     defaults=(("wheelSeparation", 0.4), ("wheelDiameter", 0.15), ("torque", 5.0), ("updateRate", 100.0)))
-PLUGIN_SPECS = (ROS1, ROS2, GZ, CREATE, VENDOR, SKID)
+# The Electric-era kobuki controller (rosbuild kobuki_description) reads the Create controller's keys.
+KOBUKI_ELECTRIC = CREATE._replace(label="gazebo_ros_kobuki (Electric)")
+PLUGIN_SPECS = (ROS1, ROS2, GZ, CREATE, KOBUKI_ELECTRIC, VENDOR, SKID)
 
 
 class Drive(NamedTuple):
@@ -249,6 +251,8 @@ def plugin_spec(p) -> Spec | None:
     if p.dialect == "electric":
         if any(k in s for s in (lib, name, tag) for k in ("create", "roomba")):
             return CREATE
+        if "kobuki" in lib or "kobuki" in tag or "left_wheel_joint" in p.params:
+            return KOBUKI_ELECTRIC
         return None
     if p.dialect == "gz":
         return GZ if ("diff-drive" in lib or "diff_drive" in lib or "diffdrive" in name.replace("::", "")) else None

@@ -299,3 +299,31 @@ def test_one_imu_sensor_per_imu(tmp_path):
     assert (s.findtext("topic"), s.findtext("update_rate")) == ("imu", "200")
     stddevs = {float(n.findtext("stddev")) for n in s.iter("noise")}
     assert stddevs == {0.01} and len(list(s.iter("noise"))) == 6
+
+
+def test_legacy_mode_on_an_old_package_with_swapped_wheel_names_turns_right(tmp_path):
+    """Written for legacy mode (leftJoint names the wheel at -y): the two swaps cancel, nothing is reported."""
+    f = tmp_path / "old.urdf"
+    f.write_text(ROVER.format(wheels=TWO, extra=LEGACY.replace("<leftJoint>jl", "<leftJoint>jr")
+                              .replace("<rightJoint>jr", "<rightJoint>jl")))
+    r = invoke("check", "--format", "json", f)
+    codes = [x["code"] for x in json.loads(r.stdout)["files"][0]["diagnostics"]]
+    assert "G013" not in codes and "G005" not in codes
+    doc = json.loads(invoke("sim", "drive", "--json", "--twist", "0,0.5,2", f).stdout)
+    assert {c["name"]: c["value"] for c in doc["checks"]}["turn-rate ratio"] == pytest.approx(1.0, abs=1e-6)
+    assert any("the two cancel" in n for n in doc["notes"])
+
+
+def test_surface_points_one_sampling():
+    """Box corners, cylinder rims of n, sphere great circles of n/2: all on the surface, pure Python."""
+    from myrabot_desc.model.parts import Box, Cylinder, Sphere
+    from myrabot_desc.model.shapes import surface_points
+
+    box = surface_points(Box((0.2, 0.4, 0.6)))
+    assert sorted(box) == sorted((x, y, z) for x in (-0.1, 0.1) for y in (-0.2, 0.2) for z in (-0.3, 0.3))
+    cyl = surface_points(Cylinder(0.05, 0.02), 16)
+    assert isinstance(cyl, list) and len(cyl) == 32
+    assert all(abs((x * x + y * y) ** 0.5 - 0.05) < 1e-12 and abs(abs(z) - 0.01) < 1e-12 for x, y, z in cyl)
+    sph = surface_points(Sphere(0.1), 16)
+    assert len(sph) == 24 and all(abs(sum(c * c for c in p) ** 0.5 - 0.1) < 1e-12 for p in sph)
+    assert (0.0, 0.0, -0.1) in [tuple(round(c, 12) + 0.0 for c in p) for p in sph]   # the lowest point

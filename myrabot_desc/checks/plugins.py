@@ -165,6 +165,8 @@ def drive_axis(ctx):
                               f"in {r.root}: not across the direction of travel (y)", j.loc,
                               {"joint": j.name, "axis_world": list(a)})
             y = w.origin[1]
+            if d.legacy:
+                continue       # legacy mode swaps the wheels itself: G013 says which way it turns
             if (side == "left" and y < -1e-3) or (side == "right" and y > 1e-3):
                 yield Finding(f"{spec.label}: the {side} wheel joint {j.name} is at y {y:.3g} (the {'right' if y < 0 else 'left'} "
                               "side): left and right are swapped, the robot turns the wrong way", p.loc,

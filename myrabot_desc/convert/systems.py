@@ -128,7 +128,10 @@ class Systems:
         ns = pparam(p, "robotNamespace")
         ns = None if ns in (None, "/") else ns.strip("/")
         ns = ns or ros_namespace(p)
-        cmd = (pparam(p, "commandTopic", "command_topic", "topic") or ros_remap(p, "cmd_vel", "/cmd_vel") or "cmd_vel")
+        # kobuki-style base plugins subscribe <base_prefix>/commands/velocity (base_prefix: mobile_base)
+        vendor = "mobile_base/commands/velocity" if d.spec is D.VENDOR else None
+        cmd = (pparam(p, "commandTopic", "command_topic", "topic") or ros_remap(p, "cmd_vel", "/cmd_vel") or vendor
+               or "cmd_vel")
         odom = (pparam(p, "odometryTopic", "odometry_topic", "odom_topic") or ros_remap(p, "odom", "/odom") or "odom")
         if ns and not cmd.startswith("/"):
             cmd, odom = f"{ns}/{cmd}", (odom if odom.startswith("/") else f"{ns}/{odom}")

@@ -132,10 +132,16 @@ def find_drive(robot, wheels: str = "plugin", left=(), right=()) -> Drive:
         wheels = "urdf"
     dr = Drive(urdf=urdf, plugin=plugin, wheels=wheels, notes=notes)
     if plugin is not None:
-        dr.notes.extend(plugin.notes)
-        if plugin.left_joint != urdf.left.joint:
-            dr.notes.append(f"the plugin's left joint {plugin.left_joint} sits on the right (y "
-                            f"{urdf.right.y:+.3f} m): it turns the wrong way")
+        mirrored = plugin.left_joint != urdf.left.joint
+        notes = list(plugin.notes)
+        if mirrored and plugin.swapped:        # an old package written for legacy mode: the two swaps cancel
+            notes = [n for n in notes if "legacyMode" not in n]
+            notes.append(f"legacyMode swaps the wheels and the plugin's left joint {plugin.left_joint} sits on the "
+                         f"right (y {urdf.right.y:+.3f} m): the two cancel, it turns the right way")
+        elif mirrored:
+            notes.append(f"the plugin's left joint {plugin.left_joint} sits on the right (y "
+                         f"{urdf.right.y:+.3f} m): it turns the wrong way")
+        dr.notes.extend(notes)
     if d.skid:
         dr.notes.append(f"{d.label}: a skid-steer base driven as its equivalent diff drive ({len(d.left)} left and "
                         f"{len(d.right)} right wheels turning together)")
@@ -199,6 +205,9 @@ def urdf_wheels(robot, d) -> UrdfDrive:
     lw, rw = side
     if lw.y < rw.y:            # 'left' is whichever side sits at +y; the plugin still drives by name
         lw, rw = rw, lw
+    if not g.separation or g.separation < 1e-6:
+        raise InputError(f"{d.label}: the left and right wheels ({lw.joint}, {rw.joint}) are not apart along their "
+                         "axle, so they cannot steer the base", d.loc or robot.loc)
     return UrdfDrive(left=lw, right=rw, track=g.separation)
 
 

@@ -174,6 +174,7 @@ class Wheel(NamedTuple):
     shape: object = None                   # the collision/visual item that gives the radius
     round: bool = False                    # a sphere, or a cylinder about the joint axis
     forward_sign: float = 1.0              # +1 if a positive joint rate drives the base forward (+x)
+    problem: object = None                 # the InputError of a wheel mesh that could not be read
 
     @property
     def xy(self) -> tuple[float, float]:
@@ -472,7 +473,7 @@ def wheel(robot, joint_name: str, T=None) -> Wheel | None:
         return None
     Rj, pj = compose(T[j.parent], pose_T(j.origin))
     axis = _unit(rotate(Rj, j.axis)) or (0.0, 1.0, 0.0)
-    best, best_item, best_round, centre = None, None, False, pj
+    best, best_item, best_round, centre, problem = None, None, False, pj, None
     for it in wheel_shapes(robot.links[j.child]):
         g = it.geometry
         Rs, ps = compose((Rj, pj), pose_T(it.origin))
@@ -482,6 +483,9 @@ def wheel(robot, joint_name: str, T=None) -> Wheel | None:
             r, rnd = g.radius, True
         else:
             pts = _world_points(g, it, Rs, ps)
+            if isinstance(pts, Exception):
+                problem = problem or pts
+                continue
             if not pts:
                 continue
             r, rnd = _radial_extent(pts, pj, axis), False
@@ -490,16 +494,21 @@ def wheel(robot, joint_name: str, T=None) -> Wheel | None:
             centre = ps if rnd else _axial_mid(pts, pj, axis)
     fwd = axis[1]          # (axis × z)[0]: a positive rate about +y rolls the base forward
     return Wheel(joint_name, j.child, pj, axis, centre, best, best_item, best_round,
-                 math.copysign(1.0, fwd) if fwd else 1.0)
+                 math.copysign(1.0, fwd) if fwd else 1.0, problem)
 
 
 def _world_points(g, it, Rs, ps):
     from myrabot_desc.model.shapes import surface_points
 
+    from myrabot_desc.errors import InputError
+
     try:
         pts = surface_points(g, POINTS_N, loc=getattr(it, "loc", None))
-    except Exception:      # an unreadable mesh: the wheel has no measured radius
-        return None
+    except InputError as exc:      # an unreadable mesh: no measured radius from it (the wheel keeps why)
+        return exc
+    except Exception as exc:       # a reader's own failure on a malformed file: the same, in one line
+        return InputError(f"mesh {getattr(g, 'filename', '?')} cannot be read ({type(exc).__name__})",
+                          getattr(it, "loc", None))
     return [(_dot(Rs[0], q) + ps[0], _dot(Rs[1], q) + ps[1], _dot(Rs[2], q) + ps[2]) for q in _rows(pts)]
 
 

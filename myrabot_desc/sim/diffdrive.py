@@ -192,6 +192,8 @@ def urdf_wheels(robot, d) -> UrdfDrive:
         if abs(w.axis[1]) < 0.9:
             raise InputError(f"wheel joint {w.joint}: axis {tuple(round(a, 3) for a in w.axis)} is not lateral, "
                              "so it cannot drive the base forward", j.loc)
+        if w.radius is None and w.problem is not None:
+            raise w.problem
         if w.radius is None:
             link = robot.links[w.link]
             raise InputError(f"wheel link {w.link} has no collision or visual geometry, so its radius is unknown",

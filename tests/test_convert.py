@@ -451,7 +451,10 @@ def test_diff_drive_dialects(tmp_path, plugin, topic):
     assert float(dd[0].findtext("wheel_radius")) == pytest.approx(0.05)
     assert dd[0].findtext("topic") == topic
     if "ros2" in plugin or "libgazebo_ros" in plugin:
-        assert float(dd[0].findtext("max_linear_acceleration")) == pytest.approx(2 * 0.05)
+        # max_wheel_acceleration is the wheel surface's m/s^2 (the plugin ramps r * omega): the same
+        # vehicle limit, not multiplied by the radius again; turning, 2a/s bounds the yaw acceleration
+        assert float(dd[0].findtext("max_linear_acceleration")) == pytest.approx(2.0)
+        assert float(dd[0].findtext("max_angular_acceleration")) == pytest.approx(2 * 2.0 / 0.34)
     else:   # the gz plugin's own 1.0 / 0.2 disagree with the wheels: said, and the wheels win
         assert sum("the plugin says" in w for w in res.notes.warnings) == 2
     imu = sensors(root)["imu"]

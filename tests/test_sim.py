@@ -185,7 +185,7 @@ def test_drive_bundled_robot_matches():
     assert check(doc, "speed ratio")["value"] == pytest.approx(1.0, abs=1e-6)
 
 
-def test_drive_without_plugin_is_an_input_error(tmp_path):
+def test_drive_without_plugin_uses_the_urdf_wheels(tmp_path):
     urdf = tmp_path / "bot.urdf"
     urdf.write_text("""<robot name="bot">
   <link name="base"/>
@@ -194,8 +194,9 @@ def test_drive_without_plugin_is_an_input_error(tmp_path):
   <joint name="left_wheel" type="continuous"><parent link="base"/><child link="lw"/><origin xyz="0 0.1 0.05"/><axis xyz="0 1 0"/></joint>
   <joint name="right_wheel" type="continuous"><parent link="base"/><child link="rw"/><origin xyz="0 -0.1 0.05"/><axis xyz="0 1 0"/></joint>
 </robot>""")
-    r = run("drive", urdf)
-    assert r.exit_code == 2 and "no diff-drive plugin" in r.output and "Traceback" not in r.output
+    code, doc = run_json("drive", urdf, "--twist", "0.2,1,2")
+    assert code == 0 and doc["info"]["command geometry"] == "URDF"
+    assert any("no drive plugin" in n and "URDF's own wheel geometry" in n for n in doc["notes"])
     code, doc = run_json("drive", urdf, "--wheels", "urdf", "--twist", "0.2,1,2")
     assert code == 0 and doc["info"]["URDF wheel separation"] == pytest.approx(0.2)
     # and the arm programs need the arm

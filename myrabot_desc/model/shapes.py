@@ -130,6 +130,45 @@ def combine(parts, mass: float):
     return MassProps(vol, com, inertia, mass)
 
 
+def surface_points(g, n: int = 32, mesh=None, loc=None):
+    """Points on the surface of a shape in its own frame: the one sampling check, sim and the drive
+    model use for extents, hulls and wheel radii.
+
+    Box: its 8 corners. Cylinder: two rings of ``n`` points (the caps' rims). Sphere: three great
+    circles (xy, xz, yz) of ``n // 2`` points each. Primitives come back as a list of (x, y, z)
+    tuples (pure Python: convert uses them without numpy); a mesh as the (m, 3) array of its
+    vertices, from ``mesh`` (a loaded trimesh or vertex array) or read from ``g.path`` with the
+    mesh limits (InputError at ``loc`` when it cannot be read).
+    """
+    if g.kind == "box":
+        sx, sy, sz = (s / 2 for s in g.size)
+        return [(x, y, z) for x in (-sx, sx) for y in (-sy, sy) for z in (-sz, sz)]
+    if g.kind == "cylinder":
+        r, h = g.radius, g.length / 2
+        ring = [(r * math.cos(2 * math.pi * k / n), r * math.sin(2 * math.pi * k / n)) for k in range(n)]
+        return [(x, y, z) for z in (-h, h) for x, y in ring]
+    if g.kind == "sphere":
+        m = max(n // 2, 4)
+        r = g.radius
+        cs = [(r * math.cos(2 * math.pi * k / m), r * math.sin(2 * math.pi * k / m)) for k in range(m)]
+        return [(c, s, 0.0) for c, s in cs] + [(c, 0.0, s) for c, s in cs] + [(0.0, c, s) for c, s in cs]
+    if g.kind == "mesh":
+        if mesh is not None and not isinstance(mesh, str):
+            import numpy as np
+
+            return np.asarray(getattr(mesh, "vertices", mesh), float)
+        from myrabot_desc.errors import InputError
+        from myrabot_desc.model import meshes as meshio
+
+        if g.path is None:
+            raise InputError(f"mesh {g.filename} cannot be resolved", loc)
+        import numpy as np
+
+        return meshio.vertices(g.path, loc) * np.asarray(g.scale)
+    from myrabot_desc.errors import InputError
+
+    raise InputError(f"unsupported geometry {g.kind}", loc)
+
 
 def lowest_points(g, T, mesh=None, tol: float = 1e-3):
     """(min z, [xyz points within tol of it]) of a shape placed by world pose T, or None."""

@@ -85,6 +85,7 @@ class _Prep:
         self.empty: list[str] = []
         self.converted: list[str] = []
         self.why: dict[Path, str] = {}               # source -> why it cannot be used
+        self.collision_errors: list = []              # (message, loc) of collision meshes left out
 
     def mesh_name(self, src: Path) -> str | None:
         key = src.resolve()
@@ -252,6 +253,11 @@ def prepare_urdf(robot, notes: Notes, base: str, mesh_dirname: str, report: Repo
                 name = prep.mesh_name(Path(src))
                 if name is None:
                     link_el.remove(part)
+                    if kind == "collision":
+                        c = link.collisions[k] if link is not None and k < len(link.collisions) else None
+                        prep.collision_errors.append(
+                            (f"collision mesh {fn} of link '{link_name}': {prep.why.get(Path(src).resolve())}",
+                             c.loc if c is not None else None))
                     report.set(kind, rname, "dropped", f"mesh {fn}: {prep.why.get(Path(src).resolve(), 'unreadable')}")
                     continue
                 if Path(src).resolve() in prep.loaded:
@@ -698,7 +704,9 @@ def scene_text(mujoco, model, robot_file: str, scene_file: str, name: str) -> st
 
 
 def convert_mjcf(robot, output: str, base: str = "auto", scene: str | None = "scene.xml",
-                 report: Report | None = None) -> MjcfResult:
+                 report: Report | None = None, allow_errors: bool = True) -> MjcfResult:
+    """The MJCF of ``robot`` at ``output`` (plus its meshes and ``scene``). A collision mesh that
+    MuJoCo cannot get stops the conversion unless ``allow_errors``."""
     import os
 
     # We never render: without this, `import mujoco` loads pyGLFW, which spawns a Python
@@ -724,6 +732,10 @@ def convert_mjcf(robot, output: str, base: str = "auto", scene: str | None = "sc
                          "choose another name")
     mesh_dirname = f"{out.stem}_meshes" if out else "meshes"
     urdf_root, prep, free = prepare_urdf(robot, notes, base, mesh_dirname, report)
+    if prep.collision_errors and not allow_errors:
+        from myrabot_desc.convert.preflight import Problem, refuse_or_record
+
+        refuse_or_record([Problem(m, loc) for m, loc in prep.collision_errors], False)
     if out is None and prep.meshes:
         raise InputError(f"this model has {len(prep.meshes)} mesh file(s): MJCF to stdout cannot carry them, "
                          "give -o OUT.xml")

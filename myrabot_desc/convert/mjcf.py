@@ -170,9 +170,17 @@ def _binary_stl_ok(path: Path) -> bool:
 
 
 def wheel_joints(robot) -> set[str]:
-    """Joints driven in velocity (wheels): those a drive plugin names, those a ros_control
-    transmission declares with a velocity interface, and continuous joints whose child is a
-    wheel. (Interim: model/drive.py will be the one answer.)"""
+    """Joints driven in velocity (wheels): the drive model's answer (model/drive.py: joints with a
+    velocity interface and every drive's wheels) when it is there; until then, those a drive
+    plugin names, those a ros_control transmission declares with a velocity interface, and
+    continuous joints whose child is a wheel."""
+    try:
+        from myrabot_desc.model import drive as D
+    except ImportError:
+        D = None
+    if D is not None:
+        names, _ = D.velocity_joints(robot)
+        return set(names) | {j for d in D.find(robot) for j in d.joints if j in robot.joints}
     from myrabot_desc.convert.sensors import plugin_kind
 
     out: set[str] = set()
@@ -199,6 +207,18 @@ def prepare_urdf(robot, notes: Notes, base: str, mesh_dirname: str, report: Repo
     for el in list(root):
         if not isinstance(el.tag, str) or local(el.tag) in ("gazebo", "transmission") or el.tag.startswith("{"):
             root.remove(el)
+    _drop_unreadable_numbers(root)
+    # a link with two parents (a closed loop) only gets here with --allow-errors: its first joint stays
+    has_parent: set[str] = set()
+    for j_el in root.findall("joint"):
+        c = j_el.find("child")
+        child = c.get("link") if c is not None else None
+        if child in has_parent:
+            root.remove(j_el)
+            report.set("joint", j_el.get("name") or "?", "dropped", f"'{child}' already has a parent joint: "
+                       "MuJoCo bodies form a tree")
+        elif child:
+            has_parent.add(child)
     props = GazeboProps(robot, Notes())
     look = Appearance(robot, notes)
     colours: dict[str, tuple] = {}
@@ -329,6 +349,26 @@ def prepare_urdf(robot, notes: Notes, base: str, mesh_dirname: str, report: Repo
     comp.set("angle", "radian")
     comp.set("inertiafromgeom", "false")
     return root, prep, free
+
+
+NUMERIC = {"xyz", "rpy", "value", "ixx", "ixy", "ixz", "iyy", "iyz", "izz", "size", "radius", "length", "lower",
+           "upper", "effort", "velocity", "damping", "friction", "scale", "multiplier", "offset", "rgba"}
+
+
+def _drop_unreadable_numbers(root) -> None:
+    """Numeric attributes that are not numbers (the loader reported them, and only --allow-errors
+    gets here): left out, so MuJoCo applies the URDF default as the loader did."""
+    for el in root.iter():
+        if not isinstance(el.tag, str):
+            continue
+        for attr in [a for a in el.attrib if a in NUMERIC]:
+            try:
+                [float(v) for v in el.get(attr).split()]
+            except ValueError:
+                if attr == "rgba":
+                    del el.attrib[attr]
+                else:     # the loader's defaults (MuJoCo requires some of these attributes)
+                    el.set(attr, {"scale": "1 1 1", "xyz": "0 0 0", "rpy": "0 0 0", "size": "0 0 0"}.get(attr, "0"))
 
 
 def _massless_moving_bodies(robot, free_roots) -> list[str]:
@@ -853,10 +893,21 @@ def _report_mjcf(robot, report, free, base):
     for t in robot.transmissions:
         report.set("transmission", t.name or "?", "translated",
                    "read for the joints' interfaces; MuJoCo actuators written from the joint limits")
+    from myrabot_desc.convert.sensors import plugin_kind
+
     for g in robot.gazebo:
         for key in g.properties:
             report.set("gazebo", f"{g.reference or 'model'}/{key}", "dropped", "Gazebo-only setting", g.loc)
         for p in g.plugins:
-            report.set("plugin", p.name or p.library or "?", "dropped", "Gazebo plugin: no MuJoCo equivalent", p.loc)
+            drive = plugin_kind(p) in ("diff_drive", "skid_steer")
+            report.set("plugin", p.name or p.library or "?", "dropped",
+                       "Gazebo drive plugin: its wheel joints get velocity actuators" if drive else
+                       "Gazebo plugin: no MuJoCo equivalent", p.loc)
+        if g.reference is None:
+            for c in g.element:
+                if isinstance(c.tag, str) and c.tag in ("joint", "link", "frame", "model"):
+                    report.set(f"gazebo-{c.tag}", c.get("name") or "?", "dropped",
+                               "declared in a <gazebo> block (SDF): MuJoCo's URDF reader does not see it",
+                               robot.loc_of(c) or g.loc)
         for sn in g.sensors:
             report.set("sensor", sn.name or "?", "dropped", "Gazebo sensor: not converted to MuJoCo sensors", sn.loc)

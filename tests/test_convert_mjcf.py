@@ -284,3 +284,44 @@ def test_mujoco_warnings_are_ours_and_no_log_file(tmp_path, monkeypatch):
     assert r.exit_code == 2 and "box_nan.urdf:2: error: MuJoCo rejected the model: Error: nan size" in r.output
     assert not (tmp_path / "p").exists()
     assert sorted(p.name for p in tmp_path.iterdir()) == ["o"]      # no MUJOCO_LOG.TXT
+
+
+@pytest.mark.skipif(not ERD.is_dir(), reason="example-robot-data is not installed")
+def test_dae_with_a_malformed_colour_is_read_not_called_empty(tmp_path):
+    """pycollada rejects a DAE whose effect colour reads `0.0 0.0 0.01.0`, and trimesh then reports no
+    triangles: the mesh is read another way (30104 triangles), and the message says the real reason."""
+    good = ERD / "go1_description/meshes/hip.dae"
+    text = good.read_text()
+    start = text.index('<color sid="diffuse">') + len('<color sid="diffuse">')
+    (tmp_path / "hip.dae").write_text(text[:start] + "0.0 0.0 0.01.0" + text[text.index("<", start):])
+    (tmp_path / "r.urdf").write_text(
+        '<robot name="d"><link name="base"><inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" '
+        'ixy="0" ixz="0" iyz="0"/></inertial><visual><geometry><mesh filename="hip.dae"/></geometry></visual>'
+        '<collision><geometry><mesh filename="hip.dae"/></geometry></collision></link></robot>')
+    res = convert_mjcf(load_robot(str(tmp_path / "r.urdf")), str(tmp_path / "o" / "r.xml"))
+    assert [w for w in res.notes.warnings if "hip.dae" in w] == [
+        "warning: mesh hip.dae: pycollada rejects it (DaeMalformedError: Corrupted color definition in effect "
+        "`<built-in function id>`) and trimesh then sees no triangles; its 30104 triangles were read ignoring the "
+        "broken part"]
+    m = mujoco.MjModel.from_xml_path(str(tmp_path / "o" / "r.xml"))
+    # the same robot with the intact file: MuJoCo makes the same mesh of it
+    (tmp_path / "g").mkdir()
+    (tmp_path / "g" / "hip.dae").write_text(text)
+    (tmp_path / "g" / "r.urdf").write_text((tmp_path / "r.urdf").read_text())
+    convert_mjcf(load_robot(str(tmp_path / "g" / "r.urdf")), str(tmp_path / "g" / "o" / "r.xml"))
+    g = mujoco.MjModel.from_xml_path(str(tmp_path / "g" / "o" / "r.xml"))
+    assert m.nmesh == g.nmesh == 1 and m.mesh_vertnum[0] == g.mesh_vertnum[0]
+    assert np.allclose(m.body_mass, g.body_mass) and np.allclose(m.mesh_vert, g.mesh_vert, atol=1e-6)
+
+
+def test_warnings_name_links_not_mesh_files(tmp_path):
+    """The inertia repair warning used to name the last mesh file read ("link 'hatch.stl'")."""
+    if not ERD.is_dir():
+        pytest.skip("example-robot-data is not installed")
+    import re
+
+    res = convert_mjcf(load_robot(str(ERD / "romeo_description/urdf/romeo_small.urdf")), str(tmp_path / "r.xml"))
+    repairs = [w for w in res.notes.warnings if "A + B >= C, raised" in w]
+    assert repairs and not [w for w in repairs if re.search(r"link '[^']*\.(stl|dae|obj|STL|DAE)'", w)]
+    assert all(re.search(r"link '(\w+)'", w).group(1) in load_robot(str(ERD / "romeo_description/urdf/romeo_small.urdf")).links
+               for w in repairs)

@@ -39,15 +39,18 @@ from myrabot_desc.cli_common import guarded, input_options
 def convert_cmd(inputs, target, output, lump, uri_style, layout, base, scene, report_path, allow_errors, quiet):
     """Convert a robot for today's simulators: gz-sim (SDF) or MuJoCo (MJCF).
 
-    FILE defaults to the bundled MYRAbot. Nothing is lost on the way to SDF:
-    fixed joints stay (or, with --lump, become <frame>s), massless links stay
-    (with a placeholder inertial and a warning), and the Gazebo extensions are
-    translated, the ROS Electric dialect included (angles in degrees become
-    radians): cameras, the Kinect (rgbd_camera), lasers and sonars (gpu_lidar),
-    the IMU, the Create/Roomba and other diff drives (gz-sim DiffDrive with the
-    wheel separation and radius measured on the URDF), joint states and arm
-    joint controllers. Plugins with no gz-sim equivalent stay as XML comments
-    and are listed in one warning. Gazebo/OGRE material names become explicit
+    FILE defaults to the bundled MYRAbot. On the way to SDF every link, joint,
+    frame and sensor is kept: fixed joints stay (or, with --lump, become
+    <frame>s), massless links stay (with a placeholder inertial and a
+    warning), joints declared in <gazebo> blocks are copied, and the Gazebo
+    extensions are translated, the ROS Electric dialect included (angles in
+    degrees become radians): cameras, the Kinect (rgbd_camera), lasers and
+    sonars (gpu_lidar), the IMU, the Create/Roomba and other diff drives
+    (gz-sim DiffDrive with the wheel separation and radius measured on the
+    URDF), joint states and arm joint controllers. Plugins with no gz-sim
+    equivalent stay as XML comments; --report lists them with everything else
+    that was translated, approximated or dropped. Gazebo/OGRE material names
+    become explicit
     colours and PBR textures.
 
     \b
@@ -96,7 +99,7 @@ def convert_cmd(inputs, target, output, lump, uri_style, layout, base, scene, re
         if target == "world":
             from myrabot_desc.convert.world import to_world
 
-            text, res = to_world(robot, layout, opts, load=inputs.load)
+            text, res = to_world(robot, layout, opts, load=inputs.load, report=report)
         else:
             text, res = to_sdf(robot, opts, report=report)
         write_output(output, text)

@@ -1,16 +1,32 @@
-"""The Robot → MJCF through MuJoCo's own URDF compiler (anchors §5).
+"""The Robot → MJCF through MuJoCo's own URDF compiler (anchors §5), ready for MuJoCo's viewer.
 
 MuJoCo reads URDF itself but stumbles on what real descriptions contain: it cannot
 resolve ``package://`` (#1432), strips mesh paths, reads no DAE, discards visuals by
 default, welds a massless root to the world (a REP-105 ``base_footprint`` robot stops
 being mobile) and rejects inertias that break A + B >= C. So we hand it a prepared
-URDF: meshes copied into ``<OUT stem>_meshes/`` next to the output under unique names
-(DAE and others converted to STL with trimesh, MSH past 200000 faces), explicit rgba
-from the URDF colours and the resolved Gazebo materials (a texture contributes its
-mean colour), repaired inertias, a placeholder inertial for massless moving links, and
-a free joint for mobile bases. MuJoCo compiles it and saves the MJCF; collision geoms
-go to group 3 (hidden by the viewer's defaults), visuals stay in group 1 with their
-colours.
+URDF, an edited copy of the model's parsed tree (no second parse of the text): meshes
+copied into ``<OUT stem>_meshes/`` next to the output under unique names (DAE and others
+converted to STL with trimesh, MSH past 200000 faces), explicit rgba from the URDF colours
+and the resolved Gazebo materials (a texture contributes its mean colour), repaired
+inertias, collision geoms named after their link, and a free joint for mobile bases.
+
+Mass: a link without ``<inertial>`` is massless, as urdfdom, KDL and Pinocchio read it
+(the URDF spec's default), not MuJoCo's 1000 kg/m^3 of its geoms (``inertiafromgeom``
+false). Gazebo/sdformat instead drops such a link with its subtree; `convert --to sdf`
+keeps it with a placeholder. Only a moving body that has no mass even with the links
+fused into it by fixed joints gets a 1 g placeholder (MuJoCo refuses massless moving
+bodies), listed in a warning and the report.
+
+MuJoCo compiles it; then, on the compiled spec, we add what MuJoCo Menagerie's models
+have: the ``implicitfast`` integrator, position actuators for joints (full effort at
+0.05 rad / 5 mm of error, bounded for stability by the joint-space inertia, critically
+damped), velocity actuators for wheels, a ``home`` keyframe (joints at 0 clamped into
+their range, the free base raised so that its lowest collision point touches z = 0; a
+welded robot's weld moved the same way), and contact exclusions for the body pairs
+MuJoCo's own collision pass finds touching at home. Mimic joints become equality
+constraints (MuJoCo's compiler does that since 2026). A ``scene.xml`` next to the model
+includes it with a floor and a light. Collision geoms go to group 3 (hidden by the
+viewer's defaults), visuals stay in group 1 with their colours.
 """
 
 from __future__ import annotations

@@ -59,14 +59,16 @@ def build_cmd(inputs, output, deps, resolve_uris, allow_errors, **limit_flags):
     # GC stays off, and what the build left is frozen out of that last collection.
     gc.disable()
     from myrabot_desc.build.driver import build_file
-    from myrabot_desc.safety import LIMITS, Limits
     from myrabot_desc.output import write_output
+    from myrabot_desc.safety import LIMITS, Limits
 
     with guarded():
         limits = Limits(**{lim.field: limit_flags[lim.flag[2:].replace("-", "_")] for lim in LIMITS if lim.flag})
         src = inputs.file
         if src is None:
-            from myrabot_desc.model.loader import bundled_path  # imports the model classes (~25 ms): only when needed
+            from myrabot_desc.model.loader import (
+                bundled_path,  # imports the model classes (~25 ms): only when needed
+            )
 
             src = str(bundled_path())
         result = build_file(src, inputs.mappings, packages=inputs.packages, package_paths=inputs.package_paths,

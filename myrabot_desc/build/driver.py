@@ -502,10 +502,11 @@ class _Hooks:
         self.b = build
 
     def __enter__(self):
-        import xacro
         import xacro.substitution_args as sa
 
-        from myrabot_desc.build import fast as xacro_fast, safe_eval
+        import xacro
+        from myrabot_desc.build import fast as xacro_fast
+        from myrabot_desc.build import safe_eval
 
         b = self.b
         self.saved = {
@@ -685,9 +686,9 @@ class _Hooks:
         return self
 
     def __exit__(self, *exc):
-        import xacro
         import xacro.substitution_args as sa
 
+        import xacro
         from myrabot_desc.build import fast as xacro_fast
 
         for (mod, name), value in self.saved.items():

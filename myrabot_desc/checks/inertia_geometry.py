@@ -9,8 +9,8 @@ from __future__ import annotations
 import math
 from functools import lru_cache
 
-from myrabot_desc.model import shapes as G
 from myrabot_desc.checks.registry import Finding, rule
+from myrabot_desc.model import shapes as G
 
 RATIO_LIMIT = 10.0
 MARKER_SIZE = 0.005                 # m: geometry smaller than this is a frame marker; findings drop to info
@@ -21,6 +21,7 @@ class Solid:
     """A link's geometry as a uniform solid at the declared mass (link frame), or why not."""
 
     def __init__(self, ctx, link):
+        from myrabot_desc.model.kinematics import pose_matrix
         self.link = link
         self.source, self.items = ctx.shapes(link, "collision")
         self.props = None
@@ -48,7 +49,7 @@ class Solid:
                                 if mesh is not None and not mesh.is_watertight else
                                 f"mesh {g.filename.rsplit('/', 1)[-1]} has no positive volume (inverted or open)")
                 return
-            parts.append((*sp, it.origin.matrix()))
+            parts.append((*sp, pose_matrix(it.origin)))
         mass = link.inertial.mass if link.inertial else 0.0
         self.props = G.combine(parts, mass if mass > 0 else 1.0)
         sizes = [G.size_of(it.geometry, ctx.mesh(it.geometry) if it.geometry.kind == "mesh" else None)
@@ -64,7 +65,9 @@ class Solid:
         """(com in inertial frame, tensor in inertial axes about the solid's com)."""
         import numpy as np
 
-        T = self.link.inertial.origin.matrix()
+        from myrabot_desc.model.kinematics import pose_matrix
+
+        T = pose_matrix(self.link.inertial.origin)
         R, p = T[:3, :3], T[:3, 3]
         t = R.T @ self.props.inertia @ R
         t[abs(t) < 1e-6 * abs(t).max()] = 0.0          # rotation round-off (rpy 1.570796) is not a product of inertia
@@ -151,6 +154,8 @@ def radius_of_gyration(ctx):
     """
     import numpy as np
 
+    from myrabot_desc.model.kinematics import pose_matrix
+
     r = ctx.robot
     for name, s in solids(ctx).items():
         link = s.link
@@ -158,7 +163,7 @@ def radius_of_gyration(ctx):
         if pts is None:
             continue
         i = link.inertial
-        T = i.origin.matrix()
+        T = pose_matrix(i.origin)
         local = (pts - T[:3, 3]) @ T[:3, :3]            # points in the inertial frame
         ev, vec = np.linalg.eigh(i.tensor())
         worst = None
@@ -188,6 +193,8 @@ def _hull_points(ctx, link):
     """
     import numpy as np
 
+    from myrabot_desc.model.kinematics import pose_matrix
+
     out = []
     cols = [c for c in link.collisions if c.geometry is not None]
     vis = [v for v in link.visuals if v.geometry is not None]
@@ -208,7 +215,7 @@ def _hull_points(ctx, link):
             local = np.asarray(mesh.vertices)    # the rules use extremes only: no hull needed (nor scipy)
         else:
             local = _primitive_points(g)
-        T = it.origin.matrix()
+        T = pose_matrix(it.origin)
         out.append(local @ T[:3, :3].T + T[:3, 3])
     return np.vstack(out)
 

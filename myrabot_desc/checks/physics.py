@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import math
 
-from myrabot_desc.model import shapes as G
 from myrabot_desc.checks.registry import Finding, rule
+from myrabot_desc.model import shapes as G
 
 CONTACT_TOL = 0.003      # m: geometry this close to the lowest point touches the ground
 SPAWN_TOL = 0.002        # m: penetration Gazebo resolves without a visible jump

@@ -34,7 +34,6 @@ from myrabot_desc.model.parts import (
     Visual,
 )
 
-ELECTRIC_SUFFIXES = ("#controller", "#sensor", "#interface")
 # Sizes, offsets, masses and inertias beyond this (SI units) are typing errors or attacks: 1e300
 # overflows volumes and inertias downstream. Joint limits and dynamics are exempt (1e16 is a
 # common "unlimited").
@@ -97,7 +96,7 @@ def read_urdf_text(text: str, src: Path, locations=None, package_roots=None, bui
 
 # ---------------------------------------------------------------- reading
 class _Reader:
-    def __init__(self, root, src: Path, locations, from_xacro: bool):
+    def __init__(self, root, src: Path, locations):
         self.src = src
         self.issues: list[Diagnostic] = []
         self.loc_of: dict[int, Loc] = {}
@@ -223,7 +222,7 @@ def _read(root, text, src: Path, locations, package_roots, build_warnings, from_
     if root.tag != "robot":
         raise InputError(f"the root element is <{root.tag}>, not <robot>: not a URDF file",
                          Loc(str(src), root.sourceline))
-    r = _Reader(root, src, locations, from_xacro)
+    r = _Reader(root, src, locations)
 
     # Resolve every package named by a package:// URI (meshes, textures).
     roots = dict(package_roots)

@@ -14,7 +14,6 @@ plugin and sensor of the URDF gets one entry with its fate in the target:
 
 from __future__ import annotations
 
-import json
 from typing import NamedTuple
 
 FATES = ("kept", "translated", "approximated", "dropped")
@@ -73,6 +72,8 @@ class Report:
                               "loc": str(e.loc) if e.loc else None} for e in self._entries.values()]}
 
     def to_json(self) -> str:
+        import json
+
         return json.dumps(self.as_dict(), indent=1) + "\n"
 
     def to_text(self) -> str:

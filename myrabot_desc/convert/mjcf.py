@@ -359,6 +359,14 @@ def prepare_urdf(robot, notes: Notes, base: str, mesh_dirname: str, report: Repo
         for kind, parts in (("visual", visuals), ("collision", collisions)):
             for k, part in enumerate(parts):
                 rname = part_name(link_name, k)
+                flat = _flat_primitive(part)
+                if flat:    # MuJoCo refuses a geom of size 0 (a placeholder `<box size="0 0 0"/>`)
+                    link_el.remove(part)
+                    report.set(kind, rname, "dropped", f"{flat}: no volume, MuJoCo refuses a geom of size 0")
+                    src_parts = (link.visuals if kind == "visual" else link.collisions) if link is not None else ()
+                    notes.warn(f"link '{link_name}': {kind} {flat} left out (MuJoCo refuses a geom of size 0)",
+                               src_parts[k].loc if k < len(src_parts) else None)
+                    continue
                 mesh = part.find("geometry/mesh")
                 if mesh is None:
                     continue
@@ -451,6 +459,22 @@ def prepare_urdf(robot, notes: Notes, base: str, mesh_dirname: str, report: Repo
     comp.set("angle", "radian")
     comp.set("inertiafromgeom", "false")
     return root, prep, free
+
+
+def _flat_primitive(part) -> str | None:
+    """'box size 0 0 0' when a box, cylinder or sphere of this visual/collision has a zero size."""
+    g = part.find("geometry")
+    shape = next((c for c in g if isinstance(c.tag, str)), None) if g is not None else None
+    if shape is None or shape.tag not in ("box", "cylinder", "sphere"):
+        return None
+    attrs = {"box": ("size",), "cylinder": ("radius", "length"), "sphere": ("radius",)}[shape.tag]
+    try:
+        vals = [float(v) for a in attrs for v in (shape.get(a) or "1").split()]
+    except ValueError:
+        return None
+    if any(v <= 0 for v in vals):
+        return f"{shape.tag} " + " ".join(f"{a} {shape.get(a)}" for a in attrs)
+    return None
 
 
 NUMERIC = {"xyz", "rpy", "value", "ixx", "ixy", "ixz", "iyy", "iyz", "izz", "size", "radius", "length", "lower",
@@ -736,6 +760,32 @@ def _make_ready(mujoco, spec, model, robot, notes, report, free):
         qpos[model.jnt_qposadr[fj] + 2] += lift
         d.qpos[:] = qpos
         mujoco.mj_forward(model, d)
+    # a joint whose effort limit cannot hold its subtree against gravity at home (PR2's shoulders
+    # rely on a spring counterbalance the URDF does not describe): that subtree is gravity-compensated
+    compensated = []
+    for name, (kind, _) in plan.items():
+        jid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, name)
+        j = robot.joints[name]
+        effort = j.limit.effort if j.limit is not None and j.limit.effort else None
+        if jid < 0 or kind != "position" or not effort:
+            continue
+        need = abs(float(d.qfrc_bias[model.jnt_dofadr[jid]]))
+        if need > 0.8 * effort:
+            root_body = model.jnt_bodyid[jid]
+            for b in range(model.nbody):
+                a = b
+                while a > root_body:
+                    a = model.body_parentid[a]
+                if a == root_body and spec.body(model.body(b).name) is not None:
+                    spec.body(model.body(b).name).gravcomp = 1.0
+            compensated.append(name)
+            report.set("joint", name, report.get("joint", name).fate if report.get("joint", name) else "kept",
+                       f"holding its subtree at home takes {need:.3g} N*m or N, over 80% of its effort limit "
+                       f"{num(effort)}: the bodies it moves are gravity-compensated (gravcomp), as a real "
+                       "counterbalance would")
+    if compensated:
+        notes.warn(f"{len(compensated)} joint(s) cannot hold what they carry at home within their effort limit: "
+                   f"the bodies they move are gravity-compensated in MuJoCo: {', '.join(compensated)}")
     # bodies that touch at rest (MuJoCo already skips parent-child pairs): excluded
     excluded = set()
     for _ in range(50):

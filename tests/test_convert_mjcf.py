@@ -158,3 +158,40 @@ def test_warnings_name_links_not_mesh_files(tmp_path):
     assert repairs and not [w for w in repairs if re.search(r"link '[^']*\.(stl|dae|obj|STL|DAE)'", w)]
     assert all(re.search(r"link '(\w+)'", w).group(1) in load_robot(str(ERD / "romeo_description/urdf/romeo_small.urdf")).links
                for w in repairs)
+
+
+# ------------------------------------------------------------------ the real-robot corpus
+CORPUS = Path(__file__).parent / "corpus"
+
+
+def _corpus_robots():
+    if not (CORPUS / "robots.yaml").is_file():
+        return []
+    import yaml
+
+    return [r for r in yaml.safe_load((CORPUS / "robots.yaml").read_text())["robots"]
+            if r["kind"] in ("mobile", "mobile_manipulator")]
+
+
+@pytest.mark.skipif(not _corpus_robots(), reason="the real-robot corpus (tests/corpus) is not here")
+@pytest.mark.parametrize("robot", _corpus_robots(), ids=[r["id"] for r in _corpus_robots()])
+def test_corpus_mobile_bases_stand_still(tmp_path, robot):
+    """Every wheeled robot of the corpus (diff-drive plugins, ros_control skid-steer, a service robot's
+    base, PR2): 2 s from `home` within 1 cm, only wheels and casters on the floor."""
+    out = tmp_path / "m" / "robot.xml"
+    argv = ["convert", str(CORPUS / robot["top"]), *robot.get("args", "").split(), "--package-path",
+            str(CORPUS / robot.get("package_path", ".")), "--unsafe-eval", "--to", "mjcf", "-o", str(out)]
+    r = CliRunner().invoke(main, argv, env={k: str(v) for k, v in (robot.get("env") or {}).items()})
+    assert r.exit_code == 0, r.output
+    m, d, start = stand(tmp_path / "m" / "scene.xml")
+    free = [j for j in range(m.njnt) if m.jnt_type[j] == mujoco.mjtJoint.mjJNT_FREE]
+    assert free and np.isfinite(d.qpos).all()
+    a = m.jnt_qposadr[free[0]]
+    assert abs(d.qpos[a + 2] - start[a + 2]) < 0.01 and np.linalg.norm(d.qpos[a:a + 2] - start[a:a + 2]) < 0.01
+    for c in d.contact[:d.ncon]:
+        names = {m.geom(c.geom1).name, m.geom(c.geom2).name}
+        assert "floor" in names and any(w in (names - {"floor"}).pop() for w in ("wheel", "caster", "castor")), names
+    if robot.get("drive", {}).get("wheels"):
+        wheels = set(robot["drive"]["wheels"])
+        vel = {m.actuator(i).name for i in range(m.nu) if m.actuator_biasprm[i][1] == 0 and m.actuator_biasprm[i][2]}
+        assert wheels <= vel, (wheels, vel)

@@ -678,8 +678,6 @@ def _joint_plan(robot, wheels):
             continue
         if j.mimic is not None:
             plan[j.name] = (None, f"mimics '{j.mimic.joint}' (an equality constraint)")
-        elif j.limit is not None and j.limit.effort is not None and j.limit.effort <= 0:
-            plan[j.name] = (None, "effort limit 0: passive")
         elif j.name in wheels:
             plan[j.name] = ("velocity", "")
         elif j.type == "continuous" and j.limit is None and j.name not in with_transmission:
@@ -850,6 +848,8 @@ def _make_ready(mujoco, spec, model, robot, notes, report, free):
             ctrl.append(float(qpos[model.jnt_qposadr[jid]]))
             n_pos += 1
             detail = f"position actuator (kp {num(kp)}, critically damped{f', force {num(effort)}' if effort else ''})"
+            if j.limit is not None and j.limit.effort == 0:
+                detail += "; effort limit 0 read as not given (ROS-Industrial writes 0): no force limit"
         old = report.get("joint", name)
         report.set("joint", name, old.fate if old else "kept", (old.detail + "; " if old and old.detail else "")
                    + detail)

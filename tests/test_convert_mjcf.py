@@ -63,6 +63,147 @@ def test_bundled_fixed_base(tmp_path):
     assert mujoco.mjtJoint.mjJNT_FREE not in set(m.jnt_type)
 
 
+WANDER = Path(__file__).parent / "fixtures" / "wander_bot" / "urdf" / "robot.xacro"
+ALL_ERD = sorted(str(p.relative_to(ERD)) for p in ERD.rglob("*.urdf")) if ERD.is_dir() else []
+STANDING = ["bundled", "wander_bot"] + ALL_ERD
+
+
+def welded_links(robot) -> set[str]:
+    """The root and every link fixed to it: MuJoCo's world body (static, so their mass is not counted)."""
+    out, todo = set(), [r for r in robot.roots]
+    children = robot.joints_by_parent()
+    while todo:
+        n = todo.pop()
+        out.add(n)
+        todo.extend(j.child for j in children.get(n, ()) if j.type == "fixed")
+    return out
+
+
+def stand(scene: Path, seconds: float = 2.0):
+    """Load scene.xml as the viewer does, start from `home`, hold the controls, step."""
+    m = mujoco.MjModel.from_xml_path(str(scene))
+    d = mujoco.MjData(m)
+    mujoco.mj_resetDataKeyframe(m, d, m.key("home").id)
+    mujoco.mj_forward(m, d)
+    start = d.qpos.copy()
+    for _ in range(int(round(seconds / m.opt.timestep))):
+        mujoco.mj_step(m, d)
+    return m, d, start
+
+
+@pytest.mark.skipif(not ERD.is_dir(), reason="example-robot-data is not installed")
+@pytest.mark.parametrize("rel", STANDING, ids=[Path(r).stem for r in STANDING])
+def test_scene_stands_still_with_the_urdf_mass(tmp_path, rel):
+    if rel == "bundled":
+        robot = load_robot(None)
+    elif rel == "wander_bot":
+        robot = load_robot(str(WANDER), package_paths=[str(WANDER.parents[2])])
+    else:
+        robot = load_robot(str(ERD / rel))
+    if not robot.links:
+        pytest.skip("an empty URDF (ur3.urdf): refused, see test_convert")
+    out = tmp_path / "m" / "robot.xml"
+    res = convert_mjcf(robot, str(out))
+    assert res.scene == str(tmp_path / "m" / "scene.xml")
+    alone = mujoco.MjModel.from_xml_path(str(out))          # the model file loads by itself too
+    assert alone.nbody == res.nbody and alone.njnt == res.njnt and alone.nmesh == res.nmesh
+    m, d, start = stand(tmp_path / "m" / "scene.xml")
+    assert np.isfinite(d.qpos).all() and np.isfinite(d.qvel).all()
+    free = [j for j in range(m.njnt) if m.jnt_type[j] == mujoco.mjtJoint.mjJNT_FREE]
+    placeholders = sum(1 for e in res.report.entries if e.kind == "inertial" and "placeholder" in e.detail)
+    # links without <inertial> are massless (urdfdom), not MuJoCo's 1000 kg/m^3 of their geoms
+    expected = robot.total_mass - (0 if free else sum(robot.links[n].mass for n in welded_links(robot)))
+    assert m.body_mass.sum() == pytest.approx(expected + placeholders * 1e-3, rel=1e-5, abs=1e-6)
+    if free:
+        a = m.jnt_qposadr[free[0]]
+        assert abs(d.qpos[a + 2] - start[a + 2]) < 0.01, "the base sank or jumped"
+        assert np.linalg.norm(d.qpos[a:a + 2] - start[a:a + 2]) < 0.01, "the base crawled"
+        for c in d.contact[:d.ncon]:
+            names = {m.geom(c.geom1).name, m.geom(c.geom2).name}
+            assert "floor" in names, f"self-contact {names}"
+            other = (names - {"floor"}).pop()
+            assert any(w in other for w in ("wheel", "caster", "castor")), f"{other} touches the floor"
+    assert m.nu == len([e for e in res.report.entries if e.kind == "joint" and "actuator (" in e.detail])
+
+
+def test_actuators_keyframe_and_exclusions(tmp_path):
+    """MYRAbot: velocity actuators on the drive plugin's wheels, position actuators on the arm with the
+    URDF's effort as force limit, home on the floor (its castors' lowest point at z = 0)."""
+    out = tmp_path / "myrabot.xml"
+    res = convert_mjcf(load_robot(None), str(out))
+    m = mujoco.MjModel.from_xml_path(str(tmp_path / "scene.xml"))
+    kinds = {m.actuator(i).name: ("velocity" if m.actuator_biasprm[i][2] and not m.actuator_biasprm[i][1]
+                                  else "position") for i in range(m.nu)}
+    assert kinds == {"left_wheel_joint": "velocity", "right_wheel_joint": "velocity", "base": "position",
+                     "arti1": "position", "arti2": "position", "arti3": "position", "pinza": "position"}
+    arti1 = m.actuator("arti1").id
+    assert list(m.actuator_forcerange[arti1]) == [-100, 100] and list(m.actuator_ctrlrange[arti1]) == [-2.62, 2.62]
+    assert m.opt.integrator == mujoco.mjtIntegrator.mjINT_IMPLICITFAST
+    home = m.key("home")
+    assert home.qpos[2] == pytest.approx(0.001, abs=2e-5)      # base_footprint 1 mm above the floor
+    d = mujoco.MjData(m)
+    mujoco.mj_resetDataKeyframe(m, d, home.id)
+    mujoco.mj_forward(m, d)
+    assert d.ncon == 0 or all("floor" in (m.geom(c.geom1).name, m.geom(c.geom2).name) for c in d.contact[:d.ncon])
+    assert "free base, 7 actuators, scene scene.xml" in res.summary
+    scene = (tmp_path / "scene.xml").read_text()
+    assert '<include file="myrabot.xml"/>' in scene and 'name="floor"' in scene and "<light" in scene
+
+
+def test_touching_bodies_are_excluded_and_mimic_is_an_equality(tmp_path):
+    """Two arms whose boxes overlap at rest get a contact exclusion (found by MuJoCo's collision
+    pass); a mimic joint is an equality constraint with the URDF's multiplier and offset and no
+    actuator of its own."""
+    urdf = tmp_path / "two.urdf"
+    inertial = ('<inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" '
+                'iyz="0"/></inertial>')
+    urdf.write_text(f"""<robot name="two">
+  <link name="base">{inertial}<collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
+  <link name="a">{inertial}<collision><origin xyz="0 0 0.3"/><geometry><box size="0.1 0.1 0.4"/></geometry></collision></link>
+  <link name="b">{inertial}<collision><origin xyz="0 0 0.3"/><geometry><box size="0.1 0.1 0.4"/></geometry></collision></link>
+  <joint name="ja" type="revolute"><parent link="base"/><child link="a"/><origin xyz="0.03 0 0"/><axis xyz="0 1 0"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
+  <joint name="jb" type="revolute"><parent link="base"/><child link="b"/><origin xyz="-0.03 0 0"/><axis xyz="0 1 0"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/><mimic joint="ja" multiplier="-1" offset="0.1"/></joint>
+</robot>""")
+    res = convert_mjcf(load_robot(str(urdf)), str(tmp_path / "o" / "two.xml"))
+    m = mujoco.MjModel.from_xml_path(str(tmp_path / "o" / "scene.xml"))
+    pairs = {tuple(sorted((m.body(m.exclude_signature[i] >> 16).name, m.body(m.exclude_signature[i] & 0xFFFF).name)))
+             for i in range(m.nexclude)} if hasattr(m, "exclude_signature") else None
+    text = (tmp_path / "o" / "two.xml").read_text()
+    assert '<exclude body1="a" body2="b"/>' in text, pairs
+    assert m.neq == 1 and list(m.eq_data[0][:2]) == [0.1, -1.0]
+    assert m.nu == 1 and m.actuator("ja").id == 0
+    assert res.report.get("mimic", "jb").fate == "translated"
+    assert "equality" in res.report.get("mimic", "jb").detail
+    m2, d, _ = stand(tmp_path / "o" / "scene.xml")
+    assert all("floor" in (m2.geom(c.geom1).name, m2.geom(c.geom2).name) for c in d.contact[:d.ncon])
+
+
+def test_links_without_inertial_are_massless(tmp_path):
+    """A fixed child with a collision box and no <inertial> adds no mass (MuJoCo would give it
+    1000 kg/m^3 of its box: +1 kg here); a moving link with no mass at all gets the placeholder,
+    said once and in the report."""
+    urdf = tmp_path / "m.urdf"
+    urdf.write_text("""<robot name="m">
+  <link name="base"><inertial><mass value="2"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <link name="shell"><collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
+  <link name="hinge"/>
+  <link name="tip"><inertial><mass value="0.5"/><inertia ixx="0.001" iyy="0.001" izz="0.001" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="fix" type="fixed"><parent link="base"/><child link="shell"/></joint>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="hinge"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  <joint name="j2" type="revolute"><parent link="hinge"/><child link="tip"/><origin xyz="0 0 0.2"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>""")
+    res = convert_mjcf(load_robot(str(urdf)), str(tmp_path / "o" / "m.xml"), base="free")
+    m = mujoco.MjModel.from_xml_path(str(tmp_path / "o" / "m.xml"))
+    assert m.body("base").mass[0] == pytest.approx(2.0)
+    assert m.body_mass.sum() == pytest.approx(2.501)
+    assert [w for w in res.notes.warnings if "0.001 kg" in w] == [
+        "warning: 1 moving link(s) have no mass, even with the links fixed to them: given 0.001 kg each for "
+        "MuJoCo: hinge"]
+    assert res.report.get("inertial", "hinge").fate == "approximated"
+
+
 def test_repairs_are_reported(tmp_path):
     """icub's zero inertias and alex's flat nub mesh used to stop MuJoCo; now warnings say what changed."""
     if not ERD.is_dir():

@@ -829,7 +829,7 @@ def _make_ready(mujoco, spec, model, robot, notes, report, free):
             act.forcerange = [-effort, effort]
         if kind == "velocity":
             vel = j.limit.velocity if j.limit is not None and j.limit.velocity else None
-            kv = effort / (WHEEL_SLIP * vel) if effort and vel else inertia / dt
+            kv = float(f"{effort / (WHEEL_SLIP * vel) if effort and vel else inertia / dt:.4g}")
             act.set_to_velocity(kv=float(num(kv)))
             if vel:
                 act.ctrllimited = mujoco.mjtLimited.mjLIMITED_TRUE
@@ -841,6 +841,7 @@ def _make_ready(mujoco, spec, model, robot, notes, report, free):
             slide = model.jnt_type[jid] == mujoco.mjtJoint.mjJNT_SLIDE
             kp_max = inertia * (OMEGA_DT / dt) ** 2
             kp = min(effort / FULL_EFFORT_AT["slide" if slide else "hinge"], kp_max) if effort else kp_max
+            kp = float(f"{kp:.4g}")
             act.set_to_position(kp=float(num(kp)), dampratio=1.0)
             if model.jnt_limited[jid]:
                 act.ctrllimited = mujoco.mjtLimited.mjLIMITED_TRUE

@@ -17,6 +17,8 @@ from __future__ import annotations
 from typing import NamedTuple
 
 FATES = ("kept", "translated", "approximated", "dropped")
+SINGULAR = {"gazebo": "Gazebo setting"}
+PLURAL = {"gazebo": "Gazebo settings", "gazebo-joint": "gazebo-joints"}
 
 
 class Entry(NamedTuple):
@@ -61,7 +63,8 @@ class Report:
         for e in self._entries.values():
             if e.fate == "dropped":
                 kinds[e.kind] = kinds.get(e.kind, 0) + 1
-        dropped = ", ".join(f"{n} {k}{'s' if n > 1 else ''}" for k, n in sorted(kinds.items()))
+        dropped = ", ".join(f"{n} {PLURAL.get(k, k + 's') if n > 1 else SINGULAR.get(k, k)}"
+                            for k, n in sorted(kinds.items()))
         return (f"{self.target}: {len(self._entries)} source elements: {c['kept']} kept, {c['translated']} "
                 f"translated, {c['approximated']} approximated, {c['dropped']} dropped"
                 + (f" ({dropped})" if dropped else ""))

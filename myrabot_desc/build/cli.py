@@ -26,10 +26,10 @@ def limit_options(func):
 @click.option("--allow-errors", is_flag=True, help="Write the URDF even when the build reports errors (X002).")
 @limit_options
 def build_cmd(inputs, output, deps, resolve_uris, allow_errors, **limit_flags):
-    """Expand a xacro file into URDF, with no ROS installed.
+    """Expand a xacro file into URDF (or any XML: SDF, SRDF, launch), with no ROS installed.
 
-    FILE defaults to the bundled MYRAbot (xacro/myrabot.urdf.xacro). Files written
-    for ROS Electric/Fuerte (un-prefixed <macro>, <include>, <property>,
+    FILE defaults to the bundled MYRAbot (xacro/myrabot.urdf.xacro). <robot> files
+    written for ROS Electric/Fuerte (un-prefixed <macro>, <include>, <property>,
     <insert_block>, bare macro calls) are upgraded and reported (X001). Packages
     for $(find pkg) and package://pkg come from -p, the input's own package
     (package.xml or manifest.xml), --package-path, ROS_PACKAGE_PATH,
@@ -78,7 +78,7 @@ def build_cmd(inputs, output, deps, resolve_uris, allow_errors, **limit_flags):
         for d in result.diagnostics:
             click.echo(str(d), err=True)
         if deps:
-            write_output(output or "-", "\n".join(result.deps) + "\n")
+            write_output(output or "-", "\n".join(result.deps) + "\n", protect=result.deps)
             return
         if result.errors and not allow_errors:
             click.echo(f"{len(result.errors)} error(s): nothing written (use --allow-errors to write anyway)",
@@ -87,7 +87,7 @@ def build_cmd(inputs, output, deps, resolve_uris, allow_errors, **limit_flags):
         text = result.text
         if resolve_uris:
             text = _resolve_uris(result)
-        write_output(output or "-", text)
+        write_output(output or "-", text, protect=result.deps)   # never over its own input
         if output and output != "-":
             click.echo(f"wrote {output}", err=True)
         if result.errors:

@@ -321,8 +321,11 @@ def test_corpus_mobile_bases_stand_still(tmp_path, robot):
     base, PR2): 2 s from `home` within 1 cm, only wheels and casters on the floor."""
     out = tmp_path / "m" / "robot.xml"
     argv = ["convert", str(CORPUS / robot["top"]), *robot.get("args", "").split(), "--package-path",
-            str(CORPUS / robot.get("package_path", ".")), "--unsafe-eval", "--to", "mjcf", "-o", str(out)]
-    r = CliRunner().invoke(main, argv, env={k: str(v) for k, v in (robot.get("env") or {}).items()})
+            str(CORPUS / robot.get("package_path", ".")), "--to", "mjcf", "-o", str(out)]
+    env = {k: str(v) for k, v in (robot.get("env") or {}).items()}
+    r = CliRunner().invoke(main, argv, env=env)
+    if r.exit_code == 2 and "--unsafe-eval allows it" in r.output:   # husky's riser loop: a trusted package
+        r = CliRunner().invoke(main, argv + ["--unsafe-eval"], env=env)
     assert r.exit_code == 0, r.output
     m, d, start = stand(tmp_path / "m" / "scene.xml")
     free = [j for j in range(m.njnt) if m.jnt_type[j] == mujoco.mjtJoint.mjJNT_FREE]

@@ -11,6 +11,7 @@ gz-sim reads it as well.
 
 from __future__ import annotations
 
+import copy
 from dataclasses import dataclass
 
 from lxml import etree
@@ -208,7 +209,13 @@ def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = Non
     # ---- sensors (from <gazebo reference> blocks) and systems (model-level plugins)
     sensor_outs = []
     sensor_fates = {}
+    joint_sensors: dict[str, list] = {}
     for s in robot.sensors():
+        if s.reference in robot.joints and s.reference not in robot.links and s.dialect == "sdf":
+            # a force/torque sensor sits in a joint (SDF allows it): copied there, ROS plugins left out
+            joint_sensors.setdefault(s.reference, []).append(s)
+            sensor_fates[id(s)] = ("kept", f"in joint '{s.reference}' (SDF sensors may sit in joints)")
+            continue
         out = translate_sensor(s, robot, notes)
         if out is not None:
             sensor_outs.append(out)
@@ -357,6 +364,12 @@ def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = Non
                             f"{j.mimic.offset}) needs SDF 1.11; not converted")
                 notes.warn(f"mimic on joint '{j.name}' not converted (SDF 1.9 has no mimic)", j.loc)
         props.apply_joint(je, axis, j.name)
+        for sn in joint_sensors.pop(j.name, ()):
+            el = copy.deepcopy(sn.element)
+            for pl in [c for c in el if isinstance(c.tag, str) and c.tag == "plugin"]:
+                el.remove(pl)
+            je.append(el)
+            sensor_names.append(el.get("name"))
         out_joints.append(jn)
 
     # ---- frames for everything lumping removed
@@ -384,6 +397,10 @@ def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = Non
                 if c.text and c.text.strip() in renamed:
                     c.text = renamed[c.text.strip()]
             model.append(item)
+    for jname, sns in joint_sensors.items():     # their joint was lumped or left out
+        for sn in sns:
+            sensor_fates[id(sn)] = ("dropped", f"its joint '{jname}' is not a joint of the SDF model")
+            notes.warn(f"sensor '{sn.name}' in joint '{jname}' dropped: that joint is not in the model", sn.loc)
     extra_joints = _model_extras(model, robot, notes, report, taken | set(out_joints) | set(frames))
     out_joints.extend(extra_joints)
     uris.finish()
@@ -411,17 +428,22 @@ def _model_extras(model, robot, notes, report, taken) -> list[str]:
                 continue
             name = c.get("name") or ""
             loc = robot.loc_of(c) or g.loc
+            el = copy.deepcopy(c)
             if name and name in taken:
-                notes.warn(f"<gazebo> {c.tag} '{name}' has the name of another element of the model: left out", loc)
-                report.set(f"gazebo-{c.tag}", name, "dropped", "its name is taken by another element of the model",
-                           loc)
-                continue
-            taken.add(name)
+                # PR2's grippers: a <gazebo> joint named like a URDF joint (ign keeps only one of the two)
+                new = _unique(f"{name}_gazebo", taken)
+                el.set("name", new)
+                notes.warn(f"<gazebo> {c.tag} '{name}' has the name of another element of the model: kept as "
+                           f"'{new}'", loc)
+                report.set(f"gazebo-{c.tag}", name, "translated", f"copied into the model from a <gazebo> block, "
+                           f"renamed '{new}' (the URDF has an element of that name)", loc)
+            else:
+                taken.add(name)
+                report.set(f"gazebo-{c.tag}", name or "?", "kept", "copied into the model from a <gazebo> block", loc)
             comment(model, f"from a <gazebo> block ({loc})" if loc else "from a <gazebo> block")
-            model.append(copy.deepcopy(c))
-            report.set(f"gazebo-{c.tag}", name or "?", "kept", "copied into the model from a <gazebo> block", loc)
+            model.append(el)
             if c.tag == "joint":
-                out.append(name)
+                out.append(el.get("name"))
     return out
 
 

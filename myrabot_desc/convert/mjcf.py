@@ -1064,3 +1064,5 @@ def _report_mjcf(robot, report, free, base):
                                robot.loc_of(c) or g.loc)
         for sn in g.sensors:
             report.set("sensor", sn.name or "?", "dropped", "Gazebo sensor: not converted to MuJoCo sensors", sn.loc)
+            for p in sn.plugins:
+                report.set("plugin", p.name or p.library or "?", "dropped", "a ROS sensor plugin", p.loc)

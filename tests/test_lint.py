@@ -379,3 +379,48 @@ def test_pre_commit_hook_in_a_scratch_repository(tmp_path):
     p = subprocess.run([str(pc), "run", "--all-files"], cwd=repo, env=env, capture_output=True, text=True)
     assert p.returncode == 1 and "Failed" in p.stdout
     assert "urdf/parts.xacro:6: I008 link a" in p.stdout
+
+
+# ---------------------------------------------------------------- action, hooks, info
+def test_action_check_step_runs_as_written(tmp_path):
+    """The composite action's Check step, run by bash with the inputs it would get: annotations on
+    stdout, a valid SARIF file, the exit code in GITHUB_OUTPUT."""
+    import yaml
+
+    action = yaml.safe_load((ROOT / "action.yml").read_text())
+    assert action["runs"]["using"] == "composite"
+    step = next(s for s in action["runs"]["steps"] if s.get("id") == "check")
+    _many(tmp_path)
+    out = tmp_path / "gh_output"
+    env = {**os.environ, "MD_PATHS": "robots", "MD_ARGS": "--ignore P004", "MD_SHARD": "2/3",
+           "MD_SARIF": "r.sarif", "GITHUB_OUTPUT": str(out),
+           "PATH": f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}"}
+    p = subprocess.run(["bash", "-e", "-c", step["run"]], cwd=tmp_path, env=env, capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    assert out.read_text().strip() in ("exit-code=0", "exit-code=1", "exit-code=2")
+    assert p.stdout.startswith("::") and "P004" not in p.stdout
+    doc = json.loads((tmp_path / "r.sarif").read_text())
+    assert doc["runs"][0]["invocations"][0]["properties"] == {"shard": "2/3"}
+    assert len(doc["runs"][0]["artifacts"]) >= 3
+
+
+def test_pre_commit_hooks_are_valid():
+    import yaml
+
+    hooks = yaml.safe_load((ROOT / ".pre-commit-hooks.yaml").read_text())
+    ids = {h["id"]: h for h in hooks}
+    assert set(ids) == {"myrabot-desc-check", "myrabot-desc-check-strict"}
+    for h in hooks:
+        assert h["language"] == "python" and h["pass_filenames"] is False
+        assert h["entry"].startswith("myrabot-desc check -r .")
+        import re
+
+        assert re.search(h["files"], "urdf/parts.xacro") and re.search(h["files"], "pyproject.toml")
+        assert not re.search(h["files"], "src/main.py")
+
+
+def test_info_says_continuous_once():
+    res = CliRunner().invoke(main, ["info", "--no-tree"])
+    assert res.exit_code == 0
+    line = next(ln for ln in res.output.splitlines() if ln.strip().startswith("left_wheel_joint"))
+    assert line.split()[1:] == ["continuous", "no", "position", "limits"]

@@ -299,15 +299,14 @@ def plan(inputs, inertia, suggest, meshes, select, ignore, strict, recursive, co
     from myrabot_desc.checks import cache
 
     cache.reset()
-    known = known_codes()
     sel, ign = split_codes(select), split_codes(ignore)
     for flag, codes in (("--select", sel), ("--ignore", ign)):
         for c in codes:
-            msg = unknown_code_message(c, known)
+            msg = unknown_code_message(c, known_codes())
             if msg:
                 raise click.BadParameter(msg, param_hint=flag)
     part = parse_shard(shard_spec)
-    finder = Finder(known, config_file, isolated)
+    finder = Finder(known_codes, config_file, isolated)
     paths = expand_inputs(inputs.files, recursive) if inputs.files else [None]
     if inputs.files:                        # exclude = from the configuration, for folder expansions
         given = {str(f) for f in inputs.files}

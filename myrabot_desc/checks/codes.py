@@ -17,9 +17,16 @@ LINT_CODES = {
 
 
 def known_codes() -> list[str]:
-    from myrabot_desc.checks.report import rule_table
+    """Every code (imports the rule modules: asked only when there is a code to check)."""
+    global _KNOWN
+    if _KNOWN is None:
+        from myrabot_desc.checks.report import rule_table
 
-    return [row[0] for row in rule_table()]
+        _KNOWN = [row[0] for row in rule_table()]
+    return _KNOWN
+
+
+_KNOWN: list[str] | None = None
 
 
 def closest(word: str, choices) -> str | None:

@@ -141,7 +141,7 @@ class _Reader:
             self.fail(key, f"{key}: expected a list of rule codes, e.g. [\"I008\", \"G\"]")
         out = [c.strip().upper() for c in value if c.strip()]
         for c in out:
-            msg = unknown_code_message(c, known)
+            msg = unknown_code_message(c, known())
             if msg:
                 self.fail(key, f"{key}: {msg}")
         return out
@@ -161,7 +161,8 @@ def _display(path: Path) -> str:
 
 
 def read_config(path: Path, known_codes) -> Config | None:
-    """Read one configuration file; None when it is a pyproject.toml without our table."""
+    """Read one configuration file; None when it is a pyproject.toml without our table.
+    ``known_codes()`` gives the valid codes (called only when the file names some)."""
     try:
         import tomllib
     except ModuleNotFoundError:          # Python 3.10

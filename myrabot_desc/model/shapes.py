@@ -60,7 +60,7 @@ def describe(g) -> str:
 
 _MESHES: dict = {}          # (path, mtime, scale) -> mesh: robots in one run share mesh files
 _MAX_CACHED = 512
-_MAX_CACHED_BYTES = 64_000_000   # mesh memory kept across robots (a -j N check has N such caches)
+_MAX_CACHED_BYTES = 32_000_000   # mesh memory kept across robots (a -j N check has N such caches)
 
 
 def load_mesh(g):

@@ -328,6 +328,20 @@ def test_cache_gives_the_same_report_and_sees_an_edited_include(tmp_path):
     assert len(list((tmp_path / "cache" / "check").glob("*.json"))) == 1   # one entry per file and options
 
 
+def test_no_configuration_no_cache_written(tmp_path, monkeypatch):
+    monkeypatch.delenv("MYRABOT_DESC_CACHE_DIR")
+    blocks(tmp_path / "pkg")
+    run("pkg/robot.urdf.xacro", cwd=tmp_path)
+    assert not list(tmp_path.rglob(".myrabot-desc-cache"))
+    (tmp_path / "pyproject.toml").write_text("[tool.myrabot-desc]\n")       # a project opts in
+    run("pkg/robot.urdf.xacro", cwd=tmp_path)
+    assert (tmp_path / ".myrabot-desc-cache" / ".gitignore").read_text().endswith("*\n")
+    (tmp_path / "pyproject.toml").write_text("[tool.myrabot-desc]\ncache = false\n")
+    shutil.rmtree(tmp_path / ".myrabot-desc-cache")
+    run("pkg/robot.urdf.xacro", cwd=tmp_path)
+    assert not (tmp_path / ".myrabot-desc-cache").exists()
+
+
 # ---------------------------------------------------------------- X007
 def test_x007_lists_environment_variables_and_values(tmp_path, monkeypatch):
     model = tmp_path / "e.urdf.xacro"

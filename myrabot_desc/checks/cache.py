@@ -1,4 +1,6 @@
-"""A result cache for ``check`` (what makes a pre-commit run cheap), like ruff's .ruff_cache.
+"""A result cache for ``check`` (what makes a pre-commit run cheap), like ruff's .ruff_cache:
+in ``.myrabot-desc-cache/`` next to the project's configuration file (or MYRABOT_DESC_CACHE_DIR);
+a check with no configuration file writes nothing.
 
 One JSON entry per (file, options, tool version, working folder): the file's findings and
 a signature of every folder the check may read from: the input's folder and the package

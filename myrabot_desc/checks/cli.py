@@ -230,8 +230,8 @@ def _preload(tasks) -> None:
               help="Check only the K-th of N deterministic parts of the file list (a CI matrix job each).")
 @click.option("-q", "--quiet", is_flag=True, help="No progress bar; text reports only the findings.")
 @click.option("--no-cache", is_flag=True,
-              help="Do not read or write the result cache (.myrabot-desc-cache/ next to the configuration, "
-                   "or MYRABOT_DESC_CACHE_DIR).")
+              help="Do not read or write the result cache (.myrabot-desc-cache/ next to the configuration "
+                   "file, or MYRABOT_DESC_CACHE_DIR).")
 @click.option("--merge-sarif", is_flag=True,
               help="The FILEs are SARIF reports (from --shard jobs): merge them into one report.")
 @click.option("--list-rules", is_flag=True, help="List every rule code and exit.")
@@ -353,9 +353,9 @@ def plan(inputs, inertia, suggest, meshes, select, ignore, strict, recursive, co
         use_inertia = inertia or suggest or cfg.inertia
         options = CheckOptions(inertia=use_inertia, suggest=suggest, meshes=meshes or cfg.meshes)
         limits = tuple((LIMIT_ENV[k], v) for k, v in sorted(cfg.limits.items()))
-        cache_dir = None
-        if not no_cache:
-            cache_dir = cache_env or str(cfg.root / ".myrabot-desc-cache")
+        cache_dir = None         # a project (a configuration file) opts in, as ruff's .ruff_cache
+        if not no_cache and cfg.cache:
+            cache_dir = cache_env or (str(cfg.root / ".myrabot-desc-cache") if cfg.path else None)
         tasks.append(Task(p, build, options, tuple(sel or cfg.select), tuple(cfg.ignores_for(p) + ign), limits,
                           strict or cfg.strict, cache_dir))
     return tasks, help_url

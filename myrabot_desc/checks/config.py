@@ -40,6 +40,7 @@ KEYS = {
     "limits": ("table-limits", "limit name (max-input-bytes, ...) -> value (like the MYRABOT_DESC_MAX_* variables)"),
     "exclude": ("globs", "files or folders skipped by folder and -r inputs"),
     "help-url": ("str", "base URL of the rule documentation for SARIF helpUri (\"\" omits the links)"),
+    "cache": ("bool", "keep results in .myrabot-desc-cache/ next to this file (default true)"),
 }
 
 
@@ -62,6 +63,7 @@ class Config:
     limits: dict[str, int] = field(default_factory=dict)     # Limits field -> value
     exclude: list[str] = field(default_factory=list)
     help_url: str | None = None
+    cache: bool = True
 
     @property
     def root(self) -> Path:

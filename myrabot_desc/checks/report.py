@@ -177,11 +177,9 @@ def render_github(results) -> str:
             out.append(f"::error {','.join(props)}::{_gh_escape(r.failure)}")
             continue
         for d in r.diagnostics:
-            props = []
-            if d.loc:
-                props.append(f"file={_gh_escape(rel(d.loc.file), True)}")
-                if d.loc.line:
-                    props.append(f"line={d.loc.line}")
+            props = [f"file={_gh_escape(rel(d.loc.file if d.loc and d.loc.file else _input(r)), True)}"]
+            if d.loc and d.loc.line:
+                props.append(f"line={d.loc.line}")
             props.append(f"title={_gh_escape(d.code + ' ' + (d.data.get('rule') or _rule_name(d.code)), True)}")
             out.append(f"::{GITHUB_LEVEL[d.severity]} {','.join(props)}::{_gh_escape(d.message)}")
     t = totals(results)
@@ -193,6 +191,11 @@ def render_github(results) -> str:
 def _failure_file(r) -> str:
     loc = r.failure_loc
     return (loc.file if loc is not None and loc.file else r.file) or _bundled_name()
+
+
+def _input(r) -> str:
+    """The checked file (for a finding without a location of its own)."""
+    return r.file or _bundled_name()
 
 
 def _bundled_name() -> str:
@@ -264,8 +267,7 @@ def render_sarif(results, version: str, exit_code: int = 0, help_url: str | None
             item = {"ruleId": d.code, "level": SARIF_LEVEL[d.severity], "message": {"text": d.message}}
             if d.code in index:
                 item["ruleIndex"] = index[d.code]
-            if d.loc:
-                item["locations"] = [location(d.loc.file, d.loc.line)]
+            item["locations"] = [location(d.loc.file, d.loc.line) if d.loc and d.loc.file else location(_input(r), None)]
             props = _plain({k: v for k, v in d.data.items() if k != "rule"})
             if props:
                 item["properties"] = props

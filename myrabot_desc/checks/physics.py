@@ -246,7 +246,7 @@ def dynamics_finite(ctx):
     matrix singular: ABA returns NaN and every simulator struggles. The finding points at
     the first such joint. Fix: give the links below that joint a mass and inertia.
     """
-    if not ctx.tree_ok or not ctx.robot.joints:
+    if not ctx.tree_ok or not ctx.robot.joints or _dynamics_surely_finite(ctx.robot):
         return
     import numpy as np
 
@@ -287,6 +287,39 @@ def dynamics_finite(ctx):
                   + (f": nothing below joint(s) {', '.join(massless[:6])} has mass" if massless else
                      ": the mass matrix is singular"), (first.loc if first else None) or ctx.robot.loc,
                   {"algorithm": bad, "massless_joints": massless})
+
+
+def _dynamics_surely_finite(robot) -> bool:
+    """True when Pinocchio need not be loaded (a third of check's time): urdfdom accepts what it
+    reads (no bad values, known types, limits on revolute/prismatic) and every moving joint's
+    child has a positive mass with a positive-definite inertia, every other link a non-negative
+    mass and semi-definite inertia. Then each moving body's spatial inertia is positive
+    definite, so is the mass matrix at every configuration, and RNEA/ABA stay finite."""
+    from myrabot_desc.model.inertia import eigh3, tensor
+    from myrabot_desc.model.parts import JOINT_TYPES
+
+    if robot.load_issues:
+        return False
+    for j in robot.joints.values():
+        if j.type not in JOINT_TYPES:
+            return False
+        if j.type in ("revolute", "prismatic") and (j.limit is None or j.limit.effort is None
+                                                    or j.limit.velocity is None):
+            return False
+    moving_children = {j.child for j in robot.joints.values() if j.type != "fixed"}
+    for link in robot.links.values():
+        ine = link.inertial
+        positive = link.name in moving_children
+        if ine is None:
+            if positive:
+                return False
+            continue
+        w, _v = eigh3(tensor(ine))
+        if positive and not (ine.mass > 0 and w[0] > 1e-12 * max(w[2], 1e-300)):
+            return False
+        if not positive and (ine.mass < 0 or w[0] < 0):
+            return False
+    return True
 
 
 @rule("P004", "mass-summary", "info",

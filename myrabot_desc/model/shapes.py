@@ -60,6 +60,7 @@ def describe(g) -> str:
 
 _MESHES: dict = {}          # (path, mtime, scale) -> mesh: robots in one run share mesh files
 _MAX_CACHED = 512
+_MAX_CACHED_BYTES = 32_000_000   # mesh memory kept across robots (a -j N check has N such caches)
 
 
 def load_mesh(g):
@@ -71,17 +72,28 @@ def load_mesh(g):
     except OSError as exc:
         return f"cannot read {g.path}: {exc.strerror}"
     if key not in _MESHES:
-        if len(_MESHES) >= _MAX_CACHED:
+        m = _load_mesh(g)
+        _MESHES[key] = m
+        while len(_MESHES) > _MAX_CACHED or (len(_MESHES) > 1 and sum(map(_nbytes, _MESHES.values()))
+                                              > _MAX_CACHED_BYTES):
             _MESHES.pop(next(iter(_MESHES)))
-        _MESHES[key] = _load_mesh(g)
+        return m
     return _MESHES[key]
+
+
+def _nbytes(m) -> int:
+    """Memory of a cached mesh: its arrays and what trimesh cached on it (edges, triangles: ~6x)."""
+    if isinstance(m, str) or m is None:
+        return 0
+    cached = getattr(getattr(m, "_cache", None), "cache", {})
+    return m.vertices.nbytes + m.faces.nbytes + sum(getattr(v, "nbytes", 0) for v in cached.values())
 
 
 def _load_mesh(g):
     from myrabot_desc.model import meshes as meshio
 
     try:  # size and triangle limits, one-line reasons (meshio.py)
-        m = meshio.load(g.path, process=True)
+        m = meshio.load(g.path, process=True, textures=False)   # check needs geometry only
     except meshio.MeshError as exc:
         return str(exc)
     if tuple(g.scale) != (1.0, 1.0, 1.0):

@@ -47,9 +47,10 @@ class Viewer:
         import contextlib
         import sys
 
+        self._load = load                       # () -> Robot (raises InputError)
+        first = self._read()                    # a bad file stops here, before a server runs
         import viser
 
-        self._load = load                       # () -> Robot (raises InputError)
         with contextlib.redirect_stdout(sys.stderr):    # viser's banner: stdout carries only our URL
             self.server = viser.ViserServer(host=host, port=port, label=label or "myrabot-desc view", verbose=False)
         # No share button: it would open a tunnel to a public relay; this viewer stays on this machine.
@@ -72,7 +73,7 @@ class Viewer:
         self._stop = threading.Event()
         self.robot = None
         self.scene = None
-        self.reload()
+        self.reload(first)
 
     # ------------------------------------------------------------ URL
     @property
@@ -80,20 +81,23 @@ class Viewer:
         return f"http://{self.server.get_host()}:{self.server.get_port()}"
 
     # ------------------------------------------------------------ loading
-    def reload(self) -> bool:
-        """(Re)load the model and rebuild scene and GUI; on a load error keep what is shown."""
-        from myrabot_desc.errors import InputError
+    def _read(self):
+        """(robot, scene) of the model, or InputError."""
         from myrabot_desc.kinematics import require_tree
         from myrabot_desc.view.scene import build_scene
 
+        robot = self._load()
+        require_tree(robot)
+        return robot, build_scene(robot)
+
+    def reload(self, loaded=None) -> bool:
+        """(Re)load the model and rebuild scene and GUI; on a load error keep what is shown."""
+        from myrabot_desc.errors import InputError
+
         try:
-            robot = self._load()
-            require_tree(robot)
-            scene = build_scene(robot)
+            robot, scene = loaded or self._read()
         except InputError as exc:
             self.error = str(exc).splitlines()[0]
-            if self.robot is None:
-                raise
             self._status(f"**reload failed**, showing the previous model:\n\n`{self.error}`")
             return False
         with self.lock:
@@ -102,8 +106,8 @@ class Viewer:
             self.highlighted = set()
             self.selected_finding = None
             self.findings = []
-            self.generation += 1
             self._build()
+            self.generation += 1                # after the build: a reader of generation sees the new scene
         if self.with_findings:
             threading.Thread(target=self._run_checks, args=(self.generation,), daemon=True).start()
         return True

@@ -72,6 +72,9 @@ def test_watch_reloads_and_keeps_the_joint_values(arm):
         assert v._sliders["shoulder"].value == pytest.approx(0.7)
         assert v.toggles["inertia"] is True
         assert v.link_poses["upper"][2, 3] == pytest.approx(z0 + 0.2)
+        # the rebuilt scene's nodes sit where the links are, moved or not
+        for link in ("base", "upper"):
+            assert v._link_nodes[link].position == pytest.approx(v.link_poses[link][:3, 3])
         # the mimic joint followed: the finger slid 0.007 m along z of the upper arm
         T = v.link_poses
         rel = np.linalg.inv(T["upper"]) @ T["finger"]

@@ -66,6 +66,9 @@ class Viewer:
         self.error: str | None = None
         self.with_findings = findings
         self.generation = 0                     # bumped by every (re)load
+        self.placed_at = 0.0
+        self._sent_generation = -1
+        self._quiet = False                     # set_joints moving the sliders: no callback per slider
         self._nodes: dict[str, list] = {}       # group -> scene handles
         self._link_nodes: dict = {}
         self._visuals: dict[str, list] = {}     # link -> [(handle, rgb)]
@@ -162,6 +165,7 @@ class Viewer:
         self.server.scene.set_up_direction("+z")
         self._nodes = {k: [] for k in TOGGLES}
         self._link_nodes, self._visuals = {}, {}
+        self.link_poses = {}                    # new nodes: every link goes out
         with self.server.atomic():
             overlays.add_parts(self, sc)
             overlays.add_overlays(self, sc)
@@ -188,14 +192,18 @@ class Viewer:
 
         from myrabot_desc.view import overlays
 
+        import numpy as np
+
         T = self.scene.transforms(self.q)
+        prev = self.link_poses if self._sent_generation == self.generation else {}
         for link, handle in self._link_nodes.items():
             M = T.get(link)
-            if M is None:
-                continue
+            if M is None or (link in prev and np.array_equal(prev[link], M)):
+                continue                                  # only the links that moved go out
             handle.position = tuple(M[:3, 3])
             handle.wxyz = tuple(vtf.SO3.from_matrix(M[:3, :3]).wxyz)
         self.link_poses = T
+        self._sent_generation = self.generation
         overlays.update_dynamic(self, T)
         if "values" in self._gui:
             self._gui["values"].content = self._values_text()
@@ -204,10 +212,14 @@ class Viewer:
         """Set joint values (clamped to limits) and move the sliders and the robot."""
         with self.lock, self.server.atomic():
             self.q.update(self.scene.clamp(values))
-            for name, v in values.items():
-                s = self._sliders.get(name)
-                if s is not None and abs(s.value - self.q[name]) > 1e-12:
-                    s.value = self.q[name]
+            self._quiet = True
+            try:
+                for name in values:
+                    s = self._sliders.get(name)
+                    if s is not None and name in self.q and abs(s.value - self.q[name]) > 1e-12:
+                        s.value = self.q[name]
+            finally:
+                self._quiet = False
             self._place()
 
     def _apply_toggles(self) -> None:
@@ -283,9 +295,12 @@ class Viewer:
 
     def _slider_cb(self, name):
         def cb(event):
+            if self._quiet:
+                return
             with self.lock, self.server.atomic():
                 self.q[name] = float(event.target.value)
                 self._place()
+            self.placed_at = time.perf_counter()     # when the poses went out (bench/bench_view.py)
 
         return cb
 

@@ -165,7 +165,7 @@ def build_model(scene, q: dict, layers: Layers):
     diag = float(np.linalg.norm(np.ptp(pts, axis=0))) or 1.0
     extra: list = []          # overlay points that the picture must hold too
     if layers.frames:
-        L, rad = 0.05 * diag, 0.0025 * diag
+        L, rad = 0.08 * diag, 0.003 * diag
         for link, M in T.items():
             for axis, colour in ((0, [0.9, 0.1, 0.1, 1]), (1, [0.1, 0.75, 0.1, 1]), (2, [0.1, 0.2, 0.95, 1])):
                 a = M[:3, 3]
@@ -183,7 +183,8 @@ def build_model(scene, q: dict, layers: Layers):
             if box is None:
                 continue
             M = T[link.name] @ box.pose
-            size = [max(s / 2, 1e-4) for s in box.size]
+            # half extents, 0.5 mm proud: a box that fits its geometry exactly would flicker into it
+            size = [max(s / 2, 1e-4) + 0.0005 for s in box.size]
             corners = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)]) * size
             extra.extend(corners @ M[:3, :3].T + M[:3, 3])
             place(M, type=mujoco.mjtGeom.mjGEOM_BOX, size=size,

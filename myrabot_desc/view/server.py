@@ -184,7 +184,7 @@ class Viewer:
         centre, size = (lo + hi) / 2, float(np.linalg.norm(hi - lo)) or 1.0
         cam = self.server.initial_camera
         cam.look_at = tuple(centre)
-        cam.position = tuple(centre + np.array([1.0, -0.8, 0.5]) * size * 0.75)
+        cam.position = tuple(centre + np.array([1.0, -0.8, 0.5]) * size * 0.65)
 
     def _place(self) -> None:
         """Send the link poses for the current joint values (and what depends on them)."""

@@ -174,7 +174,7 @@ def build_model(scene, q: dict, layers: Layers):
                                contype=0, conaffinity=0, group=2)
                 extra.append(b)
     if layers.inertia:
-        from myrabot_desc.kinematics import center_of_mass
+        from myrabot_desc.model.kinematics import center_of_mass
 
         for link in scene.robot.links.values():
             if link.name not in T:

@@ -54,7 +54,7 @@ def bbox(img):
 @pytest.fixture(scope="module")
 def extents():
     """The bundled robot's visual extents (m) at zero, from the scene every command shares."""
-    from myrabot_desc.loader import load_robot
+    from myrabot_desc.model.loader import load_robot
     from myrabot_desc.view.scene import build_scene
 
     v = build_scene(load_robot(), collision=False).world_vertices()

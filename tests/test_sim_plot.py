@@ -10,7 +10,7 @@ from myrabot_desc.cli import main
 
 @pytest.fixture(scope="module")
 def vuelta():
-    from myrabot_desc.loader import load_robot
+    from myrabot_desc.model.loader import load_robot
     from myrabot_desc.sim import vuelta
 
     return vuelta.run(load_robot(), duration=3.0, check_collisions=False)

@@ -90,7 +90,7 @@ def test_watch_reloads_and_keeps_the_joint_values(arm):
 
 def test_findings_name_their_links():
     from myrabot_desc.checks import CheckOptions, check_robot
-    from myrabot_desc.loader import load_robot
+    from myrabot_desc.model.loader import load_robot
     from myrabot_desc.view.overlays import finding_links
 
     robot = load_robot()

@@ -7,8 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from myrabot_desc.loader import load_robot
-from myrabot_desc.model import Inertial, Pose
+from myrabot_desc.model.loader import load_robot
+from myrabot_desc.model.parts import Inertial, Pose
 from myrabot_desc.view.facts import box_size, inertia_box, support
 
 

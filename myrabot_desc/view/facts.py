@@ -39,7 +39,7 @@ def inertia_box(inertial) -> InertiaBox | None:
     """The equivalent inertia box of a URDF ``Inertial`` (None for a massless or missing one)."""
     import numpy as np
 
-    from myrabot_desc.kinematics import pose_matrix
+    from myrabot_desc.model.kinematics import pose_matrix
 
     if inertial is None or not inertial.mass > 0:
         return None
@@ -63,13 +63,13 @@ class Support(NamedTuple):
 
 def support(robot, q: dict | None = None, meshes: bool = True) -> Support | None:
     """Ground contacts at configuration ``q`` with the robot resting on its lowest collision
-    point; None when nothing has collision geometry or mass. Meshes are read through meshio."""
+    point; None when nothing has collision geometry or mass. Meshes are read through model.meshes."""
     import numpy as np
 
     from myrabot_desc.checks.context import CheckOptions, Context
     from myrabot_desc.checks.physics import _signed_distance
     from myrabot_desc.checks.physics import support as contact_support
-    from myrabot_desc.kinematics import center_of_mass, world_transforms
+    from myrabot_desc.model.kinematics import center_of_mass, world_transforms
 
     ctx = Context(robot, CheckOptions(meshes=meshes))
     ctx.__dict__["world"] = world_transforms(robot, q)      # the configuration asked, not zero

@@ -146,7 +146,7 @@ def update_dynamic(viewer, T) -> None:
     """What moves with the joints besides the links: the robot's centre of mass and the support."""
     import numpy as np
 
-    from myrabot_desc.kinematics import center_of_mass
+    from myrabot_desc.model.kinematics import center_of_mass
 
     if not hasattr(viewer, "_robot_com"):
         return

@@ -3,7 +3,7 @@
 Every visual and collision element of every link becomes a :class:`Part`: triangles in the
 element's own frame, the element's pose in its link frame, and a colour. Colours come from the
 same place as the converters' (``convert.appearance``: a resolved ``<gazebo><material>`` wins, as
-in Gazebo, else the URDF ``<color>``, else grey). Meshes are read only through ``meshio`` (package
+in Gazebo, else the URDF ``<color>``, else grey). Meshes are read only through ``model.meshes`` (package
 roots, size and triangle limits); one that cannot be read is listed in ``problems`` and left out.
 Link poses come from ``kinematics.world_transforms``; joint ranges for the sliders from the URDF.
 """
@@ -52,7 +52,7 @@ class Scene:
 
     def transforms(self, q: dict | None = None) -> dict:
         """link -> 4x4 world pose (mimic joints follow their leader)."""
-        from myrabot_desc.kinematics import world_transforms
+        from myrabot_desc.model.kinematics import world_transforms
 
         return world_transforms(self.robot, self.clamp(q))
 
@@ -115,11 +115,11 @@ def build_scene(robot, collision: bool = True) -> Scene:
     """Parts of every visual (and collision, unless ``collision`` is False) element of ``robot``."""
     import numpy as np
 
-    from myrabot_desc import meshio
+    from myrabot_desc.model import meshes
     from myrabot_desc.convert.appearance import Appearance, texture_mean_rgb
     from myrabot_desc.convert.common import Notes
     from myrabot_desc.convert.gazebo import GazeboProps
-    from myrabot_desc.kinematics import pose_matrix
+    from myrabot_desc.model.kinematics import pose_matrix
 
     problems: list[str] = []
     notes = Notes()
@@ -137,9 +137,9 @@ def build_scene(robot, collision: bool = True) -> Scene:
         key = str(g.path)
         if key not in cache:
             try:
-                m = meshio.load(g.path)
+                m = meshes.load(g.path)
                 cache[key] = (np.asarray(m.vertices, dtype=np.float32), np.asarray(m.faces, dtype=np.uint32))
-            except meshio.MeshError as exc:
+            except meshes.MeshError as exc:
                 problems.append(f"{loc}: warning: mesh {exc} (left out)" if loc else f"warning: mesh {exc}")
                 cache[key] = None
         got = cache[key]

@@ -86,7 +86,7 @@ class Viewer:
     # ------------------------------------------------------------ loading
     def _read(self):
         """(robot, scene) of the model, or InputError."""
-        from myrabot_desc.kinematics import require_tree
+        from myrabot_desc.model.kinematics import require_tree
         from myrabot_desc.view.scene import build_scene
 
         robot = self._load()

@@ -219,7 +219,7 @@ def render_image(scene, q: dict | None = None, views=("iso",), size=(800, 600), 
     for g in range(6):
         opt.geomgroup[g] = 1
     out = Image.new("RGB", (W, H), BACKGROUND)
-    renderer = mujoco.Renderer(model, th, tw)
+    renderer = open_renderer(mujoco, model, th, tw)
     try:
         for i, view in enumerate(views):
             cam = camera_for(pts, view, tw / th)
@@ -240,6 +240,23 @@ def render_image(scene, q: dict | None = None, views=("iso",), size=(800, 600), 
     finally:
         renderer.close()
     return out
+
+
+def open_renderer(mujoco, model, height: int, width: int):
+    """mujoco.Renderer, or InputError saying which GL backend failed and what it needs."""
+    import warnings
+
+    from myrabot_desc.errors import InputError
+
+    try:
+        with warnings.catch_warnings():        # glfw warns on stderr before it fails without a display
+            warnings.simplefilter("ignore")
+            return mujoco.Renderer(model, height, width)
+    except Exception as exc:  # each backend fails with its own error type
+        gl = os.environ.get("MUJOCO_GL", "")
+        why = " ".join(str(exc).split())[:160]
+        raise InputError(f"cannot render offscreen with MUJOCO_GL={gl}: {why} (unset MUJOCO_GL to pick EGL or "
+                         "OSMesa; EGL needs libegl1 and libgl1-mesa-dri, OSMesa needs libosmesa6)") from None
 
 
 def _font(size: int):
@@ -377,15 +394,6 @@ def render_cmd(inputs, output, view, joints, pose_file, collision, frames, inert
         q.update(parse_joint_values(joints, scene))
         for line in scene.problems:
             click.echo(line, err=True)
-        try:
-            img = render_image(scene, q, ALL if view == "all" else (view,), size, Layers(collision, frames, inertia))
-        except Exception as exc:  # GL context creation fails in many ways, each its own type
-            if "mujoco" not in type(exc).__module__ and "GL" not in str(exc) and "gl" not in type(exc).__module__.lower():
-                raise
-            from myrabot_desc.errors import InputError
-
-            raise InputError(f"cannot render offscreen with MUJOCO_GL={os.environ.get('MUJOCO_GL')}: "
-                             f"{' '.join(str(exc).split())[:200]} (EGL needs libegl1 and libgl1-mesa-dri, "
-                             "OSMesa needs libosmesa6)") from None
+        img = render_image(scene, q, ALL if view == "all" else (view,), size, Layers(collision, frames, inertia))
         write_output(output, png_bytes(img))
         click.echo(f"wrote {output} ({size[0]}x{size[1]}, {view} view, {time.perf_counter() - t0:.2f} s)", err=True)

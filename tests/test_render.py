@@ -170,3 +170,14 @@ def test_example_robot_data_robot(tmp_path):
     img, err = render(tmp_path, str(urdf), "--view", "front")
     x0, y0, x1, y1 = bbox(img)
     assert (x1 - x0) * (y1 - y0) > 0.1 * 480 * 480
+
+
+def test_a_backend_that_cannot_start_exits_2(tmp_path):
+    env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
+    env["MUJOCO_GL"] = "glfw"            # needs a display, which a test run has not
+    p = subprocess.run([sys.executable, "-m", "myrabot_desc", "render", "-o", str(tmp_path / "r.png")],
+                       capture_output=True, text=True, env=env, timeout=120)
+    assert p.returncode == 2
+    assert p.stderr.startswith("error: cannot render offscreen with MUJOCO_GL=glfw")
+    assert "unset MUJOCO_GL" in p.stderr and len(p.stderr.strip().splitlines()) == 1
+    assert not (tmp_path / "r.png").exists()

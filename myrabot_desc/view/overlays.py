@@ -85,7 +85,7 @@ def add_overlays(viewer, sc) -> None:
     viewer._support_nodes = {}
     nodes["support"].append(sc.add_grid("/overlays/ground", width=max(2 * diag, 1.0), height=max(2 * diag, 1.0),
                                         cell_size=0.05, section_size=0.25, plane_opacity=0.15))
-    _add_wheels(viewer, sc, np)
+    _add_wheels(viewer, sc)
 
 
 def _circle(centre, axis, radius, n=48):
@@ -102,8 +102,10 @@ def _circle(centre, axis, radius, n=48):
     return np.stack([pts[:-1], pts[1:]], axis=1)
 
 
-def _add_wheels(viewer, sc, np) -> None:
+def _add_wheels(viewer, sc) -> None:
     """The URDF's wheels (green, on the wheel links) and the plugin's belief (magenta, root frame)."""
+    import numpy as np
+
     from myrabot_desc.errors import InputError
     from myrabot_desc.sim.diffdrive import find_drive
     from myrabot_desc.view.server import node_name

@@ -120,9 +120,11 @@ class Viewer:
         r = self.robot
         out = {str(r.source)} if r.source else set()
         out |= {loc.file for loc in r.element_locs.values() if loc is not None and loc.file}
-        out |= {str(p.path) for link in r.links.values() for p in (*link.visuals, *link.collisions)
-                if p.geometry is not None and p.geometry.kind == "mesh" and p.geometry.path is not None
-                for p in [p.geometry]}
+        for link in r.links.values():
+            for item in (*link.visuals, *link.collisions):
+                g = item.geometry
+                if g is not None and g.kind == "mesh" and g.path is not None:
+                    out.add(str(g.path))
         return out
 
     def watch(self, interval: float = 0.5) -> None:

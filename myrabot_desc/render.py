@@ -381,6 +381,7 @@ def render_cmd(inputs, output, view, joints, pose_file, collision, frames, inert
     """
     import time
 
+    from myrabot_desc.model.kinematics import require_tree
     from myrabot_desc.output import write_output
     from myrabot_desc.view.scene import build_scene, parse_joint_values
 
@@ -389,6 +390,7 @@ def render_cmd(inputs, output, view, joints, pose_file, collision, frames, inert
         size = parse_size(size_text)
         choose_gl()
         robot = inputs.load()
+        require_tree(robot)                 # a cycle or a second root: one line, like sim and view
         scene = build_scene(robot, collision=collision)
         q = read_pose(pose_file, scene) if pose_file else {}
         q.update(parse_joint_values(joints, scene))

@@ -181,3 +181,12 @@ def test_a_backend_that_cannot_start_exits_2(tmp_path):
     assert p.stderr.startswith("error: cannot render offscreen with MUJOCO_GL=glfw")
     assert "unset MUJOCO_GL" in p.stderr and len(p.stderr.strip().splitlines()) == 1
     assert not (tmp_path / "r.png").exists()
+
+
+def test_a_model_that_is_not_a_tree_exits_2(tmp_path):
+    cyc = tmp_path / "cyc.urdf"
+    cyc.write_text('<robot name="e"><link name="a"/><link name="b"/>'
+                   '<joint name="j" type="fixed"><parent link="b"/><child link="a"/></joint>'
+                   '<joint name="k" type="fixed"><parent link="a"/><child link="b"/></joint></robot>')
+    _, err = render(tmp_path, str(cyc), expect=2)
+    assert f"{cyc}:1: error: the model needs exactly one root link" in err

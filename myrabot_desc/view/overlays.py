@@ -140,7 +140,7 @@ def _add_wheels(viewer, sc) -> None:
         text += f"\nplugin {p.name}: radius {p.radius:.4g} m, separation {p.separation:.4g} m"
     top = max(T0[u.left.link][2, 3], T0[u.right.link][2, 3]) + 2 * u.radius
     viewer._nodes["wheels"].append(sc.add_label("/overlays/wheel_label", text, font_screen_scale=0.8,
-                                                position=(float(T0[u.left.link][0, 3]), 0.0, float(top))))
+                                                position=tuple(float(c) for c in T0[u.left.link][:2, 3]) + (float(top),)))
     viewer.wheel_text = text
 
 

@@ -48,7 +48,8 @@ def add_parts(viewer, sc) -> None:
         h = sc.add_mesh_simple(f"/robot/{node_name(p.link)}/{p.layer}{p.index}", p.vertices, p.faces, color=rgb,
                                opacity=alpha if alpha < 0.999 else None, flat_shading=p.kind in ("box", "mesh"),
                                position=tuple(p.local[:3, 3]), wxyz=_wxyz(p.local[:3, :3]),
-                               side="double" if p.layer == "collision" else "front")
+                               side="double" if p.layer == "collision" else "front", cast_shadow=False,
+                               receive_shadow=False)
         viewer._nodes[p.layer].append(h)
         if p.layer == "visual":
             viewer._visuals.setdefault(p.link, []).append((h, rgb))

@@ -158,6 +158,8 @@ def build_model(scene, q: dict, layers: Layers):
         rgba = list(part.rgba)
         if layers.collision and part.layer == "visual":
             rgba[3] = min(rgba[3], 0.25)           # ghost the visuals so the collision shapes show
+        elif layers.frames:
+            rgba[3] = min(rgba[3], 0.45)           # and so the frames inside the links show
         place(M, type=mujoco.mjtGeom.mjGEOM_MESH, meshname=name, rgba=rgba, group=0 if part.layer == "visual" else 1)
         v = np.asarray(part.vertices, dtype=float)
         points.append(v @ M[:3, :3].T + M[:3, 3])

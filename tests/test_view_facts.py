@@ -67,3 +67,30 @@ def test_support_moves_with_the_arm():
     s1 = support(robot, {"base": math.pi / 2, "arti1": 1.2})
     assert s1.com[:2] != pytest.approx(s0.com[:2], abs=1e-3)
     assert s1.ground_z == pytest.approx(s0.ground_z, abs=1e-9)
+
+
+@pytest.mark.parametrize("geom,volume", [
+    (("box", (0.1, 0.2, 0.3)), 0.1 * 0.2 * 0.3),
+    (("cylinder", 0.05, 0.4), None),
+    (("sphere", 0.07), None),
+])
+def test_primitive_meshes_are_closed_and_outward(geom, volume):
+    """The scene's primitives: closed surfaces, faces outward (positive volume), the right size."""
+    import trimesh
+
+    from myrabot_desc.model.parts import Box, Cylinder, Sphere
+    from myrabot_desc.view.scene import primitive_mesh
+
+    g = {"box": Box, "cylinder": Cylinder, "sphere": Sphere}[geom[0]](*geom[1:])
+    v, f = primitive_mesh(g)
+    m = trimesh.Trimesh(v, f, process=True)
+    assert m.is_watertight and m.is_winding_consistent
+    if geom[0] == "box":
+        assert m.volume == pytest.approx(volume, rel=1e-6)
+        assert m.extents == pytest.approx([0.1, 0.2, 0.3], rel=1e-6)
+    elif geom[0] == "cylinder":
+        assert m.volume == pytest.approx(math.pi * 0.05 ** 2 * 0.4, rel=0.01)       # 32 sections
+        assert m.extents == pytest.approx([0.1, 0.1, 0.4], rel=1e-3)
+    else:
+        assert m.volume == pytest.approx(4 / 3 * math.pi * 0.07 ** 3, rel=0.05)
+        assert m.extents == pytest.approx([0.14, 0.14, 0.14], rel=0.01)

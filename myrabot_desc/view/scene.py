@@ -95,20 +95,49 @@ def joint_ranges(robot) -> dict[str, JointRange]:
 
 
 def primitive_mesh(g):
-    """(vertices, faces) of a box, cylinder (axis z) or sphere, in the geometry's frame."""
+    """(vertices, faces) of a box, cylinder (axis z) or sphere, in the geometry's frame.
+
+    Built with numpy (outward, counter-clockwise faces): a robot of primitives needs no trimesh,
+    whose import is most of a `render` of such a robot.
+    """
     import numpy as np
-    import trimesh
 
     if g.kind == "box":
-        m = trimesh.creation.box(extents=[max(s, 1e-6) for s in g.size])
+        h = np.maximum(np.asarray(g.size, dtype=float), 1e-6) / 2
+        v = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], dtype=float) * h
+        f = [[0, 1, 3], [0, 3, 2], [4, 6, 7], [4, 7, 5], [0, 4, 5], [0, 5, 1],
+             [2, 3, 7], [2, 7, 6], [0, 2, 6], [0, 6, 4], [1, 5, 7], [1, 7, 3]]
     elif g.kind == "cylinder":
-        m = trimesh.creation.cylinder(radius=max(g.radius, 1e-6), height=max(g.length, 1e-6),
-                                      sections=CYLINDER_SECTIONS)
+        n, r, hz = CYLINDER_SECTIONS, max(g.radius, 1e-6), max(g.length, 1e-6) / 2
+        a = np.linspace(0, 2 * math.pi, n, endpoint=False)
+        ring = np.column_stack([r * np.cos(a), r * np.sin(a)])
+        v = np.vstack([np.column_stack([ring, np.full(n, -hz)]), np.column_stack([ring, np.full(n, hz)]),
+                       [[0, 0, -hz], [0, 0, hz]]])
+        f = []
+        for i in range(n):
+            j = (i + 1) % n
+            f += [[i, j, n + j], [i, n + j, n + i], [2 * n, j, i], [2 * n + 1, n + i, n + j]]
     elif g.kind == "sphere":
-        m = trimesh.creation.icosphere(subdivisions=2, radius=max(g.radius, 1e-6))
+        r, nlat, nlon = max(g.radius, 1e-6), 12, 24
+        th = np.linspace(0, math.pi, nlat + 1)[1:-1]
+        ph = np.linspace(0, 2 * math.pi, nlon, endpoint=False)
+        T, P = np.meshgrid(th, ph, indexing="ij")
+        body = np.column_stack([(np.sin(T) * np.cos(P)).ravel(), (np.sin(T) * np.sin(P)).ravel(), np.cos(T).ravel()])
+        v = np.vstack([[[0, 0, 1]], body, [[0, 0, -1]]]) * r
+        top, bottom = 0, len(v) - 1
+        f = []
+        for k in range(nlon):
+            kk = (k + 1) % nlon
+            f.append([top, 1 + k, 1 + kk])
+            last = 1 + (nlat - 2) * nlon
+            f.append([bottom, last + kk, last + k])
+            for i in range(nlat - 2):
+                a0, a1 = 1 + i * nlon + k, 1 + i * nlon + kk
+                b0, b1 = a0 + nlon, a1 + nlon
+                f += [[a0, b0, b1], [a0, b1, a1]]
     else:
         raise ValueError(g.kind)
-    return np.asarray(m.vertices, dtype=np.float32), np.asarray(m.faces, dtype=np.uint32)
+    return np.asarray(v, dtype=np.float32), np.asarray(f, dtype=np.uint32)
 
 
 def build_scene(robot, collision: bool = True) -> Scene:

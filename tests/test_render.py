@@ -87,9 +87,10 @@ def test_joint_moves_the_arm(shots):
     a, b = shots["iso"], shots["arti1"]
     diff = np.abs(a - b).sum(axis=2) > 30
     assert diff.mean() > 0.01
-    # the change is in the upper part of the picture, where the arm is, not at the wheels
-    rows = np.nonzero(diff.any(axis=1))[0]
-    assert rows.max() < 0.75 * 480
+    # the change is in the upper part of the picture, where the arm is, not at the wheels (the
+    # camera frames the whole robot, so a raised arm may shift the rest by a pixel)
+    rows = np.nonzero(diff)[0]
+    assert (rows > 0.75 * 480).mean() < 0.03
 
 
 @pytest.mark.parametrize("layer", ["collision", "frames", "inertia"])

@@ -119,8 +119,8 @@ def test_vuelta_csv_and_plot(tmp_path):
     r = run("vuelta", "--duration", "3", "--csv", csv, "--plot", png, "--no-collisions")
     assert r.exit_code == 0, r.output
     lines = csv.read_text().splitlines()
-    assert lines[0] == ("time,base_x,base_y,base_yaw,base,arti1,arti2,arti3,pinza,"
-                        "left_wheel_joint,right_wheel_joint")
+    assert lines[0] == ("time_s,base_x_m,base_y_m,base_yaw_rad,base_rad,arti1_rad,arti2_rad,arti3_rad,pinza_rad,"
+                        "left_wheel_joint_rad,right_wheel_joint_rad")
     assert len(lines) == 1 + 3001
     last = [float(x) for x in lines[-1].split(",")]
     assert last[0] == pytest.approx(3.0)

@@ -62,7 +62,7 @@ def wheels(ctx) -> list[str]:
     T = D.link_transforms(r)
     for j in r.joints.values():
         if j.type == "continuous" and j.name not in out:
-            w = D.wheel(r, j.name, T)
+            w = D.wheel(r, j.name, T, read_meshes=False)    # a cylinder about the axle: no mesh needed
             if w is not None and w.round and w.shape.geometry.kind == "cylinder":
                 out.append(j.name)
     ctx._wheel_joints = out

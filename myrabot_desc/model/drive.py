@@ -461,10 +461,11 @@ def wheel_shapes(link):
     return cols or [v for v in link.visuals if v.geometry is not None]
 
 
-def wheel(robot, joint_name: str, T=None) -> Wheel | None:
+def wheel(robot, joint_name: str, T=None, read_meshes: bool = True) -> Wheel | None:
     """Measure one wheel: the largest distance of its collision (else visual) geometry from the
     joint axis. A sphere gives its radius, a cylinder about the axis (|cos| > 0.99) its radius;
-    any other shape (box, tilted cylinder, mesh) the farthest of its points from the axis line."""
+    any other shape (box, tilted cylinder, mesh) the farthest of its points from the axis line.
+    ``read_meshes=False`` leaves mesh shapes out (a caller that only asks "is this a round wheel?")."""
     j = robot.joints.get(joint_name)
     if j is None or j.child not in robot.links:
         return None
@@ -481,6 +482,8 @@ def wheel(robot, joint_name: str, T=None) -> Wheel | None:
             r, rnd = g.radius, True
         elif g.kind == "cylinder" and abs(_dot((Rs[0][2], Rs[1][2], Rs[2][2]), axis)) > ALIGNED:
             r, rnd = g.radius, True
+        elif g.kind == "mesh" and not read_meshes:
+            continue
         else:
             pts = _world_points(g, it, Rs, ps)
             if isinstance(pts, Exception):

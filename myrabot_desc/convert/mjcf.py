@@ -272,29 +272,12 @@ def _binary_stl_ok(path: Path) -> bool:
 
 
 def wheel_joints(robot) -> set[str]:
-    """Joints driven in velocity (wheels): the drive model's answer (model/drive.py: joints with a
-    velocity interface and every drive's wheels) when it is there; until then, those a drive
-    plugin names, those a ros_control transmission declares with a velocity interface, and
-    continuous joints whose child is a wheel."""
-    try:
-        from myrabot_desc.model import drive as D
-    except ImportError:
-        D = None
-    if D is not None:
-        names, _ = D.velocity_joints(robot)
-        return set(names) | {j for d in D.find(robot) for j in d.joints if j in robot.joints}
-    from myrabot_desc.convert.sensors import plugin_kind
+    """Joints driven in velocity (wheels): the drive model's answer (model/drive.py), joints with
+    a velocity interface and every declared drive's wheels."""
+    from myrabot_desc.model import drive as D
 
-    out: set[str] = set()
-    for p in robot.plugins():
-        if plugin_kind(p) in ("diff_drive", "skid_steer"):
-            out.update(v for v in p.params.values() if v in robot.joints)
-    for t in robot.transmissions:
-        interfaces = " ".join((e.text or "") for e in t.element.iter() if local(e.tag) == "hardwareInterface")
-        if "Velocity" in interfaces:
-            out.update(n for n in t.joints if n in robot.joints)
-    out.update(j.name for j in robot.joints.values() if j.type == "continuous" and "wheel" in j.child.lower())
-    return out
+    names, _ = D.velocity_joints(robot)
+    return set(names) | {j for d in D.find(robot) for j in d.joints if j in robot.joints}
 
 
 def prepare_urdf(robot, notes: Notes, base: str, mesh_dirname: str, report: Report | None = None):

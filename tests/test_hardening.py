@@ -149,8 +149,8 @@ def test_real_processes_stop_within_5_s(corpus, tmp_path, rel):
         if expect == "reject" or (argv[0] == "convert" and p.returncode):
             assert p.returncode == 2 and re.search(r"^\S+(:\d+)?: error: ", p.stderr + p.stdout, re.M), \
                 (rel, argv, p.stderr[:300])
-        if argv[0] == "check":
-            assert p.returncode in (1, 2), (rel, p.stdout[-300:])
+        if argv[0] == "check":      # a model expected to only warn (the 1500-link chain) may pass
+            assert p.returncode in ((0, 1, 2) if expect == "warn" else (1, 2)), (rel, p.stdout[-300:])
         if p.returncode:
             leftovers = [f for f in tmp_path.rglob("*") if f.is_file() and f.name != "MUJOCO_LOG.TXT"]
             assert not leftovers, leftovers

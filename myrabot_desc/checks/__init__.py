@@ -16,8 +16,14 @@ __all__ = ["CheckOptions", "Context", "run_checks", "check_robot", "sort_diagnos
 SEVERITY_ORDER = {"error": 0, "warning": 1, "info": 2}
 
 
-def check_robot(robot, options: CheckOptions | None = None, select=(), ignore=()):
-    """Run every rule on ``robot``; return (diagnostics, context). Build and load diagnostics come first."""
+def check_robot(robot, options: CheckOptions | None = None, select=(), ignore=(), unused: bool = True):
+    """Run every rule on ``robot``; return (diagnostics, context). Build and load diagnostics come first.
+
+    Inline suppressions in the model's sources (``<!-- myrabot-desc: ignore[CODES] -->``,
+    checks/suppress.py) drop the findings they cover; with ``unused`` each one that silenced
+    nothing is an X009 finding (``check`` over several files passes False and decides over the
+    whole run, from ``ctx.suppressions_seen``/``ctx.suppressions_used``)."""
+    from myrabot_desc.checks import suppress
     from myrabot_desc.checks.registry import load_all, matches, to_diagnostic
 
     rules = load_all()
@@ -34,6 +40,16 @@ def check_robot(robot, options: CheckOptions | None = None, select=(), ignore=()
         out = [d for d in out if matches(d.code, select)]
     if ignore:
         out = [d for d in out if not matches(d.code, ignore)]
+
+    def enabled(code):
+        return (not select or matches(code, select)) and not (ignore and matches(code, ignore))
+
+    out, seen, used = suppress.apply(out, robot, enabled)
+    if not enabled("X009"):
+        out, seen = [d for d in out if d.code != "X009"], []
+    ctx.suppressions_seen, ctx.suppressions_used = seen, used
+    if unused:
+        out += suppress.unused_diagnostics(seen, set(used))
     return sort_diagnostics(out), ctx
 
 

@@ -75,7 +75,6 @@ def check_one(task: Task):
     """FileResult for one input (never raises for bad input: failure holds the one line)."""
     import os
 
-    from myrabot_desc.checks.registry import matches
     from myrabot_desc.checks.report import FileResult
     from myrabot_desc.diagnostics import Loc
     from myrabot_desc.errors import InputError
@@ -85,9 +84,6 @@ def check_one(task: Task):
     saved = {k: os.environ.get(k) for k, _v in task.limits}
     os.environ.update({k: str(v) for k, v in task.limits})
 
-    def enabled(code):
-        return (not task.select or matches(code, task.select)) and not matches(code, task.ignore)
-
     try:
         cached = None
         if task.cache_dir:
@@ -96,16 +92,13 @@ def check_one(task: Task):
             cached = cache.lookup(task)
         if cached is not None:
             return cached
-        from myrabot_desc.checks import check_robot, suppress
+        from myrabot_desc.checks import check_robot
         from myrabot_desc.model.loader import load_robot
 
         robot = load_robot(path, **task.build)
-        diags, ctx = check_robot(robot, task.options, task.select, task.ignore)
-        diags, seen, used = suppress.apply(diags, robot, enabled)
-        if not enabled("X009"):
-            diags, seen = [d for d in diags if d.code != "X009"], []
+        diags, ctx = check_robot(robot, task.options, task.select, task.ignore, unused=False)
         res.diagnostics = diags
-        res.suppressions_seen, res.suppressions_used = seen, used
+        res.suppressions_seen, res.suppressions_used = ctx.suppressions_seen, ctx.suppressions_used
         res.robot = robot.name
         res.links, res.joints = len(robot.links), len(robot.joints)
         res.suggestions = list(ctx.suggestions)

@@ -6,15 +6,6 @@ and prefixes are errors with a did-you-mean (command line and configuration alik
 
 from __future__ import annotations
 
-# Codes produced by the lint machinery itself and by the build (not by rule functions).
-LINT_CODES = {
-    "X007": ("environment-dependent", "info",
-             "The build read $(env VAR)/$(optenv VAR): its output depends on the environment (values listed)."),
-    "X008": ("xacro-warning", "warning", "xacro itself printed a warning during the build."),
-    "X009": ("unused-suppression", "warning",
-             "A myrabot-desc: ignore[...] comment silenced nothing (or names an unknown code)."),
-}
-
 
 def known_codes() -> list[str]:
     """Every code (imports the rule modules: asked only when there is a code to check)."""

@@ -25,6 +25,8 @@ class Context:
         self.opts = options or CheckOptions()
         self._mesh_cache: dict = {}
         self.suggestions: list[tuple[str, str]] = []   # (link, "<inertia .../>") for --suggest
+        self.suppressions_seen: list = []   # (file, line, code) of inline suppressions (check_robot fills them)
+        self.suppressions_used: list = []
 
     # ---------------------------------------------------------------- locations
     def loc_of(self, el) -> Loc | None:

@@ -116,7 +116,33 @@ EXTERNAL_RULES: dict[str, ExternalRule] = {r.code: r for r in (
                 files={"parts.xacro": _ROBOT + "</robot>\n", "robot/parts.xacro": _ROBOT + "</robot>\n"},
                 note="parts.xacro exists both next to the model and one folder up.")),
     ExternalRule(
-        "X007", "xacro-warning", "warning", "xacro itself warned while expanding the file.",
+        "X007", "environment-dependent", "info",
+        "The build read $(env VAR)/$(optenv VAR): its output depends on the environment (values listed).",
+        "A model that reads `$(env VAR)` or `$(optenv VAR default)` builds differently on each machine "
+        "and CI runner. The finding lists each variable and the value this build used (\"(unset: "
+        "default)\" when `$(optenv)` fell back to its default).",
+        "Pin the values: make them xacro args (`NAME:=VALUE`, or `args` in the configuration) or set "
+        "them in the CI job; `--no-env` refuses the lookups.",
+        Example(_ROBOT + '  <link name="$(optenv MYRABOT_EXAMPLE_BASE base_link)"/>\n</robot>\n',
+                "the build depends on the environment: MYRABOT_EXAMPLE_BASE='base_link' (unset: default); "
+                "pin them as xacro args or in the CI job",
+                _ROBOT + '  <xacro:arg name="base" default="base_link"/>\n  <link name="$(arg base)"/>\n</robot>\n',
+                filename="robot.urdf.xacro",
+                note="MYRABOT_EXAMPLE_BASE is not set.")),
+    ExternalRule(
+        "X009", "unused-suppression", "warning",
+        "A myrabot-desc: ignore[...] comment silenced nothing (or names an unknown code).",
+        "An inline suppression (`<!-- myrabot-desc: ignore[CODES] why -->`) that silenced no finding "
+        "in the whole run, for a code the run checked, hides the next real problem of that element; "
+        "one naming a code that does not exist silences nothing at all (like ruff's RUF100).",
+        "Remove the comment, or correct the code.",
+        Example(_ROBOT + '  <!-- myrabot-desc: ignore[I008] light on purpose -->\n  <link name="base_link"/>\n'
+                '</robot>\n',
+                "unused suppression ignore[I008]: no I008 finding here in this run; remove it",
+                _ROBOT + '  <link name="base_link"/>\n</robot>\n',
+                filename="robot.urdf.xacro")),
+    ExternalRule(
+        "X008", "xacro-warning", "warning", "xacro itself warned while expanding the file.",
         "xacro prints warnings for things it ignores (an unknown attribute on a xacro tag, a redefined "
         "global property, child elements of an include); the result may differ from what was meant.",
         "Do what xacro's message says (the attribute is ignored: remove it or spell it as xacro reads it).",

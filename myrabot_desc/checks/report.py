@@ -205,21 +205,19 @@ def _bundled_name() -> str:
 
 
 def _rule_name(code: str) -> str:
-    from myrabot_desc.checks.codes import LINT_CODES
     from myrabot_desc.checks.registry import EXTERNAL, RULES
 
     if code in RULES:
         return RULES[code].name
-    return (EXTERNAL.get(code) or LINT_CODES.get(code) or (code.lower(),))[0]
+    return EXTERNAL.get(code, (code.lower(),))[0]
 
 
 def rule_table():
     """[(code, name, severity, summary, full doc)] for every known code, sorted."""
-    from myrabot_desc.checks.codes import LINT_CODES
     from myrabot_desc.checks.registry import EXTERNAL, load_all
 
     rows = [(c, r.name, r.severity, r.summary, r.doc) for c, r in load_all().items()]
-    rows += [(c, n, s, summ, summ) for c, (n, s, summ) in {**LINT_CODES, **EXTERNAL}.items()]
+    rows += [(c, n, s, summ, summ) for c, (n, s, summ) in EXTERNAL.items()]
     return sorted(rows)
 
 

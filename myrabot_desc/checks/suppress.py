@@ -163,6 +163,18 @@ def apply(diags: list, robot, enabled) -> tuple[list, list, list]:
     return kept, sorted(set(seen)), sorted(used)
 
 
+def unused_diagnostics(seen, used: set) -> list:
+    """X009 for each suppression comment whose codes (of those ``seen``) silenced nothing."""
+    unused: dict[tuple, list[str]] = {}
+    for key in map(tuple, seen):
+        if key not in used:
+            unused.setdefault(key[:2], []).append(key[2])
+    return [Diagnostic("X009", "warning", f"unused suppression ignore[{','.join(codes)}]: no {'/'.join(codes)} "
+                       "finding here in this run; remove it", Loc(file, line),
+                       {"rule": "unused-suppression", "codes": codes})
+            for (file, line), codes in unused.items()]
+
+
 def unused_findings(results) -> None:
     """After the whole run: X009 for every suppression no checked model used, added to the first
     result (in input order) whose model read that file."""
@@ -173,16 +185,8 @@ def unused_findings(results) -> None:
         used.update(map(tuple, r.suppressions_used))
     reported = set()
     for r in results:
-        unused: dict[tuple, list[str]] = {}
-        for key in map(tuple, r.suppressions_seen):
-            if key in used or key in reported:
-                continue
-            reported.add(key)
-            unused.setdefault(key[:2], []).append(key[2])
-        if not unused:
-            continue
-        for (file, line), codes in unused.items():
-            r.diagnostics.append(Diagnostic(
-                "X009", "warning", f"unused suppression ignore[{','.join(codes)}]: no {'/'.join(codes)} finding "
-                f"here in this run; remove it", Loc(file, line), {"rule": "unused-suppression", "codes": codes}))
-        r.diagnostics = sort_diagnostics(r.diagnostics)
+        fresh = [k for k in map(tuple, r.suppressions_seen) if k not in reported]
+        reported.update(fresh)
+        extra = unused_diagnostics(fresh, used)
+        if extra:
+            r.diagnostics = sort_diagnostics(list(r.diagnostics) + extra)

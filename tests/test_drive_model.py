@@ -185,7 +185,7 @@ def test_check_convert_and_sim_see_the_same_drive(tmp_path, robot):
     assert info["URDF wheel separation"] == pytest.approx(g.separation, abs=1e-6)
     assert info["URDF wheel radius"] == pytest.approx(g.radius, abs=1e-6)
     head = csv.read_text().splitlines()[0].split(",")
-    assert head[-2:] == [d.left[0], d.right[0]]
+    assert head[-2:] == [f"{d.left[0]}_rad", f"{d.right[0]}_rad"]      # the CSV names carry units
     # and its plugin-geometry run, when the plugin gives numbers, uses the plugin's
     if d.source == "plugin" and d.separation is not None and d.radius is not None:
         r = invoke("sim", "drive", "--json", "--twist", "0.2,0,1", "--twist", "0,0.5,1", *args)

@@ -158,3 +158,20 @@ def test_help_has_an_example():
            "print('viser' in sys.modules, 'mujoco' in sys.modules, 'matplotlib' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True).stdout.strip()
     assert out == "False False False"
+
+
+def test_wheels_as_the_plugin_believes_them_against_the_urdf():
+    """wander_bot's diff-drive plugin says 0.1 m wheels 0.4 m apart; the URDF built 0.08 m, 0.3 m."""
+    from myrabot_desc.view.server import Viewer
+
+    wander = FIX / "wander_bot"
+    v = Viewer(Inputs(files=[str(wander / "urdf" / "robot.xacro")], packages={"wander_bot": str(wander)}).load,
+               port=0, findings=False)
+    try:
+        assert "URDF: radius 0.08 m, separation 0.3 m" in v.wheel_text
+        assert "radius 0.1 m, separation 0.4 m" in v.wheel_text
+        assert len(v._nodes["wheels"]) == 5            # two URDF rims, two plugin rims, the numbers
+        d = v.drive
+        assert d.plugin.separation == pytest.approx(0.4) and d.urdf.separation == pytest.approx(0.3)
+    finally:
+        v.stop()

@@ -9,35 +9,87 @@ import os
 import sys
 from pathlib import Path
 
+from myrabot_desc.diagnostics import Loc
 from myrabot_desc.errors import InputError
 
 
-def write_output(path: str | os.PathLike, data: str | bytes) -> None:
-    if str(path) == "-":
+def _check_target(target: Path, protect=()) -> None:
+    if target.is_dir():
+        raise InputError(f"cannot write {target}: it is a folder; give a file name (e.g. {target / 'out'})",
+                         Loc(str(target)))
+    try:
+        real = target.resolve()
+    except (OSError, RuntimeError):
+        return
+    if any(real == _real(p) for p in protect):
+        raise InputError(f"refusing to write {target}: it is an input of this run (it would be overwritten)",
+                         Loc(str(target)))
+
+
+def _real(p) -> Path | None:
+    try:
+        return Path(p).resolve()
+    except (OSError, RuntimeError, ValueError):
+        return None
+
+
+def write_output(path: str | os.PathLike, data: str | bytes, protect=()) -> None:
+    """One output, atomically (temp file in the target folder, then rename). ``protect``: the
+    files this run read (a model, its includes): naming one of them as the output is refused."""
+    write_outputs([(path, data)], protect)
+
+
+def write_outputs(items, protect=()) -> None:
+    """Several outputs as one transaction: every file is written to a temporary file next to its
+    target first; only when all are written are they renamed into place. On any failure no
+    target is touched, no temporary file stays, and the folders made for the targets go too."""
+    staged: list[tuple[str, Path]] = []
+    created: list[Path] = []
+    to_stdout = [data for path, data in items if str(path) == "-"]
+    files = [(Path(path), data) for path, data in items if str(path) != "-"]
+    try:
+        for target, _ in files:
+            _check_target(target, protect)
+        for target, data in files:
+            try:
+                p = target.parent.absolute()
+                made = []
+                while not p.exists():
+                    made.append(p)
+                    p = p.parent
+                target.parent.mkdir(parents=True, exist_ok=True)
+                created.extend(reversed(made))
+                # (not tempfile.mkstemp: importing tempfile costs more than the whole write of a small URDF)
+                tmp = str(target.parent / f".{target.name}.{os.getpid()}.{os.urandom(6).hex()}.tmp")
+                fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_CLOEXEC", 0), 0o666)
+            except OSError as exc:
+                raise InputError(f"cannot write {target}: {exc.strerror}", Loc(str(target))) from None
+            staged.append((tmp, target))
+            try:
+                with os.fdopen(fd, "wb") as fh:
+                    fh.write(data.encode("utf-8") if isinstance(data, str) else data)
+            except OSError as exc:
+                raise InputError(f"cannot write {target}: {exc.strerror}", Loc(str(target))) from None
+        for tmp, target in staged:
+            os.replace(tmp, target)
+    except BaseException:
+        for tmp, _ in staged:
+            try:
+                os.unlink(tmp)
+            except OSError:
+                pass
+        for d in reversed(created):
+            try:
+                d.rmdir()          # only if still empty
+            except OSError:
+                break
+        raise
+    for data in to_stdout:
         if isinstance(data, bytes):
             sys.stdout.buffer.write(data)
         else:
             sys.stdout.write(data)
         sys.stdout.flush()
-        return
-    target = Path(path)
-    try:
-        target.parent.mkdir(parents=True, exist_ok=True)
-        # (not tempfile.mkstemp: importing tempfile costs more than the whole write of a small URDF)
-        tmp = str(target.parent / f".{target.name}.{os.getpid()}.{os.urandom(6).hex()}.tmp")
-        fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_CLOEXEC", 0), 0o666)
-    except OSError as exc:
-        raise InputError(f"cannot write {target}: {exc.strerror}") from None
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(data.encode("utf-8") if isinstance(data, str) else data)
-        os.replace(tmp, target)
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
-        raise
 
 
 class OutputDir:
@@ -52,7 +104,9 @@ class OutputDir:
         self.target = Path(target_dir)
 
     def __enter__(self) -> Path:
+        import signal
         import tempfile
+        import threading
 
         self.created = []                  # folders made here, innermost last
         p = self.target.absolute()
@@ -60,13 +114,28 @@ class OutputDir:
             self.created.append(p)
             p = p.parent
         self.created.reverse()
-        self.target.mkdir(parents=True, exist_ok=True)
-        self.stage = Path(tempfile.mkdtemp(prefix=".staging.", dir=self.target))
+        if self.target.exists() and not self.target.is_dir():
+            raise InputError(f"cannot write into {self.target}: it is a file, not a folder")
+        try:
+            self.target.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise InputError(f"cannot write into {self.target}: {exc.strerror}") from None
+        _clean_stale_stages(self.target)
+        # the staging folder is named for this process: a run killed with SIGKILL leaves it, and
+        # the next run into the same folder removes it (the process is gone)
+        self.stage = Path(tempfile.mkdtemp(prefix=f".staging.{os.getpid()}.", dir=self.target))
+        self.saved_term = None
+        if threading.current_thread() is threading.main_thread():
+            # SIGTERM: unwind through __exit__ (staging removed) instead of dying in place
+            self.saved_term = signal.signal(signal.SIGTERM, _terminate)
         return self.stage
 
     def __exit__(self, exc_type, exc, tb):
         import shutil
+        import signal
 
+        if self.saved_term is not None:
+            signal.signal(signal.SIGTERM, self.saved_term)
         try:
             if exc_type is None:
                 for item in sorted(self.stage.rglob("*")):
@@ -83,3 +152,30 @@ class OutputDir:
                     except OSError:
                         break
         return False
+
+
+def _terminate(signum, frame):
+    raise SystemExit(128 + signum)
+
+
+def _clean_stale_stages(folder: Path) -> None:
+    """Remove ``.staging.<pid>.*`` folders of processes that no longer run."""
+    import shutil
+
+    try:
+        entries = [e for e in folder.iterdir() if e.name.startswith(".staging.") and e.is_dir()]
+    except OSError:
+        return
+    for e in entries:
+        pid = e.name.split(".")[2] if e.name.count(".") >= 3 else ""
+        if pid.isdigit() and int(pid) != os.getpid():
+            try:
+                os.kill(int(pid), 0)
+                continue            # still running (another run writing here)
+            except ProcessLookupError:
+                pass
+            except OSError:
+                continue
+        elif pid.isdigit():
+            continue
+        shutil.rmtree(e, ignore_errors=True)

@@ -50,6 +50,8 @@ LIMITS: tuple[Limit, ...] = (
           "most macro calls in one build (5x the 4,000-call benchmark)"),
     Limit("max_output_elements", "MYRABOT_DESC_MAX_ELEMENTS", 200_000, "--max-elements",
           "most elements a build may produce, counted as macros expand"),
+    Limit("max_eval_seconds", "MYRABOT_DESC_MAX_EVAL_SECONDS", 3, None,
+          "seconds all ${} expressions of one build may take together"),
     Limit("max_mesh_bytes", "MYRABOT_DESC_MAX_MESH_BYTES", 50_000_000, None, "largest mesh file read"),
     Limit("max_mesh_triangles", "MYRABOT_DESC_MAX_MESH_TRIANGLES", 2_000_000, None, "most triangles in one mesh"),
     Limit("max_material_bytes", "MYRABOT_DESC_MAX_MATERIAL_BYTES", 5 * 1024 * 1024, None,
@@ -136,3 +138,218 @@ def parse_xml_bytes(data: bytes, name: str):
         raise InputError("DTDs and entity declarations are not allowed in model files", Loc(name, 1))
     return root
 
+
+
+# ------------------------------------------------------------------ may I open this path?
+class PathRefused(InputError):
+    """A path outside the allowed folders, or not a regular file (code X006)."""
+
+    def __init__(self, message: str, loc: Loc | None = None, stack=None):
+        super().__init__(message, loc, stack, code="X006")
+
+
+def is_pseudo(path) -> bool:
+    """A path that names no folder of files: /dev/stdin, /proc/self/fd/0, a pipe, ``-``."""
+    s = str(path)
+    return s == "-" or s.startswith(("/dev/", "/proc/")) or not Path(s).resolve().parent.is_dir() \
+        or Path(s).resolve() == Path("/") or str(Path(s).resolve().parent) in ("/dev", "/proc")
+
+
+def check_path(path, roots=None, what: str = "file") -> Path:
+    """THE answer to "may I open this path?" for every reader of model-named files.
+
+    Symlinks are resolved and the real path must lie inside one of ``roots`` (when given); it
+    must be a regular file (no FIFO, device, socket or folder: those block or never end).
+    Returns the resolved path; raises PathRefused (outside / not a regular file) or InputError
+    (no such file)."""
+    import os
+    import stat
+
+    p = Path(path)
+    try:
+        real = p.resolve()
+    except (OSError, RuntimeError, ValueError):
+        raise InputError(f"cannot read {_short(str(p), 120)}: unresolvable path") from None
+    if roots is not None and not any(real == r or real.is_relative_to(r) for r in _real_roots(roots)):
+        if not _exists(real):
+            raise InputError(f"no such {what}: {_short(str(p), 200)}")
+        raise PathRefused(f"refusing to read {_short(str(p), 200)}: outside the allowed folders (the input's "
+                          "folder and package roots; use --allow-path DIR or -p NAME=DIR to allow it)")
+    try:
+        st = os.stat(real)
+    except (OSError, ValueError) as exc:
+        if isinstance(exc, FileNotFoundError):
+            raise InputError(f"no such {what}: {_short(str(p), 200)}") from None
+        raise InputError(f"cannot read {_short(str(p), 200)}: {getattr(exc, 'strerror', None) or exc}") from None
+    if not stat.S_ISREG(st.st_mode):
+        kind = "a folder" if stat.S_ISDIR(st.st_mode) else "a FIFO" if stat.S_ISFIFO(st.st_mode) else \
+            "a device" if stat.S_ISCHR(st.st_mode) or stat.S_ISBLK(st.st_mode) else "a socket or special file"
+        raise PathRefused(f"refusing to read {_short(str(p), 200)}: {kind}, not a regular file")
+    return real
+
+
+def _exists(p: Path) -> bool:
+    try:
+        return p.exists()
+    except (OSError, ValueError):
+        return False
+
+
+def _real_roots(roots) -> list[Path]:
+    out = []
+    for r in roots:
+        try:
+            out.append(Path(r).resolve())
+        except (OSError, RuntimeError):
+            continue
+    return out
+
+
+def may_open(path, roots=None) -> bool:
+    """check_path as a yes/no (for scans that skip what they may not read)."""
+    try:
+        check_path(path, roots)
+        return True
+    except InputError:
+        return False
+
+
+def open_checked(path, roots=None, what: str = "file"):
+    """Open a checked path for binary reading without following a swap to a FIFO (O_NONBLOCK,
+    then fstat): the check and the open see the same regular file."""
+    import os
+    import stat
+
+    real = check_path(path, roots, what)
+    try:
+        fd = os.open(real, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0))
+    except OSError as exc:
+        raise InputError(f"cannot read {_short(str(path), 200)}: {exc.strerror}") from None
+    if not stat.S_ISREG(os.fstat(fd).st_mode):
+        os.close(fd)
+        raise PathRefused(f"refusing to read {_short(str(path), 200)}: not a regular file")
+    return os.fdopen(fd, "rb")
+
+
+def read_checked(path, roots=None, max_bytes: int | None = None, what: str = "file") -> bytes:
+    """Read a whole checked file, refusing it past ``max_bytes`` (read as it grows, not trusted
+    from stat: /proc files report 0 bytes)."""
+    with open_checked(path, roots, what) as f:
+        if max_bytes is None:
+            return f.read()
+        data = f.read(max_bytes + 1)
+    if len(data) > max_bytes:
+        raise InputError(f"{display(path)} is over the {max_bytes}-byte limit "
+                         "(see MYRABOT_DESC_MAX_INPUT_BYTES)")
+    return data
+
+
+PSEUDO_FOLDERS = ("/dev", "/proc", "/sys", "/run")
+
+
+def is_pseudo_folder(folder) -> bool:
+    """A folder that holds no model files of anyone's package: the root of the disk, /dev (where
+    /dev/stdin lives), /proc, /sys. A model read from there gets no folder root at all."""
+    real = Path(folder).resolve()
+    return real == Path("/") or any(real == Path(p) or real.is_relative_to(p) for p in PSEUDO_FOLDERS)
+
+
+def read_input(path, max_bytes: int) -> bytes:
+    """The model file the user named (a pipe such as /dev/stdin is fine: the user chose it), read
+    up to ``max_bytes`` + 1 so that /dev/zero or an endless pipe stops at the limit."""
+    p = Path(path)
+    try:
+        with open(p, "rb") as f:
+            data = f.read(max_bytes + 1)
+    except OSError as exc:
+        raise InputError(f"cannot read {p}: {exc.strerror}") from None
+    if len(data) > max_bytes:
+        raise InputError(f"{p} is over the {max_bytes}-byte limit (see MYRABOT_DESC_MAX_INPUT_BYTES)")
+    return data
+
+
+# ------------------------------------------------------------------ linear scans of untrusted text
+def scan_tag_attr(text: str, tag: str, attr: str) -> list[str]:
+    """Values of ``attr`` on every ``<tag ...>`` / ``<xacro:tag ...>`` start tag of ``text``.
+
+    One pass, no regular expression (``<include\\s[^>]*filename...`` is quadratic on a file of
+    unclosed tags: 49 s on 560 kB): each character is looked at a bounded number of times."""
+    out: list[str] = []
+    n, pos, k = len(text), 0, len(tag)
+    while True:
+        i = text.find("<", pos)
+        if i < 0:
+            return out
+        j = i + 1
+        if text.startswith("xacro:", j):
+            j += 6
+        if not text.startswith(tag, j) or j + k >= n or text[j + k] not in " \t\r\n":
+            pos = i + 1
+            continue
+        gt = text.find(">", j + k)
+        if gt < 0:
+            return out
+        value = _attr_value(text, j + k, gt, attr)
+        if value is not None:
+            out.append(value)
+        pos = gt + 1
+
+
+def _attr_value(text: str, start: int, end: int, attr: str) -> str | None:
+    pos = start
+    while True:
+        a = text.find(attr, pos, end)
+        if a < 0:
+            return None
+        pos = a + len(attr)
+        if text[a - 1] not in " \t\r\n":
+            continue
+        p = pos
+        while p < end and text[p] in " \t\r\n":
+            p += 1
+        if p >= end or text[p] != "=":
+            continue
+        p += 1
+        while p < end and text[p] in " \t\r\n":
+            p += 1
+        if p >= end or text[p] not in "\"'":
+            continue
+        close = text.find(text[p], p + 1, end)
+        return text[p + 1:close] if close >= 0 else None
+
+
+MAX_WALK_FILES = 20_000      # model files a folder walk lists
+MAX_WALK_DIRS = 50_000       # folders it visits
+
+
+def walk_models(folder, recursive: bool, suffixes=(".urdf", ".xacro"), skip_dirs=()) -> list[Path]:
+    """Model files of ``folder`` (``recursive``: below it too; hidden and ``skip_dirs`` folders
+    skipped), each one :func:`check_path`-ed against the folder: a symlink leaving it, a FIFO or
+    a device is left out. Symlinked folders are not followed (no loops); the walk is bounded."""
+    import os
+
+    top = Path(folder)
+    root = [top.resolve()]
+    out: list[Path] = []
+    if not recursive:
+        names = sorted(c for c in top.iterdir() if c.name.endswith(tuple(suffixes)))
+        return [c for c in names if may_open(c, root)][:MAX_WALK_FILES]
+    dirs_seen = 0
+    for here, dirs, names in os.walk(top):
+        dirs_seen += 1
+        if dirs_seen > MAX_WALK_DIRS or len(out) >= MAX_WALK_FILES:
+            break
+        dirs[:] = sorted(d for d in dirs if d not in skip_dirs and not d.startswith("."))
+        out.extend(p for p in (Path(here) / n for n in sorted(names) if n.endswith(tuple(suffixes)))
+                   if may_open(p, root))
+    return out[:MAX_WALK_FILES]
+
+
+def included_names(path, max_bytes: int = 2_000_000) -> set[str]:
+    """File names a xacro file includes (``<xacro:include filename=...>``), by a linear scan;
+    a file that may not be read, or is over ``max_bytes``, includes nothing."""
+    try:
+        text = read_checked(path, None, max_bytes).decode("utf-8", errors="replace")
+    except InputError:
+        return set()
+    return {Path(f).name for f in scan_tag_attr(text, "include", "filename")}

@@ -151,7 +151,7 @@ ESCAPES = {
     "format": '<xacro:property name="fmt" value="{0.__globals__[os]}"/><link name="${fmt.format(xacro.load_yaml)}"/>',
     "format_map": '<xacro:property name="fmt" value="{x}"/><link name="${fmt.format_map(dict(x=1))}"/>',
     "eval_open": '<link name="$(eval open(\'/etc/passwd\').read())"/>',
-    "lambda": '<link name="${(lambda: 1)()}"/>',
+    "lambda_code": '<link name="${(lambda: 1).__code__}"/>',
     "pow_bomb": '<link name="${9**9**9}"/>',
     "redefined": '<xacro:property name="radians" value="${xacro.load_yaml}"/><link name="${radians(\'x.yaml\')}"/>',
 }

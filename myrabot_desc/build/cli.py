@@ -78,7 +78,7 @@ def build_cmd(inputs, output, deps, resolve_uris, allow_errors, **limit_flags):
         for d in result.diagnostics:
             click.echo(str(d), err=True)
         if deps:
-            write_output(output or "-", "\n".join(result.deps) + "\n")
+            write_output(output or "-", "\n".join(result.deps) + "\n", protect=result.deps)
             return
         if result.errors and not allow_errors:
             click.echo(f"{len(result.errors)} error(s): nothing written (use --allow-errors to write anyway)",
@@ -87,7 +87,7 @@ def build_cmd(inputs, output, deps, resolve_uris, allow_errors, **limit_flags):
         text = result.text
         if resolve_uris:
             text = _resolve_uris(result)
-        write_output(output or "-", text)
+        write_output(output or "-", text, protect=result.deps)   # never over its own input
         if output and output != "-":
             click.echo(f"wrote {output}", err=True)
         if result.errors:

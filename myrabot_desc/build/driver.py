@@ -130,6 +130,8 @@ class _Build:
         key = path.resolve()
         if key in self.trees:
             return self.trees[key]
+        from myrabot_desc.safety import read_checked
+
         try:
             size = path.stat().st_size
         except OSError as exc:
@@ -137,10 +139,10 @@ class _Build:
         if size > self.limits.max_input_bytes:
             raise InputError(f"{path} is {size} bytes, over the {self.limits.max_input_bytes}-byte limit "
                              "(see --max-input-bytes or MYRABOT_DESC_MAX_INPUT_BYTES)", asked_at)
-        try:
-            data = path.read_bytes()
-        except OSError as exc:
-            raise InputError(f"cannot read {path}: {exc.strerror}", asked_at) from None
+        try:    # a regular file only (a FIFO would block), read no further than the limit
+            data = read_checked(path, None, self.limits.max_input_bytes)
+        except InputError as exc:
+            raise InputError(exc.message, asked_at or exc.loc, code=exc.code) from None
         root = parse_xml_bytes(data, display(path))
         self.trees[key] = root
         return root
@@ -369,7 +371,13 @@ class _Build:
         Returns the parsed root, which the loader reuses."""
         from lxml import etree
 
-        root = etree.fromstring(text.encode("utf-8"), parser=safe_parser())
+        try:
+            root = etree.fromstring(text.encode("utf-8"), parser=safe_parser())
+        except etree.XMLSyntaxError as exc:   # e.g. a 15 MB attribute value built by ${}s (lxml's 10 MB cap)
+            line = exc.position[0] if exc.position else "?"
+            why = re.sub(r",? line \d+, column \d+$", "", " ".join((exc.msg or str(exc)).split())).strip()
+            raise InputError(f"the expanded document is not well-formed XML (line {line} of the output: "
+                             f"{_short(why, 200)})", Loc(display(self.src))) from None
         elements = [el for el in root.iter() if isinstance(el.tag, str)]
         loc_of = dict(zip(map(id, elements), locations))
         found_links = False
@@ -419,54 +427,6 @@ class _Build:
 
 
 
-def _check_yaml_aliases(path: Path, loc) -> None:
-    """A YAML "billion laughs" (aliases of aliases) is small on disk and expands to 10^9 items in
-    xacro's wrappers: count the expanded nodes on the composed graph (aliases shared) first."""
-    import yaml
-
-    from myrabot_desc.build.safe_eval import MAX_SEQUENCE_LEN
-
-    try:
-        text = path.read_text(encoding="utf-8", errors="replace")
-    except OSError:
-        return  # xacro reports it
-    if "&" not in text or "*" not in text:
-        return
-    try:
-        node = yaml.compose(text, Loader=yaml.SafeLoader)
-    except RecursionError:
-        raise InputError(f"{path.name}: YAML nests too deeply", loc) from None
-    except yaml.YAMLError:
-        return  # malformed: xacro reports it with its line
-    memo: dict[int, int] = {}
-
-    def size(n) -> int:
-        if id(n) in memo:
-            return memo[id(n)]
-        memo[id(n)] = MAX_SEQUENCE_LEN + 1   # a node reaching itself is too large
-        total = 1
-        if isinstance(n, yaml.SequenceNode):
-            for c in n.value:
-                total += size(c)
-                if total > MAX_SEQUENCE_LEN:
-                    break
-        elif isinstance(n, yaml.MappingNode):
-            for k, v in n.value:
-                total += size(k) + size(v)
-                if total > MAX_SEQUENCE_LEN:
-                    break
-        memo[id(n)] = total
-        return total
-
-    try:
-        too_big = node is not None and size(node) > MAX_SEQUENCE_LEN
-    except RecursionError:
-        raise InputError(f"{path.name}: YAML nests too deeply", loc) from None
-    if too_big:
-        raise InputError(f"{path.name}: YAML aliases expand to over {MAX_SEQUENCE_LEN} items (an alias bomb)", loc)
-
-
-
 def _inside(el, tag: str) -> bool:
     p = el.getparent()
     while p is not None:
@@ -476,22 +436,33 @@ def _inside(el, tag: str) -> bool:
     return False
 
 
+MAX_NEARBY_FILES = 500
+MAX_NEARBY_BYTES = 2_000_000
+
+
 def _defined_nearby(name: str, src: Path, roots) -> str | None:
-    """A .xacro file next to the input (or in a resolved package) that defines macro ``name``."""
-    pattern = re.compile(r"<(?:xacro:)?macro\s[^>]*name\s*=\s*[\"']%s[\"']" % re.escape(name))
+    """A .xacro file next to the input (or in a resolved package) that defines macro ``name``.
+    Regular files inside each folder only (no FIFO, no symlink out), a linear scan of each."""
+    from myrabot_desc.safety import may_open, read_checked, scan_tag_attr
+
     folders = [src.parent] + [Path(r) for r in roots]
-    seen = set()
+    seen: set = set()
     for folder in folders:
-        top = folder.resolve()
-        for f in sorted(folder.rglob("*.xacro")) if folder.is_dir() else []:
-            if f in seen or len(seen) > 500 or not f.resolve().is_relative_to(top):  # no symlinks out
+        if not folder.is_dir():
+            continue
+        top = [folder.resolve()]
+        for f in sorted(folder.rglob("*.xacro")):
+            if f in seen or len(seen) > MAX_NEARBY_FILES:
                 continue
             seen.add(f)
-            try:
-                if f.stat().st_size < 2_000_000 and pattern.search(f.read_text(errors="replace")):
-                    return str(f)
-            except OSError:
+            if not may_open(f, top):
                 continue
+            try:
+                text = read_checked(f, None, MAX_NEARBY_BYTES).decode("utf-8", errors="replace")
+            except InputError:
+                continue
+            if name in text and name in scan_tag_attr(text, "macro", "name"):
+                return str(f)
     return None
 
 
@@ -576,8 +547,6 @@ class _Hooks:
             (sa, "_eval_env"): sa._eval_env, (sa, "_eval_optenv"): sa._eval_optenv, (sa, "_eval"): sa._eval,
         }
         self.saved_dict = dict(sa._eval_dict)
-        g = xacro._global_symbols
-        self.saved_yaml = (g["xacro"].get("load_yaml") if "xacro" in g else None, g.get("load_yaml"))
         self.saved_recursion = sys.getrecursionlimit()
         sys.setrecursionlimit(max(self.saved_recursion, b.limits.max_macro_depth * 12 + 2000))
         xacro_fast.reset()
@@ -698,27 +667,27 @@ class _Hooks:
                 return str(value)
             return str(eval(s, {"__builtins__": {}}, sa._DictWrapper(context["arg"], functions)))
 
-        def guarded_yaml(orig_load_yaml):
-            def load_yaml(filename):
-                check_yaml(filename)
-                return orig_load_yaml(filename)
-            return load_yaml
+        def load_yaml(filename):
+            """xacro's load_yaml through our YAML loader and path check (xacro's own registers
+            unsandboxed tag constructors on PyYAML's shared SafeLoader)."""
+            from myrabot_desc.build import yaml_load
+            from myrabot_desc.safety import read_checked
 
-        def check_yaml(filename):
             spec = xacro.abs_filename_spec(filename)
             p = Path(spec)
-            if not b.allowed(p):
-                raise InputError(f"refusing to read {p}: outside the input's folder and the package roots "
-                                 "(use --allow-path DIR to allow it)", b.last_loc, b._stack(), code="X006")
-            if p.is_file() and p.stat().st_size > b.limits.max_input_bytes:
-                raise InputError(f"{p} is over the {b.limits.max_input_bytes}-byte limit", b.last_loc)
-            if p.is_file():
-                _check_yaml_aliases(p, b.last_loc)
+            try:
+                data = read_checked(p, b.allow_roots + b.resolver.roots(), b.limits.max_input_bytes, "YAML file")
+                value = yaml_load.loads(data.decode("utf-8", errors="replace"), display(p))
+            except InputError as exc:
+                line = f":{exc.loc.line}" if exc.loc and exc.loc.line and exc.loc.file == display(p) else ""
+                msg = exc.message if exc.message.startswith(("refusing", "no such", "cannot read")) else \
+                    f"{p.name}{line}: {exc.message}"
+                raise InputError(msg, b.last_loc, b._stack(), code=exc.code) from None
+            xacro.all_includes.append(spec)
+            return xacro.YamlListWrapper.wrap(value)
 
-        if self.saved_yaml[0] is not None:
-            dict.__setitem__(g["xacro"], "load_yaml", guarded_yaml(self.saved_yaml[0]))
-        if self.saved_yaml[1] is not None:
-            dict.__setitem__(g, "load_yaml", guarded_yaml(self.saved_yaml[1]))
+        self.saved_globals = xacro._global_symbols
+        xacro._global_symbols = safe_eval.fresh_namespace(load_yaml)   # nothing a build does reaches the next
         xacro.parse = parse
         xacro.eval_all = eval_all
         xacro.handle_macro_call = handle_macro_call
@@ -729,8 +698,16 @@ class _Hooks:
         xacro.remove_previous_comments = xacro_fast.remove_previous_comments
         xacro.eval_text = xacro_fast.make_eval_text()
         xacro_fast.install_clone()
+
+        def too_many_elements():
+            raise InputError(f"the expansion produces over {b.limits.max_output_elements} elements (macro bodies "
+                             "and blocks inserted); is a macro or block repeating itself? (see --max-elements "
+                             "or MYRABOT_DESC_MAX_ELEMENTS)", b.last_loc, b._stack())
+
+        xacro_fast.set_clone_limit(b.limits.max_output_elements, too_many_elements)
         if not b.unsafe_eval:
-            xacro.safe_eval = safe_eval.make_safe_eval(self.saved[(xacro, "safe_eval")], refuse)
+            xacro.safe_eval = safe_eval.make_safe_eval(self.saved[(xacro, "safe_eval")], refuse,
+                                                       b.limits.max_eval_seconds)
         sa._eval_find = eval_find
         sa._eval_dict["find"] = eval_find
         sa._eval = subst_eval
@@ -754,13 +731,13 @@ class _Hooks:
             setattr(mod, name, value)
         sa._eval_dict.clear()
         sa._eval_dict.update(self.saved_dict)
-        g = xacro._global_symbols
-        if "xacro" in g and self.saved_yaml[0] is not None:
-            dict.__setitem__(g["xacro"], "load_yaml", self.saved_yaml[0])
-        if "load_yaml" in g and self.saved_yaml[1] is not None:
-            dict.__setitem__(g, "load_yaml", self.saved_yaml[1])
+        from myrabot_desc.build import yaml_load
+
+        xacro._global_symbols = self.saved_globals
+        yaml_load.scrub_globals()
         sys.setrecursionlimit(self.saved_recursion)
         xacro_fast.uninstall_clone()
+        xacro_fast.set_clone_limit(float("inf"), lambda: None)
         xacro_fast.reset()
         xacro.substitution_args_context["arg"] = {}
         return False

@@ -229,6 +229,9 @@ def clone_node(node, deep, doc):
     """
     t = node.nodeType
     if t == ELEMENT:
+        _clone_left[0] -= 1
+        if _clone_left[0] < 0:      # the element limit, counted as the tree grows (build.py sets it)
+            _clone_left[1]()
         qn = node.tagName
         clone = _new(_Element)
         clone.ownerDocument = doc
@@ -295,6 +298,15 @@ _new = object.__new__
 _Element = _Attr = _Text = _Comment = _NodeList = None
 
 
+_clone_left: list = [float("inf"), lambda: None]   # elements clones may still make, what to do past it
+
+
+def set_clone_limit(n, over) -> None:
+    """Every element cloned (macro bodies, inserted blocks, at any nesting) counts against ``n``;
+    past it ``over()`` is called (it raises)."""
+    _clone_left[0], _clone_left[1] = n, over
+
+
 def install_clone():
     global _orig_clone, _Element, _Attr, _Text, _Comment, _NodeList
     from xml.dom import minidom
@@ -314,6 +326,24 @@ def uninstall_clone():
 
 
 # ---------------------------------------------------------------- eval_all
+# An XML name (letters, digits, _ . - :, not starting with a digit, . or -). minidom writes any
+# string as a name: a name holding quotes would inject markup (a whole <joint>) into the URDF.
+_XML_NAME = None
+
+
+def _check_xml_name(name, what: str) -> None:
+    global _XML_NAME
+    import re
+
+    import xacro as X
+
+    if _XML_NAME is None:
+        _XML_NAME = re.compile(r"[^\W\d.\-][\w.\-:]*\Z")
+    if isinstance(name, str) and (len(name) > 1000 or not _XML_NAME.match(name)):
+        shown = name if len(name) <= 80 else name[:80] + f"... ({len(name)} characters)"
+        raise X.XacroException(f"{what}: {shown!r} is not a valid XML name")
+
+
 def eval_all(node, macros, symbols):
     """Drop-in for xacro.eval_all (2.1.1), statement for statement, minus minidom overhead.
 
@@ -396,6 +426,7 @@ def eval_all(node, macros, symbols):
                 name = X.eval_text(*X.reqd_attrs(node, ["xacro:name"]), symbols=symbols)
                 if not name:
                     raise X.XacroException("xacro:element: empty name")
+                _check_xml_name(name, "xacro:element")
 
                 node.removeAttribute("xacro:name")
                 node.nodeName = node.tagName = name
@@ -405,6 +436,7 @@ def eval_all(node, macros, symbols):
                 name, value = [X.eval_text(a, symbols) for a in X.reqd_attrs(node, ["name", "value"])]
                 if not name:
                     raise X.XacroException("xacro:attribute: empty name")
+                _check_xml_name(name, "xacro:attribute")
 
                 node.parentNode.setAttribute(name, value)
                 X.replace_node(node, by=None)

@@ -48,20 +48,33 @@ def own_package(path: Path) -> tuple[str, Path] | None:
     return None
 
 
-def _scan(root: Path, found: dict[str, Path], depth: int = 0) -> None:
-    """Collect packages under ``root`` (a package folder is not descended into)."""
-    if depth > MAX_SCAN_DEPTH or not root.is_dir():
+MAX_SCAN_FOLDERS = 5_000  # folders one search path may make us look at (``--package-path /``)
+
+
+def _scan(root: Path, found: dict[str, Path], depth: int = 0, budget: list | None = None) -> None:
+    """Collect packages under ``root`` (a package folder is not descended into). Bounded in depth
+    and in folders visited; /proc, /sys and /dev are never entered; symlinked folders are not followed."""
+    from myrabot_desc.safety import PSEUDO_FOLDERS
+
+    budget = [MAX_SCAN_FOLDERS] if budget is None else budget
+    if depth > MAX_SCAN_DEPTH or budget[0] <= 0 or not root.is_dir():
+        return
+    budget[0] -= 1
+    if str(root) in PSEUDO_FOLDERS:
         return
     name = package_name(root)
     if name:
         found.setdefault(name, root)
         return
     try:
-        children = sorted(p for p in root.iterdir() if p.is_dir() and not p.name.startswith("."))
+        children = sorted(p for p in root.iterdir() if not p.name.startswith(".") and not p.is_symlink()
+                          and p.is_dir())
     except OSError:
         return
     for child in children:
-        _scan(child, found, depth + 1)
+        if budget[0] <= 0:
+            return
+        _scan(child, found, depth + 1, budget)
 
 
 def _python_prefix_shares() -> list[Path]:
@@ -176,8 +189,14 @@ def resource_roots(base: Path, package_roots: dict[str, Path]) -> list[Path]:
 def _base_roots(base: Path) -> tuple[Path, ...]:
     from myrabot_desc.build.packages import data_root
 
+    from myrabot_desc.safety import is_pseudo_folder
+
+    if is_pseudo_folder(base):      # a model from /dev/stdin: no folder of its own, nothing "above" it
+        return (data_root().resolve(),)
     own = own_package(base)
-    return tuple(Path(r).resolve() for r in (own[1] if own else base.parent, base, data_root()))
+    # the folder above the model, but never the whole disk
+    return tuple(Path(r).resolve() for r in (own[1] if own else base.parent, base, data_root())
+                 if not is_pseudo_folder(r) or Path(r).resolve() == data_root().resolve())
 
 
 def _locate(uri: str, package_roots: dict[str, Path], base: Path) -> tuple[Path | None, bool]:
@@ -186,8 +205,9 @@ def _locate(uri: str, package_roots: dict[str, Path], base: Path) -> tuple[Path 
         path = _resolve_any(uri, package_roots, base)
         if path is None:
             return None, False
-        real = path.resolve()
-        return path, any(real.is_relative_to(r) for r in resource_roots(base, package_roots))
+        from myrabot_desc.safety import may_open
+
+        return path, may_open(path, resource_roots(base, package_roots))   # symlinks resolved, regular files
     except (OSError, ValueError):   # a 5000-character name (ENAMETOOLONG), a NUL byte: no such file
         return None, False
 

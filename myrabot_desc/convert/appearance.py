@@ -100,6 +100,10 @@ class Appearance:
 def texture_mean_rgb(path) -> tuple[float, float, float] | None:
     """Average colour of a texture image (MuJoCo gets one rgba per geom: a can is then red-ish,
     not white). None when the image cannot be read."""
+    from myrabot_desc.safety import may_open
+
+    if not may_open(path):      # a FIFO or device named as a texture would block or never end
+        return None
     try:
         from PIL import Image
 

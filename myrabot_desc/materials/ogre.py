@@ -675,7 +675,11 @@ def read_script_text(path: Path, file: str, max_bytes: int | None = None) -> str
         if size > max_bytes:
             raise InputError(f"material script is {size} bytes, over the {max_bytes}-byte limit ({ENV_BYTES})",
                              Loc(file))
-        data = path.read_bytes()
+        from myrabot_desc.safety import read_checked
+
+        data = read_checked(path, None, max_bytes)     # regular files only: a FIFO would block
+    except InputError as exc:
+        raise InputError(exc.message, Loc(file), code=exc.code) from None
     except IsADirectoryError:
         raise InputError("is a folder, not a .material file", Loc(file)) from None
     except FileNotFoundError:

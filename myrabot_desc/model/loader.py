@@ -7,6 +7,7 @@ the ``myrabot_description`` package shipped with this tool).
 from __future__ import annotations
 
 import math
+import re
 from pathlib import Path
 
 from myrabot_desc.build.packages import BUNDLED_ASSEMBLY, bundled_path, data_root  # noqa: F401  (library API)
@@ -39,20 +40,52 @@ from myrabot_desc.model.parts import (
 # common "unlimited").
 MAX_MAGNITUDE = 1e6
 
+# xacro's namespace as files declare it (any prefix); a generated URDF often keeps the declaration
+# with nothing in it, so a file counts as xacro only when it *uses* the namespace or a substitution.
+_XACRO_NS = re.compile(rb"""xmlns:([A-Za-z_][\w.-]*)\s*=\s*["']https?://(?:www\.|wiki\.)?ros\.org/(?:wiki/)?xacro/?["']""")
+_SUBSTITUTION = re.compile(rb"\$\{|\$\((?:arg|find|env|optenv|eval|dirname|cwd)\s")
+_COMMENT = re.compile(rb"<!--.*?(?:-->|\Z)", re.S)
+_PREFIXED_TAG = re.compile(rb"<([A-Za-z_][\w.-]*):[A-Za-z_]")
 
 
-def is_xacro(path: Path) -> bool:
-    return path.name.endswith(".xacro") or path.suffix == ".xacro"
+def is_xacro(path: Path, data: bytes | None = None) -> bool:
+    """True for a ``.xacro`` name, or for content that uses xacro whatever the name (a drone's top-level
+    ``.gazebo`` file built with args): an element in the xacro namespace (``<xacro:include>``), or a
+    ``${...}`` / ``$(arg ...)`` substitution, outside comments. ``data``: the file's bytes when read."""
+    if path.name.endswith(".xacro"):
+        return True
+    if data is None:
+        return False
+    text = _COMMENT.sub(b"", data)
+    if _SUBSTITUTION.search(text):
+        return True
+    prefixes = {m.group(1) for m in _XACRO_NS.finditer(text)}
+    # one pass over the prefixed tags (a search per declaration would be quadratic on hostile files)
+    return bool(prefixes) and any(m.group(1) in prefixes for m in _PREFIXED_TAG.finditer(text))
 
 
 def load_robot(path=None, **build_options) -> Robot:
-    """Build (``.xacro``) or read (anything else) ``path`` into a Robot. None = bundled MYRAbot."""
+    """Build (xacro: see is_xacro) or read (plain URDF) ``path`` into a Robot. None = bundled MYRAbot."""
     src = Path(path) if path is not None else bundled_path()
     if not src.exists():
         raise InputError(f"no such file: {src}")
     if src.is_dir():
         raise InputError(f"{src} is a folder; give a .urdf or .xacro file")
-    if is_xacro(src):
+    data = None
+    if not is_xacro(src):
+        from myrabot_desc.safety import Limits
+
+        from myrabot_desc.safety import read_input
+
+        limit = (build_options.get("limits") or Limits()).max_input_bytes
+        try:
+            size = src.stat().st_size
+        except OSError as exc:
+            raise InputError(f"cannot read {src}: {exc.strerror}") from None
+        if size > limit:
+            raise InputError(f"{src} is {size} bytes, over the {limit}-byte limit")
+        data = read_input(src, limit)       # bounded: /dev/zero or an endless pipe stops at the limit
+    if data is None or is_xacro(src, data):
         from myrabot_desc.build.driver import build_file
 
         result = build_file(src, build_options.pop("mappings", None), **build_options)
@@ -61,16 +94,6 @@ def load_robot(path=None, **build_options) -> Robot:
                               build_warnings=result.diagnostics, from_xacro=True,
                               packages=build_options.get("packages"),
                               package_paths=build_options.get("package_paths", ()))
-    from myrabot_desc.safety import Limits
-
-    limit = (build_options.get("limits") or Limits()).max_input_bytes
-    try:
-        size = src.stat().st_size
-        if size > limit:
-            raise InputError(f"{src} is {size} bytes, over the {limit}-byte limit")
-        data = src.read_bytes()
-    except OSError as exc:
-        raise InputError(f"cannot read {src}: {exc.strerror}") from None
     return read_urdf_bytes(data, src, packages=build_options.get("packages"),
                            package_paths=build_options.get("package_paths", ()))
 
@@ -200,7 +223,7 @@ class _Reader:
                 from myrabot_desc.build.packages import outside_roots
 
                 if outside_roots(fn, package_roots, robot_src_dir) is not None:
-                    self.issue(shape, f"mesh {fn} lies outside the model's package and folder: not read "
+                    self.issue(shape, f"mesh {fn} lies outside the allowed folders (the model's package and folder): not read "
                                "(a model may only use files of its own package or of the packages it names)",
                                code="X006")
             return Mesh(fn, self.vec(shape, "scale", (1.0, 1.0, 1.0)), path)

@@ -9,6 +9,7 @@ holds more triangles than that. Both limits are in safety.LIMITS
 
 from __future__ import annotations
 
+import os
 import struct
 from pathlib import Path
 
@@ -32,7 +33,7 @@ def precheck(path: Path) -> int:
     """Refuse a mesh file by size or announced face count before parsing it; returns its size."""
     max_bytes, max_tris = limits()
     try:
-        if not path.is_file():
+        if not path.is_file():      # also refuses FIFOs and devices (is_file: regular files only)
             raise MeshError(f"{path.name} is not a file")
         size = path.stat().st_size
     except OSError as exc:
@@ -55,15 +56,76 @@ def precheck(path: Path) -> int:
     return size
 
 
+ZIP_EXTS = {".zip", ".3mf", ".zae"}
+MAX_ARCHIVE_MEMBERS = 10_000
+
+
+def _read(path: Path, max_bytes: int) -> bytes:
+    """The mesh's bytes: a regular file only (a FIFO or device would block or never end)."""
+    from myrabot_desc.safety import read_checked
+
+    try:
+        return read_checked(path, None, max_bytes, what="mesh")
+    except InputError as exc:
+        raise MeshError(f"{path.name}: {exc.message}") from None
+
+
+def _check_archive(path: Path, data: bytes, max_bytes: int) -> None:
+    """A zip/3MF is limited by what it inflates to, not by its size on disk (a 1.5 MB zip can
+    hold 2 GB). zipfile stops each member at its declared size, so the declared sizes bound it."""
+    import io
+    import zipfile
+
+    try:
+        with zipfile.ZipFile(io.BytesIO(data)) as z:
+            infos = z.infolist()
+    except (zipfile.BadZipFile, ValueError, OSError) as exc:
+        raise MeshError(f"{path.name}: not a readable zip archive ({exc})") from None
+    if len(infos) > MAX_ARCHIVE_MEMBERS:
+        raise MeshError(f"{path.name} holds {len(infos)} files, over {MAX_ARCHIVE_MEMBERS}")
+    total = sum(i.file_size for i in infos)
+    if total > max_bytes:
+        raise MeshError(f"{path.name} inflates to {total} bytes, over the {max_bytes}-byte mesh limit ({ENV_BYTES})")
+
+
+def _resolver(path: Path, max_bytes: int):
+    """trimesh's resolver for the files a mesh names (OBJ mtllib, DAE images, glTF buffers): inside
+    the mesh's folder (trimesh's own rule), regular files only, each within the mesh byte limit."""
+    from trimesh.resolvers import FilePathResolver
+
+    from myrabot_desc.safety import read_checked
+
+    class Resolver(FilePathResolver):
+        def get(self, name):
+            for candidate in (name.strip(), name.strip().lstrip("/"), os.path.split(name)[-1]):
+                try:
+                    p = self.absolute(candidate)
+                except ValueError:
+                    continue
+                if p.exists():
+                    return read_checked(p, [Path(self.parent).resolve()], max_bytes, what="file")
+            self.absolute(name)
+            raise FileNotFoundError(name)
+
+    return Resolver(str(path))
+
+
 def load(path: Path, process: bool = True):
     """trimesh.Trimesh of ``path`` (one mesh), or MeshError saying why not."""
+    import io
+
     import trimesh
 
     path = Path(path)
     precheck(path)
-    _, max_tris = limits()
+    max_bytes, max_tris = limits()
+    data = _read(path, max_bytes)
+    ext = path.suffix.lower()
+    if ext in ZIP_EXTS or data[:4] == b"PK\x03\x04":
+        _check_archive(path, data, max_bytes)
     try:
-        mesh = trimesh.load(str(path), force="mesh", process=process)
+        mesh = trimesh.load(io.BytesIO(data), file_type=ext.lstrip(".") or None, force="mesh", process=process,
+                            resolver=_resolver(path, max_bytes))
     except (RecursionError, MemoryError) as exc:
         raise MeshError(f"cannot read {path.name}: {type(exc).__name__}") from None
     except Exception as exc:  # every reader has its own errors: one line naming the file
@@ -101,8 +163,7 @@ def vertices(path: Path, loc=None):
     try:
         size = precheck(path)
         if path.suffix.lower() == ".stl" and size >= 84:
-            with open(path, "rb") as fh:
-                data = fh.read()
+            data = _read(path, limits()[0])
             n = struct.unpack("<I", data[80:84])[0]
             if data[:5].lower() != b"solid" and n > 0 and len(data) == 84 + 50 * n:
                 rec = np.frombuffer(data, np.dtype([("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")]),

@@ -252,7 +252,9 @@ class Robot:
 
     # -------------------------------------------------------- tree helpers
     def child_joints(self, link: str) -> list[Joint]:
-        return [j for j in self.joints.values() if j.parent == link]
+        from myrabot_desc.model.tree import maps   # one map for the robot: a star of 20,000 links stays linear
+
+        return list(maps(self).child_joints.get(link, ()))
 
     def joints_by_parent(self) -> dict[str, list[Joint]]:
         """Parent link -> the joints hanging from it, in document order (for walking the tree)."""
@@ -262,7 +264,9 @@ class Robot:
         return out
 
     def parent_joint(self, link: str) -> Joint | None:
-        return next((j for j in self.joints.values() if j.child == link), None)
+        from myrabot_desc.model.tree import maps
+
+        return maps(self).parent_joint.get(link)
 
     @property
     def roots(self) -> list[str]:

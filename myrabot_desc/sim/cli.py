@@ -44,14 +44,16 @@ def _drive_options(f):
 
 
 def _finish(res, as_json, csv_path, plot_path):
-    from myrabot_desc.output import write_output
+    from myrabot_desc.output import write_outputs
 
+    outputs = []
     if plot_path:
         from myrabot_desc.sim.plot import render
 
-        write_output(plot_path, render(res))
+        outputs.append((plot_path, render(res)))
     if csv_path:
-        write_output(csv_path, res.csv_bytes())
+        outputs.append((csv_path, res.csv_bytes()))
+    write_outputs(outputs)          # both or neither
     if csv_path != "-":
         click.echo(res.as_json() if as_json else res.summary(), nl=False)
     sys.exit(0 if res.passed else 1)

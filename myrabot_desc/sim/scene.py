@@ -17,7 +17,9 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
+from myrabot_desc.diagnostics import Loc
 from myrabot_desc.errors import InputError
+from myrabot_desc.safety import display
 
 
 @dataclass
@@ -93,21 +95,16 @@ class SceneObject:
 
 def load_layout(path: Path, robot_pose=None) -> list[SceneObject]:
     import numpy as np
-    import yaml
 
     from myrabot_desc.build.packages import data_root
     from myrabot_desc.model.kinematics import pose_matrix, world_transforms
     from myrabot_desc.model.loader import load_robot
 
+    from myrabot_desc.build.yaml_load import load_path
+    from myrabot_desc.safety import check_path, limit
+
     path = Path(path)
-    try:
-        doc = yaml.safe_load(path.read_text(encoding="utf-8"))
-    except OSError as exc:
-        raise InputError(f"{path}: cannot read layout: {exc.strerror}") from None
-    except yaml.YAMLError as exc:
-        mark = getattr(exc, "problem_mark", None)
-        line = f":{mark.line + 1}" if mark is not None else ""
-        raise InputError(f"{path}{line}: error: not valid YAML ({getattr(exc, 'problem', exc)})") from None
+    doc = load_path(path, limit("max_input_bytes"))     # our loader: no code from tags, no FIFO
     if not isinstance(doc, dict) or not isinstance(doc.get("objects"), list):
         raise InputError(f"{path}: error: a layout needs an 'objects' list (see layouts/escoja.yaml)")
     root = _package_root(path) or data_root()
@@ -118,8 +115,11 @@ def load_layout(path: Path, robot_pose=None) -> list[SceneObject]:
         if not isinstance(entry, dict) or "file" not in entry:
             raise InputError(f"{path}: error: object {i + 1} needs 'model', 'file' and 'pose'")
         f = root / str(entry["file"])
-        if not f.is_file():
-            raise InputError(f"{path}: error: object {entry.get('model', i + 1)}: no file {f}")
+        try:    # inside the layout's package (or the bundled one), a regular file
+            check_path(f, [root, path.resolve().parent], what="file")
+        except InputError as exc:
+            raise InputError(f"object {entry.get('model', i + 1)}: {exc.message}", Loc(display(path)),
+                             code=exc.code) from None
         pose = _pose(entry.get("pose") or {}, path)
         obj_robot = load_robot(str(f))
         tf = world_transforms(obj_robot)

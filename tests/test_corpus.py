@@ -31,27 +31,14 @@ SHIM = HERE / "corpus_shim"
 ROBOTS = yaml.safe_load((CORPUS / "robots.yaml").read_text())["robots"]
 XACRO = Path(sys.executable).with_name("xacro")
 
-_DICT = "X005: the safe evaluator refuses the call dict(...) (xacro built-in; a ros2_control initial_positions dict)"
-_SPLIT = ("X005: the safe evaluator refuses str methods: ${xyz.split(' ')[0]} (franka_description/robots/common/"
-          "utils.xacro:84-86, reported at its use, utils.xacro:93)")
-_SUFFIX = ("a xacro file not named .xacro (rotors' .gazebo top file, built with args) is read as plain URDF by "
-           "check/info/convert: robot '$(arg mav_name)', 0 links, while build expands it to 12 links")
 _ALL = ("build", "check", "info", "sdf", "mjcf")
-# robot id -> {case: reason}: what fails today. The refused builds fail every case (each needs the build).
+# robot id -> {case: reason}: what fails today. A refused build fails every case (each needs the build).
+# Fixed since this file was written (their entries removed): dict(...) (UR, Kinova), str.split (franka),
+# str.upper (Husky PACS), a xacro top file named .gazebo (rotors), non-<robot> roots.
 XFAIL = {
-    "ur5e_mocked": dict.fromkeys(_ALL, _DICT + " (ur_description/urdf/ros2_control_mock_hardware.xacro:11, "
-                                                   "reported at the call, ur_mocked.urdf.xacro:60)"),
-    "gen3_robotiq_2f_85": dict.fromkeys(_ALL, _DICT + " (kortex_description/robots/kortex_robot.xacro:29, "
-                                                          "reported at the call, gen3.xacro:58)"),
-    "panda": dict.fromkeys(_ALL, _SPLIT),
-    "fr3": dict.fromkeys(_ALL, _SPLIT),
-    "husky_pacs": dict.fromkeys(_ALL, "X005: the safe evaluator refuses str methods: ${name.upper()} in "
-                                      "husky_description/urdf/pacs.urdf.xacro:434, reported at its use :444 "
-                                      "(PACS accessory, HUSKY_PACS_ENABLED=true)"),
-    "husky_pacs_risers": dict.fromkeys(_ALL, "X005: the safe evaluator refuses ${name.upper()} (pacs.urdf.xacro:434); this "
-                                             "variant also needs levels.split(','), levels.pop(0).strip(), "
-                                             "python.isinstance, python.range, int(), str(), float() (pacs.urdf.xacro:250-492)"),
-    "firefly": dict.fromkeys(("check", "info", "sdf", "mjcf"), _SUFFIX),
+    "husky_pacs_risers": dict.fromkeys(_ALL, "X005: the safe evaluator refuses list.pop, a mutating method: "
+                                             "${int(levels.pop(0).strip())} (husky_description/urdf/pacs.urdf.xacro:250, "
+                                             "reported at :253); xacro 2.x evaluates it"),
     "pioneer3at": {"mjcf": "convert --to mjcf exits 2: the URDF's <box size=\"0 0 0\"/> geometries (7, in "
                            "p2os_urdf/defs/pioneer3at_body.xacro) go to MuJoCo, which rejects a size-0 geom"},
 }
@@ -205,7 +192,10 @@ def test_check_inertia_runs(robot):
 # file, re-derived below from xacro's own output (lxml + numpy, not our loader) where it is a
 # matter of numbers. Robots not listed have no errors.
 REAL_ERRORS = {
-    # ROS-Industrial support packages and the ROS 1 Robotiq 2F-85 are kinematic-only: no <inertial>.
+    # ROS-Industrial support packages, the ROS 1 Robotiq 2F-85 and franka without gazebo:=true
+    # (utils.xacro adds inertials only then) are kinematic-only: no <inertial>.
+    "panda": {"I001": 7, "P003": 1},
+    "fr3": {"I001": 7, "P003": 1},
     "irb2400": {"I001": 6, "P003": 1},
     "lrmate200id": {"I001": 6, "P003": 1},
     "robotiq_2f_85": {"I001": 6, "P003": 1},
@@ -222,12 +212,12 @@ REAL_ERRORS = {
     "pmb2": {"I004": 2},
     "tiago": {"I004": 2, "I005": 1},
     "tiago_gripper_hokuyo": {"I004": 2, "I005": 3},
+    # rotors' Firefly body: ixx 0.0347563 + iyy 0.0458929 = 0.0806 < izz 0.0977.
+    "firefly": {"I005": 1},
 }
-FALSE_ERRORS = {
-    "turtlebot3_burger": "S006 false alarm: lidar max_angle 6.28319 is 2*pi rounded (a full scan in radians), not degrees",
-    "turtlebot3_waffle_pi": "S006 false alarm: lidar max_angle 6.28319 is 2*pi rounded (a full scan in radians), not degrees",
-    "firefly": "T001 false alarm: the .gazebo top file is read as plain URDF (0 links) instead of as xacro",
-}
+# False alarms found on the corpus (fixed since: S006 on TurtleBot3's max_angle 6.28319 = 2*pi rounded,
+# T001 on the rotors .gazebo xacro read as plain URDF). A new one goes here as a strict xfail.
+FALSE_ERRORS: dict = {}
 
 
 def _inertia_facts(urdf: str) -> dict:

@@ -7,8 +7,10 @@ STAMP  := $(VENV)/.installed
 OUT    := out
 # Debian peers used by tests and benchmarks: ign sdf -k / -p, check_urdf.
 DEBS   := ignition-tools libsdformat-dev liburdfdom-tools
+# render: offscreen OpenGL for MuJoCo (EGL with Mesa, or OSMesa); view's browser tests: Chromium + driver.
+VIEW_DEBS := libegl1 libgl1-mesa-dri libosmesa6 chromium chromium-driver
 
-.PHONY: install demo test bench fuzz clean system-tools
+.PHONY: install demo test bench fuzz clean system-tools view-tools
 
 install: $(STAMP)
 
@@ -20,6 +22,7 @@ $(STAMP): pyproject.toml
 	# command pays for compiling its modules (PYTHONDONTWRITEBYTECODE may be set)
 	$(BIN)/python -m compileall -q myrabot_desc
 	$(MAKE) --no-print-directory system-tools
+	$(MAKE) --no-print-directory view-tools
 	touch $(STAMP)
 
 # Install the Debian peer tools when missing and when we may (root + apt-get).
@@ -33,6 +36,18 @@ system-tools:
 	  echo "system tools: cannot install $(DEBS) (need root and apt-get); tests that need them are skipped"; \
 	fi
 
+# Install the offscreen GL libraries and Chromium when missing and when we may (root + apt-get).
+view-tools:
+	@if command -v chromium >/dev/null 2>&1 && command -v chromedriver >/dev/null 2>&1 \
+	    && ldconfig -p | grep -q 'libEGL.so.1 ' && ldconfig -p | grep -q 'libOSMesa.so'; then \
+	  echo "view tools: EGL, OSMesa, chromium and chromedriver present"; \
+	elif command -v apt-get >/dev/null 2>&1 && [ "$$(id -u)" = 0 ]; then \
+	  echo "view tools: installing $(VIEW_DEBS)"; \
+	  apt-get update -qq >/dev/null && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $(VIEW_DEBS) >/dev/null; \
+	else \
+	  echo "view tools: cannot install $(VIEW_DEBS) (need root and apt-get); render and browser tests are skipped"; \
+	fi
+
 demo: install
 	mkdir -p $(OUT)
 	$(BIN)/myrabot-desc build -o $(OUT)/myrabot.urdf
@@ -42,7 +57,10 @@ demo: install
 	$(BIN)/myrabot-desc convert --to world --layout escoja -o $(OUT)/escoja.sdf
 	$(BIN)/myrabot-desc convert --to mjcf -o $(OUT)/mjcf/myrabot.xml
 	$(BIN)/myrabot-desc sim vuelta --plot $(OUT)/vuelta.png --csv $(OUT)/vuelta.csv
+	$(BIN)/myrabot-desc render --view all -o $(OUT)/myrabot.png
 	@echo "demo outputs in $(OUT)/"
+	@echo "see the robot in your browser (joint sliders, inertia boxes, check findings):"
+	@echo "  $(BIN)/myrabot-desc view --open"
 
 test: install
 	$(BIN)/python -m pytest -q

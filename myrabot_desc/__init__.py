@@ -4,4 +4,4 @@ Importing this package is cheap on purpose: heavy libraries (trimesh, yourdfpy,
 pinocchio, mujoco) are imported inside the functions that need them.
 """
 
-__version__ = "0.1.0"
+__version__ = "0.2.0"

@@ -21,6 +21,8 @@ COMMANDS = {
     "materials": ("myrabot_desc.materials.cli", "materials_cmd", "Read an OGRE .material script; print SDF <material> blocks or JSON."),
     "sim": ("myrabot_desc.sim.cli", "sim_cmd", "Run the seed's programs in a built-in kinematic/diff-drive simulator."),
     "info": ("myrabot_desc.info", "info_cmd", "Show the robot: tree, DOF, limits, mass, centre of mass, frames."),
+    "view": ("myrabot_desc.view.server", "view_cmd", "Open the robot in a web viewer: joint sliders, frames, inertia, findings."),
+    "render": ("myrabot_desc.render", "render_cmd", "Render the robot to a PNG with no display (iso/front/side/top)."),
 }
 
 
@@ -48,6 +50,8 @@ Examples:
   myrabot-desc convert --to sdf -o out/myrabot.sdf
   myrabot-desc sim vuelta --plot out/vuelta.png
   myrabot-desc info
+  myrabot-desc view                                # browser viewer with joint sliders
+  myrabot-desc render --view all -o out/myrabot.png
 
 FILE defaults to the bundled MYRAbot assembly. Exit codes: 0 ok, 1 findings
 (check) or failed verdict (sim), 2 input could not be processed.

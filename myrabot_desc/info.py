@@ -86,8 +86,10 @@ def tree_lines(robot) -> list[str]:
 
 
 def _fmt_limit(j) -> str:
-    if j.type == "continuous":
-        return "continuous"
+    if j.type == "continuous":       # the type column already says "continuous"
+        if j.limit is None or (j.limit.effort is None and j.limit.velocity is None):
+            return "no position limits"
+        return f"no position limits, effort {j.limit.effort}, velocity {j.limit.velocity}"
     if j.limit is None:
         return "no <limit>"
     lo, hi = j.limit.lower, j.limit.upper

@@ -184,7 +184,8 @@ def test_ros2_diff_drive_ignored_topics_and_bad_joints(tmp_path):
 
 def test_axis_along_z_and_swapped_wheels(tmp_path):
     r = diff_robot(tmp_path, "libgazebo_ros_diff_drive.so",
-                   "<leftJoint>left_joint</leftJoint><rightJoint>right_joint</rightJoint>", left_y=-0.15, axis=(0, 1))
+                   "<legacyMode>false</legacyMode><leftJoint>left_joint</leftJoint><rightJoint>right_joint</rightJoint>",
+                   left_y=-0.15, axis=(0, 1))     # (in legacy mode the swapped names would turn the right way)
     msgs = [d.message for d in run_checks(r) if d.code == "G005"]
     assert any("not across the direction of travel" in m for m in msgs)
     assert any("swapped" in m for m in msgs)

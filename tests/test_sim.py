@@ -119,8 +119,8 @@ def test_vuelta_csv_and_plot(tmp_path):
     r = run("vuelta", "--duration", "3", "--csv", csv, "--plot", png, "--no-collisions")
     assert r.exit_code == 0, r.output
     lines = csv.read_text().splitlines()
-    assert lines[0] == ("time,base_x,base_y,base_yaw,base,arti1,arti2,arti3,pinza,"
-                        "left_wheel_joint,right_wheel_joint")
+    assert lines[0] == ("time_s,base_x_m,base_y_m,base_yaw_rad,base_rad,arti1_rad,arti2_rad,arti3_rad,pinza_rad,"
+                        "left_wheel_joint_rad,right_wheel_joint_rad")
     assert len(lines) == 1 + 3001
     last = [float(x) for x in lines[-1].split(",")]
     assert last[0] == pytest.approx(3.0)
@@ -185,7 +185,7 @@ def test_drive_bundled_robot_matches():
     assert check(doc, "speed ratio")["value"] == pytest.approx(1.0, abs=1e-6)
 
 
-def test_drive_without_plugin_is_an_input_error(tmp_path):
+def test_drive_without_plugin_uses_the_urdf_wheels(tmp_path):
     urdf = tmp_path / "bot.urdf"
     urdf.write_text("""<robot name="bot">
   <link name="base"/>
@@ -194,8 +194,9 @@ def test_drive_without_plugin_is_an_input_error(tmp_path):
   <joint name="left_wheel" type="continuous"><parent link="base"/><child link="lw"/><origin xyz="0 0.1 0.05"/><axis xyz="0 1 0"/></joint>
   <joint name="right_wheel" type="continuous"><parent link="base"/><child link="rw"/><origin xyz="0 -0.1 0.05"/><axis xyz="0 1 0"/></joint>
 </robot>""")
-    r = run("drive", urdf)
-    assert r.exit_code == 2 and "no diff-drive plugin" in r.output and "Traceback" not in r.output
+    code, doc = run_json("drive", urdf, "--twist", "0.2,1,2")
+    assert code == 0 and doc["info"]["command geometry"] == "URDF"
+    assert any("no drive plugin" in n and "URDF's own wheel geometry" in n for n in doc["notes"])
     code, doc = run_json("drive", urdf, "--wheels", "urdf", "--twist", "0.2,1,2")
     assert code == 0 and doc["info"]["URDF wheel separation"] == pytest.approx(0.2)
     # and the arm programs need the arm

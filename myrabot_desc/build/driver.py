@@ -116,6 +116,7 @@ class _Build:
         self.body_sizes: dict[int, int] = {}   # macro body -> elements it holds
         self.expanded = 0                      # elements produced by macro calls so far
         self.calls = 0
+        self.env_used: dict[str, tuple[str, bool]] = {}   # $(env)/$(optenv) name -> (value, was set)
 
     # ------------------------------------------------------------ reading files
     def allowed(self, path: Path) -> bool:
@@ -246,7 +247,7 @@ class _Build:
             import contextlib
             import io
 
-            chatter = io.StringIO()  # xacro prints its own warnings; we report them as X007
+            chatter = io.StringIO()  # xacro prints its own warnings; we report them as X008
             try:
                 with contextlib.redirect_stderr(chatter), contextlib.redirect_stdout(chatter):
                     xacro.process_doc(doc, mappings=dict(self.mappings), verbosity=1)
@@ -266,6 +267,12 @@ class _Build:
                 raise InputError(f"{type(exc).__name__}: {exc}", self.last_loc, self._stack()) from None
             self.deps = [str(self.src)] + [d for d in dict.fromkeys(xacro.all_includes)]
         self._xacro_warnings(chatter.getvalue())
+        if self.env_used:
+            used = ", ".join(f"{k}={v!r}" + ("" if was_set else " (unset: default)")
+                             for k, (v, was_set) in sorted(self.env_used.items()))
+            self.diagnostics.append(Diagnostic(
+                "X007", "info", f"the build depends on the environment: {used}; pin them as xacro args or in the "
+                "CI job", Loc(display(self.src)), {"environment": {k: v for k, (v, _s) in sorted(self.env_used.items())}}))
         text, locations = self.render(doc)
         root = self.check_unexpanded(text, locations)
         return BuildResult(text=text, locations=locations, diagnostics=self.diagnostics, deps=self.deps,
@@ -280,7 +287,7 @@ class _Build:
                 counts[msg] = counts.get(msg, 0) + 1
         for msg, n in counts.items():
             times = f" ({n} times)" if n > 1 else ""
-            self.diagnostics.append(Diagnostic("X007", "warning", f"xacro: {msg}{times}", Loc(display(self.src))))
+            self.diagnostics.append(Diagnostic("X008", "warning", f"xacro: {msg}{times}", Loc(display(self.src))))
 
     def check_include(self, path: Path, asked_at: Loc | None) -> None:
         import xacro
@@ -484,7 +491,7 @@ def _message_functions(print_location) -> dict:
 def _to_stream(f, name: str, build: _Build, print_location):
     """``${xacro.message(...)}`` & co. as in xacro (same text, location lines after warning and
     error), written where the build's caller reads its errors: the file author's own output, not
-    xacro's chatter (which becomes X007)."""
+    xacro's chatter (which becomes X008)."""
     def wrapper(*args, **kwargs):
         import contextlib
         import io
@@ -716,6 +723,17 @@ class _Hooks:
             sa._eval_optenv = refuse_env
             sa._eval_dict["env"] = refuse_env
             sa._eval_dict["optenv"] = refuse_env
+        else:   # X007: remember each variable the build read and the value it got
+            import os
+
+            def noted(read):
+                def note(name, *args, **kwargs):
+                    value = read(name, *args, **kwargs)
+                    b.env_used[str(name)] = (str(value), name in os.environ)
+                    return value
+                return note
+            sa._eval_env = sa._eval_dict["env"] = noted(sa._eval_env)
+            sa._eval_optenv = sa._eval_dict["optenv"] = noted(sa._eval_optenv)
         self.saved_messages = _install_messages(b, self.saved[(xacro, "print_location")])
         return self
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from myrabot_desc.checks.context import CheckOptions, Context
 
-__all__ = ["CheckOptions", "Context", "run_checks", "check_robot"]
+__all__ = ["CheckOptions", "Context", "run_checks", "check_robot", "sort_diagnostics"]
 
 SEVERITY_ORDER = {"error": 0, "warning": 1, "info": 2}
 
@@ -34,8 +34,12 @@ def check_robot(robot, options: CheckOptions | None = None, select=(), ignore=()
         out = [d for d in out if matches(d.code, select)]
     if ignore:
         out = [d for d in out if not matches(d.code, ignore)]
-    out.sort(key=lambda d: (SEVERITY_ORDER.get(d.severity, 3), d.code, str(d.loc or ""), d.message))
-    return out, ctx
+    return sort_diagnostics(out), ctx
+
+
+def sort_diagnostics(diags) -> list:
+    """Errors, warnings, info; then by code, location and message (the report order)."""
+    return sorted(diags, key=lambda d: (SEVERITY_ORDER.get(d.severity, 3), d.code, str(d.loc or ""), d.message))
 
 
 def run_checks(robot, options: CheckOptions | None = None, select=(), ignore=()):

@@ -5,6 +5,7 @@ from __future__ import annotations
 import re
 import sys
 from pathlib import Path
+from typing import NamedTuple
 
 import click
 
@@ -57,27 +58,148 @@ def _model_files(folder: Path, recursive: bool):
         yield from (Path(root) / n for n in names if n.endswith(MODEL_SUFFIXES))
 
 
-def check_one(inputs, path, options, select, ignore):
+class Task(NamedTuple):
+    """Everything one worker needs to check one file (picklable)."""
+
+    path: str | None
+    build: dict                 # load_robot keyword options
+    options: object             # CheckOptions
+    select: tuple
+    ignore: tuple
+    limits: tuple               # ((MYRABOT_DESC_MAX_* variable, value), ...) from the configuration
+    strict: bool
+    cache_dir: str | None
+
+
+def check_one(task: Task):
     """FileResult for one input (never raises for bad input: failure holds the one line)."""
-    from myrabot_desc.checks import check_robot
+    import os
+
+    from myrabot_desc.checks.registry import matches
     from myrabot_desc.checks.report import FileResult
+    from myrabot_desc.diagnostics import Loc
     from myrabot_desc.errors import InputError
 
-    res = FileResult(file=path or "")
+    path = task.path
+    res = FileResult(file=path or "", strict=task.strict)
+    saved = {k: os.environ.get(k) for k, _v in task.limits}
+    os.environ.update({k: str(v) for k, v in task.limits})
+
+    def enabled(code):
+        return (not task.select or matches(code, task.select)) and not matches(code, task.ignore)
+
     try:
-        robot = inputs.load(path) if path is not None else inputs.load(None)
-        diags, ctx = check_robot(robot, options, select, ignore)
+        cached = None
+        if task.cache_dir:
+            from myrabot_desc.checks import cache
+
+            cached = cache.lookup(task)
+        if cached is not None:
+            return cached
+        from myrabot_desc.checks import check_robot, suppress
+        from myrabot_desc.model.loader import load_robot
+
+        robot = load_robot(path, **task.build)
+        diags, ctx = check_robot(robot, task.options, task.select, task.ignore)
+        diags, seen, used = suppress.apply(diags, robot, enabled)
+        if not enabled("X009"):
+            diags, seen = [d for d in diags if d.code != "X009"], []
+        res.diagnostics = diags
+        res.suppressions_seen, res.suppressions_used = seen, used
+        res.robot = robot.name
+        res.links, res.joints = len(robot.links), len(robot.joints)
+        res.suggestions = list(ctx.suggestions)
+        if task.cache_dir:
+            cache.store(task, robot, res)
     except InputError as exc:
         res.failure = str(exc).splitlines()[0]
-        return res
+        res.failure_loc = exc.loc or Loc(path or "")
     except (RecursionError, MemoryError) as exc:
         res.failure = f"{path}: error: input too large or nested too deeply ({type(exc).__name__})"
-        return res
-    res.diagnostics = diags
-    res.robot = robot.name
-    res.links, res.joints = len(robot.links), len(robot.joints)
-    res.suggestions = list(ctx.suggestions)
+        res.failure_loc = Loc(path or "")
+    finally:
+        for k, v in saved.items():
+            if v is None:
+                os.environ.pop(k, None)
+            else:
+                os.environ[k] = v
     return res
+
+
+def parse_shard(value: str | None) -> tuple[int, int] | None:
+    if value is None:
+        return None
+    m = re.fullmatch(r"\s*(\d+)\s*/\s*(\d+)\s*", value)
+    if not m or not (1 <= int(m.group(1)) <= int(m.group(2))):
+        raise click.BadParameter(f"expected K/N with 1 <= K <= N (e.g. 2/4), got {value!r}", param_hint="--shard")
+    return int(m.group(1)), int(m.group(2))
+
+
+def shard(paths: list, k: int, n: int) -> list:
+    """The K-th of N parts of the file list (1-based): every N-th file, starting at the K-th. The
+    list is the sorted expansion of the same arguments on every machine, so the parts are
+    disjoint, together they are the whole list, and their sizes differ by at most one."""
+    return paths[k - 1::n]
+
+
+def default_jobs() -> int:
+    import os
+
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except (AttributeError, OSError):
+        return max(1, os.cpu_count() or 1)
+
+
+def run_tasks(tasks: list, jobs: int, progress: bool) -> list:
+    """Results in task order; ``jobs`` worker processes when there is more than one file.
+    A progress bar on stderr when asked (it shows only when stderr is a terminal)."""
+    from contextlib import nullcontext
+
+    jobs = max(1, min(jobs, len(tasks)))
+    pool = nullcontext()
+    if jobs > 1:
+        import multiprocessing
+        from concurrent.futures import ProcessPoolExecutor
+
+        # fork: the workers inherit the imported modules (no re-import per worker)
+        method = "fork" if "fork" in multiprocessing.get_all_start_methods() else None
+        if method == "fork":
+            _preload(tasks)
+        pool = ProcessPoolExecutor(jobs, mp_context=multiprocessing.get_context(method))
+    with pool as ex:
+        # neighbouring files (variants of one robot) share meshes: give them to the same worker
+        chunk = max(1, min(4, len(tasks) // (jobs * 4)))
+        it = ex.map(check_one, tasks, chunksize=chunk) if ex is not None else map(check_one, tasks)
+        if not progress:
+            return list(it)
+        out = []
+        with click.progressbar(it, length=len(tasks), label="checking", file=sys.stderr,
+                               item_show_func=lambda r: (Path(r.file).name if r and r.file else "")) as bar:
+            for r in bar:
+                out.append(r)
+        return out
+
+
+def _preload(tasks) -> None:
+    """Import what every worker needs once, before forking: the workers share those pages
+    (about 110 MB of numpy, trimesh and their imports each would otherwise hold) and skip the
+    imports. gc.freeze() keeps the collector from touching (and so copying) them."""
+    import gc
+    import importlib
+
+    names = ["lxml.etree", "xacro", "numpy", "myrabot_desc.model.loader", "myrabot_desc.checks.registry"]
+    if any(t.options.load_meshes for t in tasks):
+        names.append("trimesh")
+    for name in names:
+        try:
+            importlib.import_module(name)
+        except ImportError:
+            pass
+    from myrabot_desc.checks.registry import load_all
+
+    load_all()
+    gc.freeze()
 
 
 @click.command("check")
@@ -89,20 +211,43 @@ def check_one(inputs, path, options, select, ignore):
 @click.option("--format", "fmt", type=click.Choice(["text", "json", "github", "sarif"]), default="text",
               show_default=True, help="Report format.")
 @click.option("--select", "select", multiple=True, metavar="CODES",
-              help="Only these codes or prefixes (comma-separated or repeated), e.g. I,G001.")
-@click.option("--ignore", "ignore", multiple=True, metavar="CODES", help="Skip these codes or prefixes.")
+              help="Only these codes or prefixes (comma-separated or repeated), e.g. I,G001. Replaces the "
+                   "configuration's select.")
+@click.option("--ignore", "ignore", multiple=True, metavar="CODES",
+              help="Skip these codes or prefixes (added to the configuration's ignore).")
 @click.option("--strict", is_flag=True, help="Warnings fail too (exit 1).")
 @click.option("-o", "--output", type=click.Path(dir_okay=False), default="-", show_default=True,
               help="Write the report to a file instead of stdout.")
 @click.option("-r", "--recursive", is_flag=True,
               help="Folders: look for models in their subfolders too (hidden and build folders skipped).")
+@click.option("--config", "config_file", type=click.Path(dir_okay=False), metavar="FILE",
+              help="Use this configuration for every file (pyproject.toml or myrabot-desc.toml) instead of the "
+                   "nearest one.")
+@click.option("--isolated", is_flag=True, help="Ignore every configuration file.")
+@click.option("-j", "--jobs", type=click.IntRange(min=1), default=None, metavar="N",
+              help="Worker processes (default: the CPUs available). The report is the same for any N.")
+@click.option("--shard", "shard_spec", metavar="K/N",
+              help="Check only the K-th of N deterministic parts of the file list (a CI matrix job each).")
+@click.option("-q", "--quiet", is_flag=True, help="No progress bar; text reports only the findings.")
+@click.option("--no-cache", is_flag=True,
+              help="Do not read or write the result cache (.myrabot-desc-cache/ next to the configuration "
+                   "file, or MYRABOT_DESC_CACHE_DIR).")
+@click.option("--merge-sarif", is_flag=True,
+              help="The FILEs are SARIF reports (from --shard jobs): merge them into one report.")
 @click.option("--list-rules", is_flag=True, help="List every rule code and exit.")
-def check_cmd(inputs, inertia, suggest, meshes, fmt, select, ignore, strict, output, recursive, list_rules):
+def check_cmd(inputs, inertia, suggest, meshes, fmt, select, ignore, strict, output, recursive, config_file,
+              isolated, jobs, shard_spec, quiet, no_cache, merge_sarif, list_rules):
     """Lint robot models: tree, inertia, sensors and frames, Gazebo plugins, meshes, physics.
 
     Each finding has a stable code (X build, T tree, I inertia, S sensors/frames,
     G Gazebo/plugins, M meshes, P physics), a severity, the numbers that matter and the
     xacro file:line it comes from. docs/rules.md explains every rule and its fix.
+
+    \b
+    Settings come from the nearest pyproject.toml [tool.myrabot-desc] or myrabot-desc.toml
+    (walking up from each file); a finding is silenced in the model with
+      <!-- myrabot-desc: ignore[I008] why -->
+    on the line before the element (or inside it); see docs/check.md.
 
     \b
     Examples:
@@ -111,22 +256,17 @@ def check_cmd(inputs, inertia, suggest, meshes, fmt, select, ignore, strict, out
       myrabot-desc check --inertia --suggest robot.urdf
       myrabot-desc check urdf/ --format github        # every top-level model in a folder
       myrabot-desc check -r . --strict                # every model of a repository (CI)
+      myrabot-desc check -r . --shard 2/4 --format sarif -o part2.sarif
+      myrabot-desc check --merge-sarif part*.sarif -o check.sarif
       myrabot-desc check robot.urdf --select I,P --strict
-      myrabot-desc check robot.urdf --format sarif -o check.sarif
 
     \b
     Exit codes: 0 no errors (no warnings either with --strict), 1 errors found,
-    2 a file could not be processed (one line each, the other files are still checked).
+    2 a file could not be processed (one line each, the other files are still checked)
+    or the command line / configuration is wrong.
     """
     from myrabot_desc import __version__
-    from myrabot_desc.checks import CheckOptions
-    from myrabot_desc.checks.report import (
-        render_github,
-        render_json,
-        render_sarif,
-        render_text,
-        rule_table,
-    )
+    from myrabot_desc.checks.report import render, rule_table
     from myrabot_desc.output import write_output
 
     with guarded():
@@ -134,40 +274,88 @@ def check_cmd(inputs, inertia, suggest, meshes, fmt, select, ignore, strict, out
             for code, name, sev, summary, _doc in rule_table():
                 click.echo(f"{code}  {sev:<7}  {name:<28} {summary}")
             return
-        if suggest and not inertia:
-            inertia = True          # --suggest needs the comparison
-        sel = [c for s in select for c in s.split(",") if c.strip()]
-        ign = [c for s in ignore for c in s.split(",") if c.strip()]
-        options = CheckOptions(inertia=inertia, suggest=suggest, meshes=meshes)
-        paths = expand_inputs(inputs.files, recursive) if inputs.files else [None]
-        results = []
-        show_bar = fmt == "text" and output == "-" and len(paths) >= 5 and sys.stderr.isatty()
-        if show_bar:
-            with click.progressbar(paths, label="checking", file=sys.stderr,
-                                   item_show_func=lambda p: Path(p).name if p else "") as bar:
-                for p in bar:
-                    results.append(check_one(inputs, p, options, sel, ign))
-        else:
-            for p in paths:
-                results.append(check_one(inputs, p, options, sel, ign))
+        if merge_sarif:
+            from myrabot_desc.checks.report import merge_sarif_files
 
-        if fmt == "json":
-            text = render_json(results, __version__)
-        elif fmt == "github":
-            text = render_github(results)
-        elif fmt == "sarif":
-            text = render_sarif(results, __version__)
-        else:
-            text = render_text(results)
+            text = merge_sarif_files(inputs.files)
+            if output == "-":
+                click.echo(text, nl=False)
+            else:
+                write_output(output, text)
+            return
+        tasks, help_url = plan(inputs, inertia, suggest, meshes, select, ignore, strict, recursive, config_file,
+                               isolated, shard_spec, no_cache)
+        progress = not quiet and sys.stderr.isatty()
+        results = run_tasks(tasks, jobs or default_jobs(), progress)
+        from myrabot_desc.checks.suppress import unused_findings
+
+        unused_findings(results)
+        code = exit_code(results)
+        text = render(fmt, results, __version__, exit_code=code, quiet=quiet, help_url=help_url,
+                      shard=shard_spec)
         if output == "-":
             click.echo(text, nl=False)
         else:
             write_output(output, click.unstyle(text))
         for r in results:
-            if r.failure and fmt != "text":
+            if r.failure and (fmt != "text" or output != "-"):
                 click.echo(r.failure, err=True)
+    sys.exit(code)
 
+
+def exit_code(results) -> int:
     if any(r.failure for r in results):
-        sys.exit(2)
-    if any(r.count("error") for r in results) or (strict and any(r.count("warning") for r in results)):
-        sys.exit(1)
+        return 2
+    if any(r.count("error") or (r.strict and r.count("warning")) for r in results):
+        return 1
+    return 0
+
+
+def plan(inputs, inertia, suggest, meshes, select, ignore, strict, recursive, config_file, isolated, shard_spec,
+         no_cache):
+    """The task list: inputs expanded, configuration applied per file, the shard taken."""
+    import os
+
+    from myrabot_desc.checks import CheckOptions
+    from myrabot_desc.checks.codes import known_codes, split_codes, unknown_code_message
+    from myrabot_desc.checks.config import Finder
+    from myrabot_desc.safety import LIMIT_ENV
+
+    from myrabot_desc.checks import cache
+
+    cache.reset()
+    sel, ign = split_codes(select), split_codes(ignore)
+    for flag, codes in (("--select", sel), ("--ignore", ign)):
+        for c in codes:
+            msg = unknown_code_message(c, known_codes())
+            if msg:
+                raise click.BadParameter(msg, param_hint=flag)
+    part = parse_shard(shard_spec)
+    finder = Finder(known_codes, config_file, isolated)
+    paths = expand_inputs(inputs.files, recursive) if inputs.files else [None]
+    if inputs.files:                        # exclude = from the configuration, for folder expansions
+        given = {str(f) for f in inputs.files}
+        paths = [p for p in paths if p in given or not finder.for_file(p).excluded(p)]
+    if part:
+        paths = shard(paths, *part)
+    cache_env = os.environ.get("MYRABOT_DESC_CACHE_DIR")
+    tasks, help_url = [], None
+    for p in paths:
+        cfg = finder.for_file(p)
+        if help_url is None:
+            help_url = cfg.help_url
+        build = inputs.build_options()
+        build["packages"] = {**cfg.packages, **build["packages"]}
+        build["package_paths"] = list(build["package_paths"]) + cfg.package_paths
+        build["allow_paths"] = list(build["allow_paths"]) + cfg.allow_paths
+        build["mappings"] = {**cfg.args_for(p), **build["mappings"]}
+        build["no_env"] = build["no_env"] or cfg.no_env
+        use_inertia = inertia or suggest or cfg.inertia
+        options = CheckOptions(inertia=use_inertia, suggest=suggest, meshes=meshes or cfg.meshes)
+        limits = tuple((LIMIT_ENV[k], v) for k, v in sorted(cfg.limits.items()))
+        cache_dir = None         # a project (a configuration file) opts in, as ruff's .ruff_cache
+        if not no_cache and cfg.cache:
+            cache_dir = cache_env or (str(cfg.root / ".myrabot-desc-cache") if cfg.path else None)
+        tasks.append(Task(p, build, options, tuple(sel or cfg.select), tuple(cfg.ignores_for(p) + ign), limits,
+                          strict or cfg.strict, cache_dir))
+    return tasks, help_url

@@ -7,7 +7,6 @@ mesh files are loaded (`--inertia`), and only when watertight.
 from __future__ import annotations
 
 import math
-from functools import lru_cache
 
 from myrabot_desc.checks.examples import tetrahedron_stl
 from myrabot_desc.checks.rule import Finding, rule
@@ -244,30 +243,10 @@ def _hull_points(ctx, link):
                 return None
             local = np.asarray(mesh.vertices)    # the rules use extremes only: no hull needed (nor scipy)
         else:
-            local = _primitive_points(g)
+            local = np.asarray(G.surface_points(g, 32))
         T = pose_matrix(it.origin)
         out.append(local @ T[:3, :3].T + T[:3, 3])
     return np.vstack(out)
-
-
-@lru_cache(maxsize=None)
-def _unit_sphere():
-    import numpy as np
-
-    pts = [(x, y, z) for x in (-1, 0, 1) for y in (-1, 0, 1) for z in (-1, 0, 1) if (x, y, z) != (0, 0, 0)]
-    return np.array(pts, float) / np.linalg.norm(pts, axis=1)[:, None]
-
-
-def _primitive_points(g):
-    import numpy as np
-
-    if g.kind == "box":
-        return G.aabb_corners(g)
-    if g.kind == "sphere":
-        return _unit_sphere() * g.radius
-    t = np.linspace(0, 2 * math.pi, 32, endpoint=False)
-    ring = np.stack([g.radius * np.cos(t), g.radius * np.sin(t), np.zeros_like(t)], 1)
-    return np.vstack([ring + [0, 0, g.length / 2], ring - [0, 0, g.length / 2]])
 
 
 @rule("I008", "density-plausible", "warning",

@@ -47,19 +47,25 @@ def _collision_world(ctx):
 
 
 def wheels(ctx) -> list[str]:
-    """Joints that drive or carry wheels: named by a drive plugin, or continuous joints whose
-    child has a collision cylinder about the joint axis (or a sphere)."""
-    from myrabot_desc.checks.plugins import _all, _wheel_radius, drives
+    """Joints that drive or carry wheels: named by a declared drive (model/drive.py: plugins,
+    ros_control velocity wheels), or continuous joints whose child is a collision cylinder about
+    the joint axis."""
+    got = getattr(ctx, "_wheel_joints", None)
+    if got is not None:
+        return got
+    from myrabot_desc.model import drive as D
 
+    r = ctx.robot
     out = []
-    for p, spec in drives(ctx):
-        for k in (*spec.left, *spec.right):
-            out += [n for n in _all(p, k) if n in ctx.robot.joints]
-    for j in ctx.robot.joints.values():
+    for d in D.find(r):
+        out += [n for n in d.joints if n in r.joints and n not in out]
+    T = D.link_transforms(r)
+    for j in r.joints.values():
         if j.type == "continuous" and j.name not in out:
-            rad, item = _wheel_radius(ctx, j)
-            if rad is not None and item is not None and item.geometry.kind == "cylinder":
+            w = D.wheel(r, j.name, T)
+            if w is not None and w.round and w.shape.geometry.kind == "cylinder":
                 out.append(j.name)
+    ctx._wheel_joints = out
     return out
 
 
@@ -164,8 +170,8 @@ def _tip(ctx, hull, com, zmin):
     centre of mass until another collision shape touches the ground; None if nothing would."""
     import numpy as np
 
-    from myrabot_desc.checks.inertia_geometry import _primitive_points
     from myrabot_desc.model.kinematics import pose_matrix
+    from myrabot_desc.model.shapes import surface_points
 
     r = ctx.robot
     wheel_joints = [r.joints[n] for n in wheels(ctx) if n in r.joints]
@@ -186,7 +192,7 @@ def _tip(ctx, hull, com, zmin):
         if link.name in skip:
             continue
         g = it.geometry
-        pts = np.asarray(mesh.vertices) if mesh is not None else _primitive_points(g)
+        pts = np.asarray(surface_points(g, 32, mesh))
         w = pts @ T[:3, :3].T + T[:3, 3]
         d = ((w[:, :2] - c0[:2]) @ n) * side          # horizontal distance behind the axle, on the tipping side
         hz = w[:, 2] - zmin - axle_h                   # height relative to the axle
@@ -240,7 +246,7 @@ def dynamics_finite(ctx):
     matrix singular: ABA returns NaN and every simulator struggles. The finding points at
     the first such joint. Fix: give the links below that joint a mass and inertia.
     """
-    if not ctx.tree_ok or not ctx.robot.joints:
+    if not ctx.tree_ok or not ctx.robot.joints or _dynamics_surely_finite(ctx.robot):
         return
     import numpy as np
 
@@ -281,6 +287,39 @@ def dynamics_finite(ctx):
                   + (f": nothing below joint(s) {', '.join(massless[:6])} has mass" if massless else
                      ": the mass matrix is singular"), (first.loc if first else None) or ctx.robot.loc,
                   {"algorithm": bad, "massless_joints": massless})
+
+
+def _dynamics_surely_finite(robot) -> bool:
+    """True when Pinocchio need not be loaded (a third of check's time): urdfdom accepts what it
+    reads (no bad values, known types, limits on revolute/prismatic) and every moving joint's
+    child has a positive mass with a positive-definite inertia, every other link a non-negative
+    mass and semi-definite inertia. Then each moving body's spatial inertia is positive
+    definite, so is the mass matrix at every configuration, and RNEA/ABA stay finite."""
+    from myrabot_desc.model.inertia import eigh3, tensor
+    from myrabot_desc.model.parts import JOINT_TYPES
+
+    if robot.load_issues:
+        return False
+    for j in robot.joints.values():
+        if j.type not in JOINT_TYPES:
+            return False
+        if j.type in ("revolute", "prismatic") and (j.limit is None or j.limit.effort is None
+                                                    or j.limit.velocity is None):
+            return False
+    moving_children = {j.child for j in robot.joints.values() if j.type != "fixed"}
+    for link in robot.links.values():
+        ine = link.inertial
+        positive = link.name in moving_children
+        if ine is None:
+            if positive:
+                return False
+            continue
+        w, _v = eigh3(tensor(ine))
+        if positive and not (ine.mass > 0 and w[0] > 1e-12 * max(w[2], 1e-300)):
+            return False
+        if not positive and (ine.mass < 0 or w[0] < 0):
+            return False
+    return True
 
 
 @rule("P004", "mass-summary", "info",

@@ -2,58 +2,10 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 from myrabot_desc.checks.examples import ELECTRIC_IMU, MODERN_IMU, drive_example as _drive
 from myrabot_desc.checks.rule import Finding, rule
-
-@dataclass(frozen=True)
-class DriveSpec:
-    label: str
-    left: tuple[str, ...]            # parameter names holding left wheel joints
-    right: tuple[str, ...]
-    separation: str
-    diameter: str | None = None
-    radius: str | None = None
-    fixed_ok: tuple[str, ...] = ()   # joint params that may name non-wheel joints (casters)
-    known: frozenset = frozenset()
-
-
-COMMON_CLASSIC = {"robotNamespace"}
-ROS1 = DriveSpec(
-    "gazebo_ros_diff_drive (ROS 1)", ("leftJoint",), ("rightJoint",), "wheelSeparation", "wheelDiameter",
-    known=frozenset(COMMON_CLASSIC | {
-        "leftJoint", "rightJoint", "wheelSeparation", "wheelDiameter", "wheelAcceleration", "wheelTorque",
-        "commandTopic", "odometryTopic", "odometryFrame", "robotBaseFrame", "updateRate", "publishWheelTF",
-        "publishOdomTF", "publishWheelJointState", "odometrySource", "legacyMode", "publishTf", "rosDebugLevel"}))
-ROS2 = DriveSpec(
-    "gazebo_ros_diff_drive (ROS 2)", ("left_joint",), ("right_joint",), "wheel_separation", "wheel_diameter",
-    known=frozenset({
-        "ros", "left_joint", "right_joint", "wheel_separation", "wheel_diameter", "max_wheel_torque",
-        "max_wheel_acceleration", "update_rate", "publish_odom", "publish_odom_tf", "publish_wheel_tf",
-        "odometry_frame", "robot_base_frame", "odometry_source", "covariance_x", "covariance_y",
-        "covariance_yaw", "num_wheel_pairs"}))
-GZ = DriveSpec(
-    "gz-sim DiffDrive", ("left_joint",), ("right_joint",), "wheel_separation", radius="wheel_radius",
-    known=frozenset({
-        "left_joint", "right_joint", "wheel_separation", "wheel_radius", "odom_publish_frequency", "topic",
-        "odom_topic", "tf_topic", "frame_id", "child_frame_id", "min_velocity", "max_velocity",
-        "min_acceleration", "max_acceleration", "min_jerk", "max_jerk", "odom_covariance"}
-        | {f"{m}_{k}_{q}" for m in ("min", "max") for k in ("linear", "angular")
-           for q in ("velocity", "acceleration", "jerk")}))
-CREATE = DriveSpec(
-    "gazebo_ros_create/roomba (Electric)", ("left_wheel_joint",), ("right_wheel_joint",), "wheel_separation",
-    "wheel_diameter", fixed_ok=("front_castor_joint", "rear_castor_joint"),
-    known=frozenset({"alwaysOn", "updateRate", "robotNamespace", "node_namespace", "left_wheel_joint",
-                     "right_wheel_joint", "front_castor_joint", "rear_castor_joint", "wheel_separation",
-                     "wheel_diameter", "base_geom", "torque"}))
-SKID = DriveSpec(
-    "gazebo_ros_skid_steer_drive (ROS 1)", ("leftFrontJoint", "leftRearJoint"), ("rightFrontJoint", "rightRearJoint"),
-    "wheelSeparation", "wheelDiameter",
-    known=frozenset(COMMON_CLASSIC | {
-        "leftFrontJoint", "rightFrontJoint", "leftRearJoint", "rightRearJoint", "wheelSeparation",
-        "wheelDiameter", "torque", "commandTopic", "odometryTopic", "odometryFrame", "robotBaseFrame",
-        "updateRate", "broadcastTF", "covariance_x", "covariance_y", "covariance_yaw"}))
+from myrabot_desc.model import drive as D
+from myrabot_desc.model.drive import GZ, ROS1, ROS2
 
 # Parameters every old-style plugin is known to carry but that a given plugin ignores: a hint for G007.
 IGNORED_HINT = {
@@ -65,106 +17,22 @@ IGNORED_HINT = {
 }
 
 
-def drive_spec(p) -> DriveSpec | None:
-    lib = p.library.lower()
-    name = (p.name or "").lower()
-    if p.dialect == "electric":
-        if "create" in lib or "roomba" in lib or "create" in name or "roomba" in name:
-            return CREATE
-        return None
-    if p.dialect == "gz":
-        return GZ if ("diff-drive" in lib or "diff_drive" in lib or "diffdrive" in name.replace("::", "")) else None
-    if "skid_steer" in lib:
-        return SKID
-    if "diff_drive" in lib:
-        ros1 = any(k in p.params for k in ("leftJoint", "rightJoint", "wheelSeparation", "wheelDiameter"))
-        ros2 = any(k in p.params for k in ("left_joint", "right_joint", "wheel_separation", "wheel_diameter", "ros"))
-        return ROS2 if ros2 and not ros1 else ROS1
-    if "create" in lib or "roomba" in lib:
-        return CREATE
-    return None
-
-
-def _num(v):
-    try:
-        return float(v)
-    except (TypeError, ValueError):
-        return None
-
-
-def _all(p, key) -> list[str]:
-    """Every value of a (repeatable) parameter, in order."""
-    from myrabot_desc.checks.urdf_syntax import local
-
-    vals = [(c.text or c.get("value") or "").strip() for c in p.element if local(c.tag) == key]
-    return [v for v in vals if v]
-
-
 def drives(ctx):
-    """[(plugin, spec)] for every recognised drive plugin."""
-    out = []
-    for p in ctx.robot.plugins():
-        s = drive_spec(p)
-        if s is not None:
-            out.append((p, s))
-    return out
+    """[(plugin, Drive)] for every recognised drive plugin (model/drive.py), cached on the context."""
+    got = getattr(ctx, "_plugin_drives", None)
+    if got is None:
+        got = [(d.plugin, d) for d in D.plugin_drives(ctx.robot)]
+        ctx._plugin_drives = got
+    return got
 
 
-def _wheel_radius(ctx, joint):
-    """Radius of the wheel turned by `joint` from its collision geometry (cylinder about the axis, sphere)."""
-    import numpy as np
-
-    from myrabot_desc.model.kinematics import pose_matrix
-
-    link = ctx.robot.links.get(joint.child)
-    if link is None:
-        return None, None
-    axis = np.asarray(joint.axis, float)
-    if not np.linalg.norm(axis):
-        return None, None
-    axis = axis / np.linalg.norm(axis)
-    _, items = ctx.shapes(link, "collision")
-    for it in items:
-        g = it.geometry
-        if g.kind == "sphere":
-            return g.radius, it
-        if g.kind == "cylinder":
-            cyl_axis = pose_matrix(it.origin)[:3, 2]
-            if abs(cyl_axis @ axis) > 0.95:
-                return g.radius, it
-        if g.kind == "mesh" and ctx.opts.load_meshes:
-            m = ctx.mesh(g)
-            if m is not None and not isinstance(m, str):
-                T = pose_matrix(it.origin)
-                v = np.asarray(m.vertices) @ T[:3, :3].T + T[:3, 3]
-                c = v.mean(0)
-                d = v - c
-                radial = np.sqrt(np.maximum((d ** 2).sum(1) - (d @ axis) ** 2, 0))
-                return float(radial.max()), it
-    return None, None
-
-
-def _wheel_center(ctx, joint, item):
-    """World position of the wheel (its collision centre when known, else the joint origin)."""
-    from myrabot_desc.model.kinematics import pose_matrix
-
-    W = ctx.world
-    if joint.child in W:
-        T = W[joint.child]
-        if item is not None:
-            T = T @ pose_matrix(item.origin)
-        return T[:3, 3]
-    if joint.parent in W:
-        return (W[joint.parent] @ pose_matrix(joint.origin))[:3, 3]
-    return None
-
-
-def _pair(ctx, p, spec):
-    """(left joint, right joint) objects when both exist."""
-    r = ctx.robot
-    lj = next((r.joints[n] for k in spec.left for n in _all(p, k) if n in r.joints), None)
-    rj = next((r.joints[n] for k in spec.right for n in _all(p, k) if n in r.joints), None)
-    return lj, rj
+def _geometry(ctx, d):
+    """The drive's wheels measured on the URDF (model/drive.py), cached on the context."""
+    cache = ctx.__dict__.setdefault("_drive_geometry", {})
+    key = id(d.plugin) if d.plugin is not None else d.joints
+    if key not in cache:
+        cache[key] = D.measure(ctx.robot, d)
+    return cache[key]
 
 
 @rule("G001", "drive-wheel-separation", "error",
@@ -180,30 +48,19 @@ def wheel_separation(ctx):
     rate and odometry drifts (seed B: 0.4 vs 0.30 m turns 1.33× too fast). Fix: the
     distance given (between the wheel centres along the axle).
     """
-    import numpy as np
-
-    for p, spec in drives(ctx):
-        sep = _num(p.params.get(spec.separation))
-        lj, rj = _pair(ctx, p, spec)
-        if sep is None or lj is None or rj is None:
+    for p, d in drives(ctx):
+        spec = d.spec
+        sep = d.separation
+        g = _geometry(ctx, d)
+        if sep is None or not g.left or not g.right:
             continue
-        _, li = _wheel_radius(ctx, lj)
-        _, ri = _wheel_radius(ctx, rj)
-        pl, pr = _wheel_center(ctx, lj, li), _wheel_center(ctx, rj, ri)
-        if pl is None or pr is None:
-            continue
-        axis = ctx.world[lj.child][:3, :3] @ np.asarray(lj.axis, float) if lj.child in ctx.world else None
-        d = pl - pr
-        if axis is not None and np.linalg.norm(axis) > 0:
-            axis = axis / np.linalg.norm(axis)
-            real = abs(float(d @ axis))
-        else:
-            real = float(np.linalg.norm(d))
+        lw, rw = g.left[0], g.right[0]
+        real = g.separation
         if real < 1e-9:  # both wheels at one point (broken origins/axis): nothing to compare
             continue
         if abs(sep - real) > max(0.002, 0.02 * real):
-            yield Finding(f"{spec.separation} {sep:.3g} m, but the wheel joints {lj.name} and {rj.name} are "
-                          f"{real:.3g} m apart (y {pl[1]:.3g} and {pr[1]:.3g}): the robot turns at "
+            yield Finding(f"{spec.separation} {sep:.3g} m, but the wheel joints {lw.joint} and {rw.joint} are "
+                          f"{real:.3g} m apart (y {lw.centre[1]:.3g} and {rw.centre[1]:.3g}): the robot turns at "
                           f"{sep / real:.3g}× the commanded rate (before any diameter error)", p.loc,
                           {"plugin": p.name, "param": spec.separation, "value": sep, "urdf": real,
                            "fix": round(real, 6)})
@@ -221,21 +78,20 @@ def wheel_size(ctx):
     speed and the odometry (seed B: diameter 0.2 on 0.16 m wheels drives at 0.8× the
     command). Fix: the value given from the wheel's collision cylinder.
     """
-    for p, spec in drives(ctx):
+    for p, d in drives(ctx):
+        spec = d.spec
         key = spec.diameter or spec.radius
-        val = _num(p.params.get(key))
+        val, _ = D.number(p, key)
         if val is None:
             continue
-        for j in _pair(ctx, p, spec):
-            if j is None:
+        g = _geometry(ctx, d)
+        for w in g.left[:1] + g.right[:1]:
+            if w.radius is None:
                 continue
-            rad, _ = _wheel_radius(ctx, j)
-            if rad is None:
-                continue
-            real = 2 * rad if spec.diameter else rad
+            real = 2 * w.radius if spec.diameter else w.radius
             if abs(val - real) > max(0.001, 0.02 * real):
                 word = "diameter" if spec.diameter else "radius"
-                yield Finding(f"{key} {val:.3g} m, but wheel {j.child} (joint {j.name}) has a collision {word} of "
+                yield Finding(f"{key} {val:.3g} m, but wheel {w.link} (joint {w.joint}) has a collision {word} of "
                               f"{real:.3g} m: the robot drives at "
                               f"{f'{real / val:.3g}×' if val else 'an infinite multiple of'} the commanded speed",
                               p.loc,
@@ -257,15 +113,16 @@ def drive_joints_exist(ctx):
     from myrabot_desc.checks.urdf_syntax import suggest
 
     r = ctx.robot
-    for p, spec in drives(ctx):
+    for p, d in drives(ctx):
+        spec = d.spec
         for key in (*spec.left, *spec.right, *spec.fixed_ok):
-            for name in _all(p, key):
+            for name in D.values(p, key):
                 if name not in r.joints:
                     guess = suggest(name, r.joints)
                     yield Finding(f"{spec.label}: {key} '{name}' is not a joint of this robot"
                                   + (f"; did you mean {guess}?" if guess else ""), p.loc,
                                   {"plugin": p.name, "param": key, "joint": name, "suggestion": guess})
-        if not any(_all(p, k) for k in spec.left) or not any(_all(p, k) for k in spec.right):
+        if not d.left or not d.right:
             yield Finding(f"{spec.label}: no {spec.left[0]}/{spec.right[0]} given", p.loc, {"plugin": p.name})
 
 
@@ -283,9 +140,10 @@ def drive_joints_continuous(ctx):
     publishes zeros for them. Fix: `type="continuous"`.
     """
     r = ctx.robot
-    for p, spec in drives(ctx):
+    for p, d in drives(ctx):
+        spec = d.spec
         for key in (*spec.left, *spec.right, *spec.fixed_ok):
-            for name in _all(p, key):
+            for name in D.values(p, key):
                 j = r.joints.get(name)
                 if j is None or j.type == "continuous":
                     continue
@@ -314,32 +172,94 @@ def drive_axis(ctx):
     swaps the turning direction (warning). Fix: `<axis xyz="0 1 0"/>` (in the wheel
     joint's frame) and the left wheel at +y.
     """
-    import numpy as np
-
     r = ctx.robot
-    W = ctx.world
-    for p, spec in drives(ctx):
-        lj, rj = _pair(ctx, p, spec)
-        for side, j in (("left", lj), ("right", rj)):
-            if j is None or j.parent not in W:
+    for p, d in drives(ctx):
+        spec = d.spec
+        g = _geometry(ctx, d)
+        for side, w in (("left", g.left[0] if g.left else None), ("right", g.right[0] if g.right else None)):
+            if w is None:
                 continue
-            from myrabot_desc.model.kinematics import pose_matrix
-
-            T = W[j.parent] @ pose_matrix(j.origin)
-            a = T[:3, :3] @ np.asarray(j.axis, float)
-            n = np.linalg.norm(a)
-            if not n:
-                continue
-            a = a / n
+            j = r.joints[w.joint]
+            a = w.axis
             if abs(a[1]) < 0.9:
                 yield Finding(f"{spec.label}: {side} wheel joint {j.name} turns about ({a[0]:.2g} {a[1]:.2g} {a[2]:.2g}) "
                               f"in {r.root}: not across the direction of travel (y)", j.loc,
-                              {"joint": j.name, "axis_world": a.tolist()})
-            y = T[1, 3]
+                              {"joint": j.name, "axis_world": list(a)})
+            y = w.origin[1]
+            if d.legacy:
+                continue       # legacy mode swaps the wheels itself: G013 says which way it turns
             if (side == "left" and y < -1e-3) or (side == "right" and y > 1e-3):
                 yield Finding(f"{spec.label}: the {side} wheel joint {j.name} is at y {y:.3g} (the {'right' if y < 0 else 'left'} "
                               "side): left and right are swapped, the robot turns the wrong way", p.loc,
                               {"joint": j.name, "y": float(y)}, severity="warning")
+
+
+@rule("G013", "drive-legacy-mode", "warning",
+      bad=_drive().replace("<legacyMode>false</legacyMode>\n    ", ""),
+      message="gazebo_ros_diff_drive (ROS 1): no <legacyMode> given: it defaults to true, so the plugin drives "
+              "left_wheel_joint (y 0.15) with the right wheel's speed and right_wheel_joint (y -0.15) with the left "
+              "one's: the robot turns the wrong way (a commanded 0.5 rad/s turns at -0.5 rad/s, turn ratio -1; the "
+              "wheels run at v ± 0.075 m/s the other way round)",
+      good=_drive())
+def drive_legacy_mode(ctx):
+    """A ROS 1 gazebo_ros_diff_drive in legacy mode turns the wrong way.
+
+    Without `<legacyMode>false</legacyMode>` the ROS 1 plugin (Indigo to Melodic) defaults
+    to legacy mode, in which it commands the left joint with the right wheel's speed and
+    the right joint with the left one's: with the left wheel at +y (REP-103) every turn
+    goes the other way (turn ratio −1; Noetic's plugin no longer reads the flag). An old
+    package that named its wheels the other way round for legacy mode turns right and is
+    not reported. Fix: `<legacyMode>false</legacyMode>`.
+    """
+    for p, d in drives(ctx):
+        if not d.legacy:
+            continue
+        g = _geometry(ctx, d)
+        if not g.left or not g.right:
+            continue
+        lw, rw = g.left[0], g.right[0]
+        if not (lw.origin[1] > 1e-3 and rw.origin[1] < -1e-3):
+            continue           # an old package with the wheels named the other way round: legacy mode fixes it
+        why = "legacyMode is true" if d.legacy_explicit else "no <legacyMode> given: it defaults to true"
+        sep = d.separation if d.separation is not None else g.separation
+        w = 0.5
+        yield Finding(f"{d.label}: {why}, so the plugin drives {lw.joint} (y {lw.origin[1]:.3g}) with the right "
+                      f"wheel's speed and {rw.joint} (y {rw.origin[1]:.3g}) with the left one's: the robot turns the "
+                      f"wrong way (a commanded {w:g} rad/s turns at {-w:g} rad/s, turn ratio -1; the wheels run at "
+                      f"v ± {w * sep / 2:.3g} m/s the other way round)",
+                      p.loc, {"plugin": p.name, "param": "legacyMode", "explicit": d.legacy_explicit,
+                              "turn_ratio": -1.0, "fix": "false"})
+
+
+@rule("G014", "drive-summary", "info",
+      bad=_drive(),
+      message="drive (gazebo_ros_diff_drive (ROS 1)): left left_wheel_joint, right right_wheel_joint; "
+              "separation 0.3 m, wheel radius 0.08 m on the URDF",
+      good=None)
+def drive_summary(ctx):
+    """The drive the model declares, as convert and sim see it (information).
+
+    One line per drive (model/drive.py: a plugin of any dialect, or ros_control /
+    ros2_control velocity wheels): its wheel joints, and the wheel separation and radius
+    measured on the URDF (the numbers `convert` writes into the gz DiffDrive system and
+    `sim drive` moves the robot with).
+    """
+    r = ctx.robot
+    for d in D.find(r):
+        g = _geometry(ctx, d)
+        if not g.left or not g.right:
+            continue
+        nums = []
+        if g.separation is not None:
+            nums.append(f"separation {g.separation:.4g} m")
+        if g.radius is not None:
+            nums.append(f"wheel radius {g.radius:.4g} m")
+        loc = d.loc or r.joints[g.left[0].joint].loc
+        yield Finding(f"drive ({d.label}): left {', '.join(d.left)}, right {', '.join(d.right)}"
+                      + (f"; {', '.join(nums)} on the URDF" if nums else ""), loc,
+                      {"source": d.source, "drive": d.label, "left": list(d.left), "right": list(d.right),
+                       "separation": g.separation, "radius": g.radius,
+                       "plugin_separation": d.separation, "plugin_radius": d.radius, "legacy": d.legacy})
 
 
 @rule("G007", "plugin-unknown-parameter", "warning",
@@ -355,7 +275,8 @@ def unknown_params(ctx):
     """
     from myrabot_desc.checks.urdf_syntax import local, suggest
 
-    for p, spec in drives(ctx):
+    for p, d in drives(ctx):
+        spec = d.spec
         seen = set()
         for c in p.element:
             if not isinstance(c.tag, str) or c.tag.startswith("{"):
@@ -551,9 +472,10 @@ def drive_conflict(ctx):
     one the plugin reads (named in the message).
     """
     pairs = [("torque", "wheelTorque")]
-    for p, spec in drives(ctx):
+    for p, d in drives(ctx):
+        spec = d.spec
         for a, b in pairs:
-            va, vb = _num(p.params.get(a)), _num(p.params.get(b))
+            va, vb = D.number(p, a)[0], D.number(p, b)[0]
             if va is not None and vb is not None and va != vb and spec is ROS1:
                 yield Finding(f"{spec.label}: <{a}> {va:g} and <{b}> {vb:g} disagree; the plugin reads {b} ({vb:g})",
                               p.loc, {"plugin": p.name, a: va, b: vb})

@@ -28,6 +28,10 @@ class FileResult:
     joints: int = 0
     failure: str | None = None                  # one-line reason when the file could not be processed
     suggestions: list = field(default_factory=list)   # (link, '<inertia .../>')
+    strict: bool = False                        # warnings fail this file (--strict or its configuration)
+    failure_loc: object = None                  # Loc of the failure (the input when nothing better is known)
+    suppressions_seen: list = field(default_factory=list)   # (file, line, code) for codes the run checks
+    suppressions_used: list = field(default_factory=list)   # those that silenced a finding
 
     def count(self, severity: str) -> int:
         return sum(1 for d in self.diagnostics if d.severity == severity)
@@ -66,9 +70,20 @@ def _plural(n, word):
 
 
 # ---------------------------------------------------------------- text
-def render_text(results, color: bool | None = None) -> str:
+def render(fmt: str, results, version: str, exit_code: int = 0, quiet: bool = False, help_url: str | None = None,
+           shard: str | None = None) -> str:
+    if fmt == "json":
+        return render_json(results, version)
+    if fmt == "github":
+        return render_github(results)
+    if fmt == "sarif":
+        return render_sarif(results, version, exit_code=exit_code, help_url=help_url, shard=shard)
+    return render_text(results, quiet=quiet)
+
+
+def render_text(results, color: bool | None = None, quiet: bool = False) -> str:
     lines: list[str] = []
-    many = len(results) > 1
+    many = len(results) > 1 and not quiet
     for r in results:
         name = rel(r.file) or "(bundled MYRAbot)"
         if r.failure:
@@ -90,6 +105,8 @@ def render_text(results, color: bool | None = None) -> str:
                                      "mass, in the inertial frame):", bold=True))
             for link, line in r.suggestions:
                 lines.append(f"    {link}: {line}")
+    if quiet:
+        return "".join(line + "\n" for line in lines)
     t = totals(results)
     summary = (f"{_plural(t['errors'], 'error')}, {_plural(t['warnings'], 'warning')}, {t['info']} info "
                f"in {_plural(t['files'], 'file')}")
@@ -153,14 +170,16 @@ def render_github(results) -> str:
     out = []
     for r in results:
         if r.failure:
-            out.append(f"::error title=check failed::{_gh_escape(r.failure)}")
+            props = [f"file={_gh_escape(rel(_failure_file(r)), True)}"]
+            if r.failure_loc is not None and r.failure_loc.line:
+                props.append(f"line={r.failure_loc.line}")
+            props.append("title=X000 input-unprocessable")
+            out.append(f"::error {','.join(props)}::{_gh_escape(r.failure)}")
             continue
         for d in r.diagnostics:
-            props = []
-            if d.loc:
-                props.append(f"file={_gh_escape(rel(d.loc.file), True)}")
-                if d.loc.line:
-                    props.append(f"line={d.loc.line}")
+            props = [f"file={_gh_escape(rel(d.loc.file if d.loc and d.loc.file else _input(r)), True)}"]
+            if d.loc and d.loc.line:
+                props.append(f"line={d.loc.line}")
             props.append(f"title={_gh_escape(d.code + ' ' + (d.data.get('rule') or _rule_name(d.code)), True)}")
             out.append(f"::{GITHUB_LEVEL[d.severity]} {','.join(props)}::{_gh_escape(d.message)}")
     t = totals(results)
@@ -169,52 +188,159 @@ def render_github(results) -> str:
 
 
 # ---------------------------------------------------------------- sarif
+def _failure_file(r) -> str:
+    loc = r.failure_loc
+    return (loc.file if loc is not None and loc.file else r.file) or _bundled_name()
+
+
+def _input(r) -> str:
+    """The checked file (for a finding without a location of its own)."""
+    return r.file or _bundled_name()
+
+
+def _bundled_name() -> str:
+    from myrabot_desc.build.packages import bundled_path
+
+    return rel(str(bundled_path()))
+
+
 def _rule_name(code: str) -> str:
+    from myrabot_desc.checks.codes import LINT_CODES
     from myrabot_desc.checks.registry import EXTERNAL, RULES
 
     if code in RULES:
         return RULES[code].name
-    return EXTERNAL.get(code, (code.lower(),))[0]
+    return (EXTERNAL.get(code) or LINT_CODES.get(code) or (code.lower(),))[0]
 
 
 def rule_table():
     """[(code, name, severity, summary, full doc)] for every known code, sorted."""
+    from myrabot_desc.checks.codes import LINT_CODES
     from myrabot_desc.checks.registry import EXTERNAL, load_all
 
     rows = [(c, r.name, r.severity, r.summary, r.doc) for c, r in load_all().items()]
-    rows += [(c, n, s, summ, summ) for c, (n, s, summ) in EXTERNAL.items()]
+    rows += [(c, n, s, summ, summ) for c, (n, s, summ) in {**LINT_CODES, **EXTERNAL}.items()]
     return sorted(rows)
 
 
-def render_sarif(results, version: str) -> str:
+SARIF_SCHEMA = "https://docs.oasis-open.org/sarif/sarif/v2.1.0/errata01/os/schemas/sarif-schema-2.1.0.json"
+
+
+def _uri(path: str) -> str:
+    return Path(rel(path)).as_posix()
+
+
+def render_sarif(results, version: str, exit_code: int = 0, help_url: str | None = None,
+                 shard: str | None = None) -> str:
+    """One run: the rules, the results, every file involved as an artifact, and one invocation
+    (exit code; each unprocessable file as a tool execution notification)."""
     table = rule_table()
     index = {c: i for i, (c, *_rest) in enumerate(table)}
-    rules = [{"id": c, "name": n, "shortDescription": {"text": summ},
-              "fullDescription": {"text": doc}, "defaultConfiguration": {"level": SARIF_LEVEL[sev]},
-              "helpUri": f"https://github.com/myrabot/myrabot-desc/blob/main/docs/rules.md#{c.lower()}"}
-             for c, n, sev, summ, doc in table]
-    res = []
+    rules = []
+    for c, n, sev, summ, doc in table:
+        rule = {"id": c, "name": n, "shortDescription": {"text": summ},
+                "fullDescription": {"text": doc}, "defaultConfiguration": {"level": SARIF_LEVEL[sev]},
+                "help": {"text": doc}}
+        if help_url:              # docs/rules.md of a published copy: headings "### X000" -> #x000
+            rule["helpUri"] = f"{help_url.split('#')[0]}#{c.lower()}"
+        rules.append(rule)
+    artifacts: dict[str, int] = {}
+
+    def location(file: str, line: int | None) -> dict:
+        uri = _uri(file)
+        artifacts.setdefault(uri, len(artifacts))
+        phys = {"artifactLocation": {"uri": uri, "index": artifacts[uri]}}
+        if line:
+            phys["region"] = {"startLine": line}
+        return {"physicalLocation": phys}
+
+    res, notes = [], []
     for r in results:
         if r.failure:
-            res.append({"ruleId": "X000", "level": "error", "message": {"text": r.failure},
-                        "locations": [{"physicalLocation": {"artifactLocation": {"uri": rel(r.file) or "."}}}]})
+            loc = location(_failure_file(r), r.failure_loc.line if r.failure_loc is not None else None)
+            res.append({"ruleId": "X000", "ruleIndex": index["X000"], "level": "error",
+                        "message": {"text": r.failure}, "locations": [loc]})
+            notes.append({"level": "error", "message": {"text": r.failure}, "locations": [loc],
+                          "descriptor": {"id": "X000", "index": index["X000"]}})
             continue
         for d in r.diagnostics:
             item = {"ruleId": d.code, "level": SARIF_LEVEL[d.severity], "message": {"text": d.message}}
             if d.code in index:
                 item["ruleIndex"] = index[d.code]
-            if d.loc:
-                phys = {"artifactLocation": {"uri": Path(rel(d.loc.file)).as_posix()}}
-                if d.loc.line:
-                    phys["region"] = {"startLine": d.loc.line}
-                item["locations"] = [{"physicalLocation": phys}]
+            item["locations"] = [location(d.loc.file, d.loc.line) if d.loc and d.loc.file else location(_input(r), None)]
             props = _plain({k: v for k, v in d.data.items() if k != "rule"})
             if props:
                 item["properties"] = props
             res.append(item)
-    doc = {"$schema": "https://json.schemastore.org/sarif-2.1.0.json", "version": "2.1.0",
-           "runs": [{"tool": {"driver": {"name": "myrabot-desc", "version": version,
-                                         "informationUri": "https://github.com/myrabot/myrabot-desc",
-                                         "rules": rules}},
-                     "results": res}]}
+    invocation = {"executionSuccessful": exit_code in (0, 1), "exitCode": exit_code,
+                  "toolExecutionNotifications": notes}
+    if shard:
+        invocation["properties"] = {"shard": shard}
+    run = {"tool": {"driver": {"name": "myrabot-desc", "version": version, "semanticVersion": version,
+                               "rules": rules}},
+           "invocations": [invocation],
+           "artifacts": [{"location": {"uri": u}} for u in artifacts],
+           "columnKind": "unicodeCodePoints",
+           "results": res}
+    doc = {"$schema": SARIF_SCHEMA, "version": "2.1.0", "runs": [run]}
     return json.dumps(doc, indent=2, ensure_ascii=False) + "\n"
+
+
+def merge_sarif(docs: list[dict]) -> dict:
+    """Several of our SARIF reports (shards of one run) as one: one run whose results, artifacts
+    and invocations are the union, artifact indexes renumbered; rules from the first report."""
+    if not docs:
+        raise ValueError("no reports to merge")
+    runs = [run for d in docs for run in d.get("runs", [])]
+    if not runs:
+        raise ValueError("the reports hold no runs")
+    artifacts: dict[str, int] = {}
+    results, invocations = [], []
+
+    def remap(loc_holder):
+        for loc in loc_holder.get("locations", []):
+            art = loc.get("physicalLocation", {}).get("artifactLocation")
+            if art and "uri" in art:
+                art["index"] = artifacts.setdefault(art["uri"], len(artifacts))
+
+    for run in runs:
+        for a in run.get("artifacts", []):
+            uri = a.get("location", {}).get("uri")
+            if uri is not None:
+                artifacts.setdefault(uri, len(artifacts))
+        for item in run.get("results", []):
+            remap(item)
+            results.append(item)
+        for inv in run.get("invocations", []):
+            for n in inv.get("toolExecutionNotifications", []):
+                remap(n)
+            invocations.append(inv)
+    first = runs[0]
+    merged = {"tool": first["tool"], "invocations": invocations,
+              "artifacts": [{"location": {"uri": u}} for u in artifacts],
+              "columnKind": first.get("columnKind", "unicodeCodePoints"), "results": results}
+    return {"$schema": docs[0].get("$schema", SARIF_SCHEMA), "version": "2.1.0", "runs": [merged]}
+
+
+def merge_sarif_files(files: list[str]) -> str:
+    from myrabot_desc.diagnostics import Loc
+    from myrabot_desc.errors import InputError
+
+    if not files:
+        raise InputError("--merge-sarif: give the SARIF files to merge")
+    docs = []
+    for f in files:
+        try:
+            doc = json.loads(Path(f).read_text(encoding="utf-8"))
+        except OSError as exc:
+            raise InputError(f"cannot read: {exc.strerror}", Loc(f)) from None
+        except (UnicodeDecodeError, json.JSONDecodeError) as exc:
+            line = getattr(exc, "lineno", None)
+            raise InputError(f"not a JSON file: {exc}", Loc(f, line)) from None
+        if not isinstance(doc, dict) or doc.get("version") != "2.1.0" or not isinstance(doc.get("runs"), list):
+            raise InputError("not a SARIF 2.1.0 report", Loc(f))
+        docs.append(doc)
+    try:
+        return json.dumps(merge_sarif(docs), indent=2, ensure_ascii=False) + "\n"
+    except (ValueError, KeyError, TypeError, AttributeError) as exc:
+        raise InputError(f"cannot merge: {exc}", Loc(files[0])) from None

@@ -11,6 +11,7 @@ gz-sim reads it as well.
 
 from __future__ import annotations
 
+import copy
 from dataclasses import dataclass
 
 from lxml import etree
@@ -25,6 +26,7 @@ from myrabot_desc.convert.common import (
     warn_load_issues,
 )
 from myrabot_desc.convert.gazebo import GazeboProps
+from myrabot_desc.convert.report import Report, seed
 from myrabot_desc.convert.sensors import translate_sensor
 from myrabot_desc.convert.systems import Systems
 from myrabot_desc.convert.uris import UriMapper
@@ -64,7 +66,7 @@ class SdfResult:
     resource_dirs: list[str]
 
 
-def _inertial_el(parent, members, host_T, repairs):
+def _inertial_el(parent, members, host_T, repairs, repairs_by_link):
     """One SDF <inertial> for the link's members (a single one kept as written, several combined)."""
     parts = []
     for m in members:
@@ -74,6 +76,7 @@ def _inertial_el(parent, members, host_T, repairs):
         tensor, changed = repaired(ine)
         if changed:
             repairs.append(f"{m.name} {describe(ine, tensor)}")
+            repairs_by_link[m.name] = describe(ine, tensor)
         parts.append((ine, compose(host_T[m.name], pose_T(ine.origin)), tensor))
     if not parts:
         return None
@@ -128,9 +131,10 @@ def _geometry_el(parent, geo, uris):
 
 
 def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = None,
-                name: str | None = None) -> SdfResult:
+                name: str | None = None, report: Report | None = None) -> SdfResult:
     opts = opts or SdfOptions()
     notes = notes if notes is not None else Notes()
+    report = report if report is not None else Report("sdf")
     if not robot.links:
         raise InputError("the model has no links: nothing to convert", robot.loc)
     for j in robot.joints.values():  # a joint to nowhere cannot be placed (check reports it as T-rules)
@@ -139,6 +143,7 @@ def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = Non
                 raise InputError(f"joint '{j.name}' names link '{end}', which does not exist: nothing to "
                                  "attach it to (run check for the whole picture)", j.loc)
     warn_load_issues(robot, notes)
+    seed(report, robot)
     props = GazeboProps(robot, notes)
     uris = UriMapper(robot, opts.uri_style, notes)
     look = Appearance(robot, notes)
@@ -203,10 +208,22 @@ def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = Non
 
     # ---- sensors (from <gazebo reference> blocks) and systems (model-level plugins)
     sensor_outs = []
+    sensor_fates = {}
+    joint_sensors: dict[str, list] = {}
     for s in robot.sensors():
+        if s.reference in robot.joints and s.reference not in robot.links and s.dialect == "sdf":
+            # a force/torque sensor sits in a joint (SDF allows it): copied there, ROS plugins left out
+            joint_sensors.setdefault(s.reference, []).append(s)
+            sensor_fates[id(s)] = ("kept", f"in joint '{s.reference}' (SDF sensors may sit in joints)")
+            continue
         out = translate_sensor(s, robot, notes)
         if out is not None:
             sensor_outs.append(out)
+        sensor_fates[id(s)] = (("translated", f"an SDF sensor on '{out.link}'" + (f" ({out.comments[0]})"
+                                                                                 if out.comments else ""))
+                               if out is not None and out.element is not None else
+                               ("dropped", "; ".join(out.comments) if out is not None and out.comments
+                                else "not converted"))
     systems = Systems(robot, model_name, notes)
     systems.translate([p for g in robot.gazebo for p in g.plugins])
     sensor_outs.extend(systems.sensors)
@@ -214,6 +231,7 @@ def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = Non
     parent_joint = {j.child: j for j in emitted_joints}
     massless = []
     repairs = []
+    repairs_by_link: dict[str, str] = {}
     sensor_names = []
     for n in kept:
         link = robot.links[n]
@@ -226,7 +244,7 @@ def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = Non
             else:
                 sub(el, "pose", relative_to=joint_names[pj.name])
         props.apply_link(el, n)
-        if _inertial_el(el, members[n], host_T, repairs) is None:
+        if _inertial_el(el, members[n], host_T, repairs, repairs_by_link) is None:
             massless.append(n)
             ine = sub(el, "inertial")
             sub(ine, "mass", TINY_MASS)
@@ -346,6 +364,12 @@ def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = Non
                             f"{j.mimic.offset}) needs SDF 1.11; not converted")
                 notes.warn(f"mimic on joint '{j.name}' not converted (SDF 1.9 has no mimic)", j.loc)
         props.apply_joint(je, axis, j.name)
+        for sn in joint_sensors.pop(j.name, ()):
+            el = copy.deepcopy(sn.element)
+            for pl in [c for c in el if isinstance(c.tag, str) and c.tag == "plugin"]:
+                el.remove(pl)
+            je.append(el)
+            sensor_names.append(el.get("name"))
         out_joints.append(jn)
 
     # ---- frames for everything lumping removed
@@ -373,9 +397,127 @@ def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = Non
                 if c.text and c.text.strip() in renamed:
                     c.text = renamed[c.text.strip()]
             model.append(item)
+    for jname, sns in joint_sensors.items():     # their joint was lumped or left out
+        for sn in sns:
+            sensor_fates[id(sn)] = ("dropped", f"its joint '{jname}' is not a joint of the SDF model")
+            notes.warn(f"sensor '{sn.name}' in joint '{jname}' dropped: that joint is not in the model", sn.loc)
+    extra_joints = _model_extras(model, robot, notes, report, taken | set(out_joints) | set(frames))
+    out_joints.extend(extra_joints)
     uris.finish()
     look.finish()
+    _report_sdf(robot, report, opts, host, world_links, frame_names, joint_names, lumped_joints, repairs_by_link,
+                massless, props, systems, sensor_fates)
     return SdfResult(model, notes, kept, frames, out_joints, sensor_names, sorted(uris.resource_dirs))
+
+
+# what a model-level <gazebo> block may carry into the SDF <model> verbatim (sdformat copies them too)
+MODEL_CHILDREN = ("joint", "link", "frame", "model", "include", "gripper")
+
+
+def _model_extras(model, robot, notes, report, taken) -> list[str]:
+    """Joints, links, frames... declared in model-level ``<gazebo>`` blocks (a parallel linkage's
+    closing joint, a screw joint): copied into the model as ``ign sdf -p`` does."""
+    import copy
+
+    out = []
+    for g in robot.gazebo:
+        if g.reference is not None:
+            continue
+        for c in g.element:
+            if not isinstance(c.tag, str) or c.tag.startswith("{") or c.tag not in MODEL_CHILDREN:
+                continue
+            name = c.get("name") or ""
+            loc = robot.loc_of(c) or g.loc
+            el = copy.deepcopy(c)
+            if name and name in taken:
+                # PR2's grippers: a <gazebo> joint named like a URDF joint (ign keeps only one of the two)
+                new = _unique(f"{name}_gazebo", taken)
+                el.set("name", new)
+                notes.warn(f"<gazebo> {c.tag} '{name}' has the name of another element of the model: kept as "
+                           f"'{new}'", loc)
+                report.set(f"gazebo-{c.tag}", name, "translated", f"copied into the model from a <gazebo> block, "
+                           f"renamed '{new}' (the URDF has an element of that name)", loc)
+            else:
+                taken.add(name)
+                report.set(f"gazebo-{c.tag}", name or "?", "kept", "copied into the model from a <gazebo> block", loc)
+            comment(model, f"from a <gazebo> block ({loc})" if loc else "from a <gazebo> block")
+            model.append(el)
+            if c.tag == "joint":
+                out.append(el.get("name"))
+    return out
+
+
+def _report_sdf(robot, report, opts, host, world_links, frame_names, joint_names, lumped_joints, repairs_by_link,
+                massless, props, systems, sensor_fates) -> None:
+    """The fate of every source element in the SDF (seed() marked them all kept)."""
+    from myrabot_desc.convert.report import part_name
+    from myrabot_desc.convert.sensors import plugin_kind
+
+    lumped = {j.name for j in lumped_joints}
+    for n, link in robot.links.items():
+        if n in world_links:
+            report.set("link", n, "translated", "the URDF 'world' link is the SDF world: joints to it attach there")
+        elif host[n] != n:
+            report.set("link", n, "translated", f"lumped into '{host[n]}' (fixed joint), kept as <frame "
+                                                f"name=\"{frame_names[n]}\">")
+            if link.inertial is not None and link.inertial.mass > 0:
+                report.set("inertial", n, "translated", f"combined into the inertial of '{host[n]}'")
+        for k, v in enumerate(link.visuals):
+            if v.geometry is None:
+                report.set("visual", part_name(n, k), "dropped", "no geometry the loader could read")
+        for k, c in enumerate(link.collisions):
+            if c.geometry is None:
+                report.set("collision", part_name(n, k), "dropped", "no geometry the loader could read")
+        if n in repairs_by_link:
+            report.set("inertial", n, "approximated", f"breaks A + B >= C: raised {repairs_by_link[n]}")
+        if n in massless:
+            report.set("inertial", n, "approximated", f"massless: placeholder {TINY_MASS} kg, inertia "
+                                                      f"{TINY_INERTIA} kg*m^2 (gz-sim drops massless links)")
+    for j in robot.joints.values():
+        if j.name in lumped:
+            report.set("joint", j.name, "translated", f"fixed joint lumped: kept as <frame name=\"{joint_names[j.name]}\">")
+        elif j.type == "floating":
+            report.set("joint", j.name, "dropped", "floating: links in an SDF model are free unless jointed")
+        elif j.type == "planar":
+            report.set("joint", j.name, "dropped", f"planar: no SDF joint type; '{j.child}' left free")
+        elif j.child in world_links:
+            report.set("joint", j.name, "dropped", "its child is the world")
+        elif j.type == "continuous":
+            report.set("joint", j.name, "translated", "continuous -> revolute without limits")
+        elif joint_names[j.name] != j.name:
+            report.set("joint", j.name, "translated", f"renamed '{joint_names[j.name]}' (a link has its name)")
+        if j.mimic is not None:
+            report.set("mimic", j.name, "dropped", "SDF 1.9 has no mimic (1.11 has): kept as a comment")
+    for g in robot.gazebo:
+        for key in g.properties:
+            ref = g.reference or "model"
+            if f"{key} ({ref})" in props.unknown:
+                report.set("gazebo", f"{ref}/{key}", "dropped", "no SDF equivalent", g.loc)
+            else:
+                report.set("gazebo", f"{ref}/{key}", "translated", "SDF link/collision/joint property", g.loc)
+        for pl in g.plugins:
+            kind = plugin_kind(pl)
+            fate, detail = {
+                "imu": ("translated", "an SDF imu sensor"),
+                "joint_state": ("translated", "gz-sim JointStatePublisher"),
+                "ros_control": ("translated", "gz-sim joint position controllers and the joint state publisher"),
+                "gz": ("kept", "a gz-sim system"),
+            }.get(kind, ("dropped", "no gz-sim equivalent: kept as an XML comment"))
+            if kind in ("diff_drive", "skid_steer"):
+                ok = bool(systems.drive_joints) and any(v in systems.drive_joints for v in pl.params.values())
+                fate, detail = (("translated", "gz-sim DiffDrive, separation and radius measured on the URDF")
+                                if ok else ("dropped", "wheel joints or geometry not found: kept as a comment"))
+            report.set("plugin", pl.name or pl.library or "?", fate, detail, pl.loc)
+    for sn in robot.sensors():
+        fate, detail = sensor_fates.get(id(sn), ("dropped", "not converted"))
+        report.set("sensor", sn.name or "?", fate, detail, sn.loc)
+        for pl in sn.plugins:
+            report.set("plugin", pl.name or pl.library or "?", "dropped",
+                       "a ROS sensor plugin: gz-sim sensors publish themselves (topic and frame carried over)",
+                       pl.loc)
+    for t in robot.transmissions:
+        report.set("transmission", t.name or "?", "translated",
+                   "read for the controllers: gz-sim has no transmissions")
 
 
 def _unique(name, taken):
@@ -395,8 +537,8 @@ def _part_name(host, member, given, kind, k, lumped):
     return base
 
 
-def to_sdf(robot, opts: SdfOptions | None = None) -> tuple[str, SdfResult]:
-    res = build_model(robot, opts)
+def to_sdf(robot, opts: SdfOptions | None = None, report: Report | None = None) -> tuple[str, SdfResult]:
+    res = build_model(robot, opts, report=report)
     root = etree.Element("sdf", version=SDF_VERSION)
     root.append(res.model)
     return pretty(root), res

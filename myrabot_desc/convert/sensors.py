@@ -279,7 +279,7 @@ _TYPE_MAP = {"ray": "gpu_lidar", "gpu_ray": "gpu_lidar", "lidar": "gpu_lidar", "
              "gps": "navsat", "multicamera": "camera", "sonar": "gpu_lidar"}
 
 
-def _sdf_sensor(sensor, notes):
+def _sdf_sensor(sensor, notes, folded=()):
     src = sensor.element
     s = copy.deepcopy(src)
     etree.strip_attributes(s, "reference")
@@ -347,6 +347,32 @@ def _sdf_sensor(sensor, notes):
                 frame = frame or pparam(p, "bodyName")
         comments.append(f"ROS plugin '{p.name}' ({p.library}) dropped: gz-sim sensors publish themselves; "
                         "its topic and frame are used here")
+    for p in folded:             # a model-level IMU plugin measuring this sensor's link: one sensor, not two
+        ns = pparam(p, "robotNamespace")
+        topic = topic or join_topic(ns if ns != "/" else None, pparam(p, "topicName", "topic_name") or "imu")
+        frame = frame or pparam(p, "frameName", "frame_name") or _imu_body(p)
+        rate = to_float(pparam(p, "updateRate", "update_rate"))
+        if rate and s.find("update_rate") is None:
+            sub(s, "update_rate", rate)
+        noise = to_float(pparam(p, "gaussianNoise"))
+        if noise and s.find("imu") is None:
+            imu = sub(s, "imu")
+            for group in ("angular_velocity", "linear_acceleration"):
+                g = sub(imu, group)
+                for axis in "xyz":
+                    noise_el(sub(g, axis), noise, attr=True)
+        comments.append(f"IMU plugin '{p.name}' ({p.library}) on this link folded into this sensor: its topic, "
+                        "frame, rate" + (" and gaussianNoise (as the stddev)" if noise else "")
+                        + " kept (gz-sim sensors publish themselves)")
+    for p in sensor.plugins:     # a ROS IMU sensor plugin adds its own gaussianNoise to the readings
+        noise = to_float(pparam(p, "gaussianNoise", "gaussian_noise")) if plugin_kind(p) == "imu" else None
+        if noise and s.find("imu") is None:
+            imu = sub(s, "imu")
+            for group in ("angular_velocity", "linear_acceleration"):
+                g = sub(imu, group)
+                for axis in "xyz":
+                    noise_el(sub(g, axis), noise, attr=True)
+            comments.append(f"the plugin's gaussianNoise {num(noise)} is the stddev of every axis")
     if topic and s.find("topic") is None:
         sub(s, "topic", topic.lstrip("~/") if topic.startswith("~/") else topic)
     if frame and s.find("gz_frame_id") is None:
@@ -359,9 +385,32 @@ def _sdf_sensor(sensor, notes):
 
 
 # ---------------------------------------------------------------- controllers that are sensors
+def _imu_body(p):
+    return pparam(p, "bodyName", "body_name", "frameName", "frame_name") or p.reference
+
+
+def _imu_sensor(robot, link):
+    """The first SDF ``<sensor type="imu">`` on a link, or None."""
+    return next((s for s in robot.sensors() if s.dialect == "sdf" and s.type == "imu" and s.reference == link), None)
+
+
+def imu_sensor_on(p, robot) -> str | None:
+    """Name of the imu sensor already on the link a model-level IMU plugin measures (it is folded
+    into that sensor by ``translate_sensor``), or None."""
+    s = _imu_sensor(robot, _imu_body(p))
+    return None if s is None else (s.name or "imu")
+
+
+def _folded_imu_plugins(sensor, robot):
+    if sensor.type != "imu" or _imu_sensor(robot, sensor.reference) is not sensor:
+        return ()
+    return tuple(p for g in robot.gazebo for p in g.plugins
+                 if plugin_kind(p) == "imu" and _imu_body(p) == sensor.reference)
+
+
 def imu_from_plugin(p, robot, notes) -> SensorOut | None:
     """gazebo_ros_imu (Electric controller or classic model plugin): an ``imu`` sensor on bodyName."""
-    body = pparam(p, "bodyName", "body_name", "frameName", "frame_name") or p.reference
+    body = _imu_body(p)
     if body not in robot.links:
         notes.warn(f"IMU plugin '{p.name}': body '{body}' is not a link; IMU not converted", p.loc)
         return None
@@ -401,5 +450,5 @@ def translate_sensor(sensor, robot, notes) -> SensorOut | None:
         for p in sensor.plugins[1:]:
             comments.append(f"extra controller not converted: {xml_text(p.element)}")
         return SensorOut(link, T, s, comments, "electric")
-    s, comments, T = _sdf_sensor(sensor, notes)
+    s, comments, T = _sdf_sensor(sensor, notes, _folded_imu_plugins(sensor, robot))
     return SensorOut(link, T, s, comments, "sdf")

@@ -1,80 +1,37 @@
 """Model-level plugins → gz-sim systems.
 
-- diff-drive plugins (Electric Create/Roomba, classic ROS 1 ``wheelSeparation``/``wheelDiameter``,
-  ROS 2 ``wheel_separation``/``wheel_diameter``, gz ``DiffDrive``) → ``gz-sim-diff-drive-system``
-  with the separation and radius measured on the URDF's wheels (anchors §6.4);
+- every drive the drive model (model/drive.py) recognises → ``gz-sim-diff-drive-system`` with the
+  separation and radius measured on the URDF's wheels (anchors §6.4): two-wheel plugins of every
+  dialect, skid-steer bases as a DiffDrive over both wheel pairs, and ros_control / ros2_control
+  velocity wheels that stand on both sides of the base;
+- other velocity-interface joints → one ``gz-sim-joint-controller-system`` (velocity) each;
 - joint states → ``gz-sim-joint-state-publisher-system``;
-- arm joints → one ``gz-sim-joint-position-controller-system`` each;
-- IMU controllers → an ``imu`` sensor (returned to the caller);
+- arm joints → one ``gz-sim-joint-position-controller-system`` each (never on a velocity joint);
+- IMU controllers → an ``imu`` sensor (returned to the caller), unless the link already has one;
 - gz-sim systems already in the file are kept; anything else becomes an XML comment.
 """
 
 from __future__ import annotations
 
 import copy
-import math
 
 from lxml import etree
 
-from myrabot_desc.convert.common import local, num, sub, to_bool, to_float, xml_text
+from myrabot_desc.convert.common import local, num, sub, to_bool, xml_text
 from myrabot_desc.convert.sensors import (
     imu_from_plugin,
+    imu_sensor_on,
     plugin_kind,
     pparam,
     ros_namespace,
     ros_remap,
 )
-from myrabot_desc.model.transforms import IDENTITY, compose, pose_T, rotate
+from myrabot_desc.model import drive as D
 
 DIFF_DRIVE = ("gz-sim-diff-drive-system", "gz::sim::systems::DiffDrive")
 JOINT_STATES = ("gz-sim-joint-state-publisher-system", "gz::sim::systems::JointStatePublisher")
 POSITION = ("gz-sim-joint-position-controller-system", "gz::sim::systems::JointPositionController")
-
-
-def link_transforms(robot):
-    """World transform of every link at q = 0 (joint origins only)."""
-    out = {}
-    todo = list(robot.roots)
-    for r in todo:
-        out[r] = IDENTITY
-    children = robot.joints_by_parent()
-    while todo:
-        link = todo.pop()
-        for j in children.get(link, []):
-            if j.child in out:
-                continue
-            out[j.child] = compose(out[link], pose_T(j.origin))
-            todo.append(j.child)
-    return out
-
-
-def wheel_radius(robot, joint_name):
-    """Radius of the wheel driven by this joint: its first cylinder/sphere collision (or visual)."""
-    j = robot.joints.get(joint_name)
-    if j is None:
-        return None
-    link = robot.links.get(j.child)
-    if link is None:
-        return None
-    for geo in [c.geometry for c in link.collisions] + [v.geometry for v in link.visuals]:
-        if geo is not None and getattr(geo, "kind", None) in ("cylinder", "sphere"):
-            return geo.radius
-    return None
-
-
-def wheel_separation(robot, left, right, transforms):
-    """Distance between the two wheel joints along the left wheel's axis (the track width)."""
-    jl, jr = robot.joints.get(left), robot.joints.get(right)
-    if jl is None or jr is None or jl.parent not in transforms or jr.parent not in transforms:
-        return None
-    Rl, pl = compose(transforms[jl.parent], pose_T(jl.origin))
-    _, pr = compose(transforms[jr.parent], pose_T(jr.origin))
-    axis = rotate(Rl, [float(v) for v in jl.axis])
-    n = math.hypot(*axis)
-    d = [pl[k] - pr[k] for k in range(3)]
-    if n < 1e-9:
-        return math.hypot(*d)
-    return abs(sum(d[k] * axis[k] for k in range(3)) / n)
+VELOCITY = ("gz-sim-joint-controller-system", "gz::sim::systems::JointController")
 
 
 class Systems:
@@ -91,15 +48,25 @@ class Systems:
 
     # ------------------------------------------------------------ entry
     def translate(self, plugins) -> None:
+        drives = {id(d.plugin): d for d in D.plugin_drives(self.robot)}
         for p in plugins:
             kind = plugin_kind(p)
-            if kind == "imu":
-                out = imu_from_plugin(p, self.robot, self.notes)
-                if out is not None:
-                    self.sensors.append(out)
+            if id(p) in drives:
+                self._diff_drive(p, drives[id(p)])
+            elif kind == "imu":
+                merged = imu_sensor_on(p, self.robot)
+                if merged is not None:
+                    self.elements.append(("comment", f"IMU plugin '{p.name}' ({p.library or local(p.element.tag)}): "
+                                                     f"folded into the imu sensor '{merged}' of its link"))
+                else:
+                    out = imu_from_plugin(p, self.robot, self.notes)
+                    if out is not None:
+                        self.sensors.append(out)
                 self.has_control = True
             elif kind in ("diff_drive", "skid_steer"):
-                self._diff_drive(p, kind)
+                self.unknown.append(f"{p.name or '?'} ({p.library or local(p.element.tag)})")
+                self.elements.append(("comment", f"not converted (a drive plugin whose parameters are not known): "
+                                                 f"{xml_text(p.element)}"))
             elif kind == "joint_state":
                 self.wants_joint_states = True
                 self.has_control = True
@@ -116,6 +83,7 @@ class Systems:
             else:
                 self.unknown.append(f"{p.name or '?'} ({p.library or local(p.element.tag)})")
                 self.elements.append(("comment", f"not converted (no gz-sim equivalent known): {xml_text(p.element)}"))
+        self._velocity_wheels()
         self._arm()
         if self.wants_joint_states:
             el = etree.Element("plugin", filename=JOINT_STATES[0], name=JOINT_STATES[1])
@@ -127,18 +95,11 @@ class Systems:
                             + ", ".join(self.unknown))
 
     # ------------------------------------------------------------ diff drive
-    def _diff_drive(self, p, kind):
+    def _diff_drive(self, p, d):
         r = self.robot
         self.has_control = True
-        if kind == "skid_steer":
-            lefts = [v for v in (pparam(p, "leftFrontJoint"), pparam(p, "leftRearJoint")) if v]
-            rights = [v for v in (pparam(p, "rightFrontJoint"), pparam(p, "rightRearJoint")) if v]
-        else:
-            lefts = [c.text.strip() for c in p.element if local(c.tag) in ("left_joint", "leftJoint",
-                                                                           "left_wheel_joint") and c.text]
-            rights = [c.text.strip() for c in p.element if local(c.tag) in ("right_joint", "rightJoint",
-                                                                             "right_wheel_joint") and c.text]
-        missing = [j for j in lefts + rights if j not in r.joints]
+        lefts, rights = list(d.left), list(d.right)
+        missing = d.missing(r)
         if not lefts or not rights or missing:
             self.notes.warn(f"diff-drive plugin '{p.name}': wheel joints {missing or 'not given'} not found; "
                             "kept as a comment", p.loc)
@@ -146,37 +107,63 @@ class Systems:
             self.elements.append(("comment", f"not converted (wheel joints missing): {xml_text(p.element)}"))
             return
         self.drive_joints.update(lefts + rights)
-        # what the plugin itself says
-        sep_said = to_float(pparam(p, "wheel_separation", "wheelSeparation"))
-        diam_said = to_float(pparam(p, "wheel_diameter", "wheelDiameter"))
-        rad_said = to_float(pparam(p, "wheel_radius"), diam_said / 2 if diam_said else None)
-        T = link_transforms(r)
-        sep = wheel_separation(r, lefts[0], rights[0], T)
-        rad = wheel_radius(r, lefts[0])
+        g = D.measure(r, d)
+        sep, rad = g.separation, g.radius
         src = []
         if sep is None:
-            sep = sep_said
+            sep = d.separation
             src.append("separation from the plugin")
         if rad is None:
-            rad = rad_said
-            src.append("radius from the plugin (the wheel has no cylinder or sphere)")
+            rad = d.radius
+            src.append("radius from the plugin (the wheel has no geometry to measure)")
         if sep is None or rad is None:
             self.notes.warn(f"diff-drive plugin '{p.name}': cannot tell the wheel separation/radius; kept as a "
                             "comment", p.loc)
             self.elements.append(("comment", f"not converted: {xml_text(p.element)}"))
             return
-        for what, said, got in (("wheel_separation", sep_said, sep), ("wheel_radius", rad_said, rad)):
+        for what, said, got in (("wheel_separation", d.separation, sep), ("wheel_radius", d.radius, rad)):
             if said is not None and abs(said - got) > 5e-4:
                 self.notes.warn(f"diff-drive '{p.name}': the plugin says {what} {num(said)} m but the URDF's "
                                 f"wheels give {num(got)} m; using the URDF", p.loc)
         ns = pparam(p, "robotNamespace")
         ns = None if ns in (None, "/") else ns.strip("/")
         ns = ns or ros_namespace(p)
-        cmd = (pparam(p, "commandTopic", "command_topic") or ros_remap(p, "cmd_vel", "/cmd_vel") or "cmd_vel")
-        odom = (pparam(p, "odometryTopic", "odometry_topic") or ros_remap(p, "odom", "/odom") or "odom")
+        # kobuki-style base plugins subscribe <base_prefix>/commands/velocity (base_prefix: mobile_base)
+        vendor = "mobile_base/commands/velocity" if d.spec is D.VENDOR else None
+        cmd = (pparam(p, "commandTopic", "command_topic", "topic") or ros_remap(p, "cmd_vel", "/cmd_vel") or vendor
+               or "cmd_vel")
+        odom = (pparam(p, "odometryTopic", "odometry_topic", "odom_topic") or ros_remap(p, "odom", "/odom") or "odom")
         if ns and not cmd.startswith("/"):
             cmd, odom = f"{ns}/{cmd}", (odom if odom.startswith("/") else f"{ns}/{odom}")
-        rate = to_float(pparam(p, "updateRate", "update_rate", "odom_publish_frequency"))
+        el = self._drive_element(lefts, rights, sep, rad, cmd, odom,
+                                 pparam(p, "odometryFrame", "odometry_frame", "frame_id") or "odom",
+                                 pparam(p, "robotBaseFrame", "robot_base_frame", "child_frame_id") or (r.root or "base_link"),
+                                 d.update_rate, d.accel, d.spec.accel_unit if d.spec else "")
+        note = (f"from '{p.name}' ({p.library or local(p.element.tag)}): wheel_separation and wheel_radius "
+                f"measured on the URDF ({lefts[0]}/{rights[0]})")
+        if d.skid:
+            note += f"; a skid-steer base: one DiffDrive over its {len(lefts)} left and {len(rights)} right wheels"
+        if src:
+            note += "; " + "; ".join(src)
+        if d.accel and d.spec is not None and d.spec.accel_unit == "wheel m/s^2":
+            note += (f"; {d.spec.accel} {num(d.accel)} m/s^2 is the wheel surface's acceleration: the vehicle's "
+                     f"linear limit, and 2a/s = {num(2 * d.accel / sep)} rad/s^2 its angular one")
+        if d.legacy:
+            note += ("; the ROS 1 plugin ran in legacy mode (legacyMode " + ("true" if d.legacy_explicit else
+                     "not given, default true") + "), which swaps the wheels: this DiffDrive turns the way REP-103 says")
+        nn = pparam(p, "node_namespace")
+        if nn:
+            note += (f"; the Electric plugin listened on {nn}/cmd_vel while the seed's programs publish cmd_vel: "
+                     "cmd_vel is used")
+        self.elements.append(("comment", note))
+        self.elements.append(("plugin", el))
+        # Create/Roomba and the classic plugin with publishWheelJointState publish joint states
+        if d.spec is not None and d.spec.dialect != "skid" and (
+                p.dialect == "electric" or "roomba" in _lib(p) or "create" in _lib(p)
+                or to_bool(pparam(p, "publishWheelJointState", "publish_wheel_joint_state"))):
+            self.wants_joint_states = True
+
+    def _drive_element(self, lefts, rights, sep, rad, cmd, odom, frame, child, rate, accel, unit):
         el = etree.Element("plugin", filename=DIFF_DRIVE[0], name=DIFF_DRIVE[1])
         for j in lefts:
             sub(el, "left_joint", j)
@@ -186,29 +173,58 @@ class Systems:
         sub(el, "wheel_radius", round(rad, 9))
         sub(el, "topic", cmd)
         sub(el, "odom_topic", odom)
-        sub(el, "frame_id", pparam(p, "odometryFrame", "odometry_frame") or "odom")
-        sub(el, "child_frame_id", pparam(p, "robotBaseFrame", "robot_base_frame") or (r.root or "base_link"))
+        sub(el, "frame_id", frame)
+        sub(el, "child_frame_id", child)
         if rate:
             sub(el, "odom_publish_frequency", rate)
-        acc = to_float(pparam(p, "wheelAcceleration", "max_wheel_acceleration"))
-        if acc:
-            # gz limits the vehicle, not the wheel: a = alpha * r (anchors §6.4)
-            sub(el, "max_linear_acceleration", acc * rad)
-            sub(el, "min_linear_acceleration", -acc * rad)
-        note = (f"from '{p.name}' ({p.library or local(p.element.tag)}): wheel_separation and wheel_radius "
-                f"measured on the URDF ({lefts[0]}/{rights[0]})")
-        if src:
-            note += "; " + "; ".join(src)
-        nn = pparam(p, "node_namespace")
-        if nn:
-            note += (f"; the Electric plugin listened on {nn}/cmd_vel while the seed's programs publish cmd_vel: "
-                     "cmd_vel is used")
-        self.elements.append(("comment", note))
-        self.elements.append(("plugin", el))
-        # Create/Roomba and the classic plugin with publishWheelJointState publish joint states
-        if kind == "diff_drive" and (p.dialect == "electric" or "roomba" in _lib(p) or "create" in _lib(p)
-                                     or to_bool(pparam(p, "publishWheelJointState", "publish_wheel_joint_state"))):
-            self.wants_joint_states = True
+        if accel:
+            # ROS plugins ramp the wheel surface speed (m/s^2) and gz limits the vehicle's: the same
+            # number for straight motion (not multiplied by the radius); turning, each wheel's surface
+            # change bounds the yaw acceleration by 2a/s.
+            sub(el, "max_linear_acceleration", accel)
+            sub(el, "min_linear_acceleration", -accel)
+            if unit == "wheel m/s^2":
+                sub(el, "max_angular_acceleration", round(2 * accel / sep, 9))
+                sub(el, "min_angular_acceleration", round(-2 * accel / sep, 9))
+        return el
+
+    # ------------------------------------------------------------ ros_control velocity wheels
+    def _velocity_wheels(self):
+        """Velocity-interface joints: a DiffDrive where they make one (wheels on both sides with a
+        lateral axis), a velocity JointController for the others."""
+        r = self.robot
+        names, source = D.velocity_joints(r)
+        names = [n for n in names if n in r.joints and n not in self.drive_joints and r.joints[n].type != "fixed"]
+        if not names:
+            return
+        self.has_control = True
+        self.wants_joint_states = True
+        d = D.from_velocity_joints(r)
+        if d is not None and not (set(d.joints) & self.drive_joints):
+            g = D.measure(r, d)
+            if g.separation and g.radius:
+                el = self._drive_element(list(d.left), list(d.right), g.separation, g.radius, "cmd_vel", "odom",
+                                         "odom", r.root or "base_link", None, None, "")
+                self.elements.append(("comment", f"{d.label} ({', '.join(d.left)} at +y; {', '.join(d.right)} at "
+                                                 f"-y): a diff drive; wheel_separation and wheel_radius measured on "
+                                                 "the URDF (the ros_control diff_drive_controller's YAML is not read)"))
+                self.elements.append(("plugin", el))
+                self.drive_joints.update(d.joints)
+        rest = [n for n in names if n not in self.drive_joints]
+        if not rest:
+            return
+        self.elements.append(("comment", f"velocity controllers for the {len(rest)} velocity-interface joint(s) "
+                                         f"({source}); command topic /model/<model>/joint/<joint>/cmd_vel"))
+        for name in rest:
+            j = r.joints[name]
+            el = etree.Element("plugin", filename=VELOCITY[0], name=VELOCITY[1])
+            sub(el, "joint_name", name)
+            sub(el, "topic", f"/model/{self.model_name}/joint/{name}/cmd_vel")
+            if j.limit and j.limit.effort:
+                sub(el, "cmd_max", j.limit.effort)
+                sub(el, "cmd_min", -j.limit.effort)
+            self.elements.append(("plugin", el))
+            self.drive_joints.add(name)
 
     # ------------------------------------------------------------ arm joints
     def _arm(self):
@@ -216,19 +232,21 @@ class Systems:
         joints = []
         for t in r.transmissions:
             joints.extend(j for j in t.joints if j not in joints)
-        source = "transmission"
+        source = "transmission" if joints else "ros2_control"
+        joints.extend(j for j in D.position_joints(r) if j not in joints)
         if not joints and self.has_control:
             source = "limits"
             joints = [j.name for j in r.joints.values()
                       if j.type in ("revolute", "prismatic") and j.limit is not None and j.mimic is None
                       and j.limit.lower is not None and j.limit.upper is not None and j.limit.upper > j.limit.lower]
-        joints = [n for n in joints if n in r.joints and n not in self.drive_joints
+        velocity = set(D.velocity_joints(r)[0])
+        joints = [n for n in joints if n in r.joints and n not in self.drive_joints and n not in velocity
                   and r.joints[n].type in ("revolute", "prismatic", "continuous") and r.joints[n].mimic is None]
         if not joints:
             return
         self.wants_joint_states = True
         self.elements.append(("comment", f"position controllers for the {len(joints)} arm joint(s) "
-                                         f"({'from the transmissions' if source == 'transmission' else 'revolute/prismatic with limits'}); "
+                                         f"({_ARM_SOURCE[source]}); "
                                          "command topic /model/<model>/joint/<joint>/0/cmd_pos"))
         for name in joints:
             j = r.joints[name]
@@ -251,6 +269,10 @@ class Systems:
             elif j.limit and j.limit.upper is not None and j.limit.upper < 0:
                 sub(el, "initial_position", j.limit.upper)
             self.elements.append(("plugin", el))
+
+
+_ARM_SOURCE = {"transmission": "from the transmissions", "ros2_control": "position interfaces of ros2_control",
+               "limits": "revolute/prismatic with limits"}
 
 
 def _lib(p) -> str:

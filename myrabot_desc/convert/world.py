@@ -95,9 +95,10 @@ def _sun(world):
     sub(light, "direction", [-0.5, 0.1, -0.9])
 
 
-def to_world(robot, layout: str, opts: SdfOptions | None = None, load=None) -> tuple[str, SdfResult]:
+def to_world(robot, layout: str, opts: SdfOptions | None = None, load=None, report=None) -> tuple[str, SdfResult]:
     """``robot`` is placed where the layout puts its robot; the layout's objects are built from the
-    bundled package (``load(path)`` builds one, default ``load_robot``)."""
+    bundled package (``load(path)`` builds one, default ``load_robot``). ``report`` gets the robot's
+    conversion report (the objects are the bundled demo's)."""
     from myrabot_desc.build.packages import data_root
     from myrabot_desc.model.loader import load_robot
 
@@ -140,7 +141,7 @@ def to_world(robot, layout: str, opts: SdfOptions | None = None, load=None) -> t
         if name in names:
             raise InputError(f"layout {path}: model name '{name}' used twice")
         names.add(name)
-        res = build_model(r, opts, notes, name=name)
+        res = build_model(r, opts, notes, name=name, report=report if r is robot else None)
         res.model.insert(1, etree.Element("pose"))
         res.model[1].text = nums(pose)
         world.append(res.model)

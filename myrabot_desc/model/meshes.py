@@ -110,8 +110,11 @@ def _resolver(path: Path, max_bytes: int):
     return Resolver(str(path))
 
 
-def load(path: Path, process: bool = True):
-    """trimesh.Trimesh of ``path`` (one mesh), or MeshError saying why not."""
+def load(path: Path, process: bool = True, textures: bool = True):
+    """trimesh.Trimesh of ``path`` (one mesh), or MeshError saying why not.
+
+    ``textures=False`` opens no file but ``path`` (geometry only): a Collada file's JPEG
+    textures took 80% of the time and 370 MB for anymal_c's meshes in ``check --inertia``."""
     import io
 
     import trimesh
@@ -124,8 +127,9 @@ def load(path: Path, process: bool = True):
     if ext in ZIP_EXTS or data[:4] == b"PK\x03\x04":
         _check_archive(path, data, max_bytes)
     try:
+        resolver = _resolver(path, max_bytes) if textures else _NoFiles()
         mesh = trimesh.load(io.BytesIO(data), file_type=ext.lstrip(".") or None, force="mesh", process=process,
-                            resolver=_resolver(path, max_bytes))
+                            resolver=resolver)
     except (RecursionError, MemoryError) as exc:
         raise MeshError(f"cannot read {path.name}: {type(exc).__name__}") from None
     except Exception as exc:  # every reader has its own errors: one line naming the file
@@ -178,3 +182,26 @@ def vertices(path: Path, loc=None):
     except MeshError as exc:
         raise InputError(f"mesh {exc}", loc) from None
     return np.asarray(m.vertices)
+
+
+def _NoFiles():
+    """A trimesh resolver that serves no file (textures, .mtl): geometry comes from the mesh file."""
+    from trimesh.resolvers import Resolver
+
+    class NoFiles(Resolver):
+        def __init__(self, *args, **kwargs):
+            pass
+
+        def get(self, name):
+            raise FileNotFoundError(name)
+
+        def write(self, name, data):
+            raise OSError("read-only")
+
+        def keys(self):
+            return []
+
+        def namespaced(self, namespace):
+            return self
+
+    return NoFiles()

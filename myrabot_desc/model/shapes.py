@@ -60,6 +60,7 @@ def describe(g) -> str:
 
 _MESHES: dict = {}          # (path, mtime, scale) -> mesh: robots in one run share mesh files
 _MAX_CACHED = 512
+_MAX_CACHED_BYTES = 32_000_000   # mesh memory kept across robots (a -j N check has N such caches)
 
 
 def load_mesh(g):
@@ -71,17 +72,28 @@ def load_mesh(g):
     except OSError as exc:
         return f"cannot read {g.path}: {exc.strerror}"
     if key not in _MESHES:
-        if len(_MESHES) >= _MAX_CACHED:
+        m = _load_mesh(g)
+        _MESHES[key] = m
+        while len(_MESHES) > _MAX_CACHED or (len(_MESHES) > 1 and sum(map(_nbytes, _MESHES.values()))
+                                              > _MAX_CACHED_BYTES):
             _MESHES.pop(next(iter(_MESHES)))
-        _MESHES[key] = _load_mesh(g)
+        return m
     return _MESHES[key]
+
+
+def _nbytes(m) -> int:
+    """Memory of a cached mesh: its arrays and what trimesh cached on it (edges, triangles: ~6x)."""
+    if isinstance(m, str) or m is None:
+        return 0
+    cached = getattr(getattr(m, "_cache", None), "cache", {})
+    return m.vertices.nbytes + m.faces.nbytes + sum(getattr(v, "nbytes", 0) for v in cached.values())
 
 
 def _load_mesh(g):
     from myrabot_desc.model import meshes as meshio
 
     try:  # size and triangle limits, one-line reasons (meshio.py)
-        m = meshio.load(g.path, process=True)
+        m = meshio.load(g.path, process=True, textures=False)   # check needs geometry only
     except meshio.MeshError as exc:
         return str(exc)
     if tuple(g.scale) != (1.0, 1.0, 1.0):
@@ -129,6 +141,45 @@ def combine(parts, mass: float):
         inertia += R @ (Iu * m) @ R.T + m * (d @ d * np.eye(3) - np.outer(d, d))
     return MassProps(vol, com, inertia, mass)
 
+
+def surface_points(g, n: int = 32, mesh=None, loc=None):
+    """Points on the surface of a shape in its own frame: the one sampling check, sim and the drive
+    model use for extents, hulls and wheel radii.
+
+    Box: its 8 corners. Cylinder: two rings of ``n`` points (the caps' rims). Sphere: three great
+    circles (xy, xz, yz) of ``n // 2`` points each. Primitives come back as a list of (x, y, z)
+    tuples (pure Python: convert uses them without numpy); a mesh as the (m, 3) array of its
+    vertices, from ``mesh`` (a loaded trimesh or vertex array) or read from ``g.path`` with the
+    mesh limits (InputError at ``loc`` when it cannot be read).
+    """
+    if g.kind == "box":
+        sx, sy, sz = (s / 2 for s in g.size)
+        return [(x, y, z) for x in (-sx, sx) for y in (-sy, sy) for z in (-sz, sz)]
+    if g.kind == "cylinder":
+        r, h = g.radius, g.length / 2
+        ring = [(r * math.cos(2 * math.pi * k / n), r * math.sin(2 * math.pi * k / n)) for k in range(n)]
+        return [(x, y, z) for z in (-h, h) for x, y in ring]
+    if g.kind == "sphere":
+        m = max(n // 2, 4)
+        r = g.radius
+        cs = [(r * math.cos(2 * math.pi * k / m), r * math.sin(2 * math.pi * k / m)) for k in range(m)]
+        return [(c, s, 0.0) for c, s in cs] + [(c, 0.0, s) for c, s in cs] + [(0.0, c, s) for c, s in cs]
+    if g.kind == "mesh":
+        if mesh is not None and not isinstance(mesh, str):
+            import numpy as np
+
+            return np.asarray(getattr(mesh, "vertices", mesh), float)
+        from myrabot_desc.errors import InputError
+        from myrabot_desc.model import meshes as meshio
+
+        if g.path is None:
+            raise InputError(f"mesh {g.filename} cannot be resolved", loc)
+        import numpy as np
+
+        return meshio.vertices(g.path, loc) * np.asarray(g.scale)
+    from myrabot_desc.errors import InputError
+
+    raise InputError(f"unsupported geometry {g.kind}", loc)
 
 
 def lowest_points(g, T, mesh=None, tol: float = 1e-3):

@@ -97,14 +97,14 @@ class Arm:
         tf = world_transforms(robot)
         T3 = tf[robot.joints[jname].child]
         best = 0.0
-        from myrabot_desc.sim.diffdrive import _geometry_points
+        from myrabot_desc.model.shapes import surface_points
 
         for ln in sub:
             link = robot.links[ln]
             for c in link.collisions or link.visuals:
                 if c.geometry is None:
                     continue
-                pts = _geometry_points(robot, c.geometry, c.loc)
+                pts = np.asarray(surface_points(c.geometry, 720, loc=c.loc))
                 M = tf[ln] @ pose_matrix(c.origin)
                 w = pts @ M[:3, :3].T + M[:3, 3]
                 best = max(best, float(((w - T3[:3, 3]) @ d).max()))

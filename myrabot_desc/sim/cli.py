@@ -28,19 +28,52 @@ def _outputs(f):
     return f
 
 
-def _drive_options(f):
+def _drive_options(f, names: bool = False):
+    wheels = (click.option("--wheels", default="plugin", show_default=True, metavar="plugin|urdf|LEFT,RIGHT",
+                           help="Whose wheel separation/diameter turn cmd_vel into wheel rates: the drive "
+                                "plugin's (as Gazebo does) or the URDF's (the URDF's always move the robot); "
+                                "or the two wheel joints, left then right, where nothing declares them "
+                                "(then the URDF's geometry commands them).")
+              if names else
+              click.option("--wheels", type=click.Choice(["plugin", "urdf"]), default="plugin", show_default=True,
+                           help="Whose wheel separation/diameter turn cmd_vel into wheel rates: the diff-drive "
+                                "plugin's (as Gazebo does) or the URDF's. The URDF's always move the robot."))
     opts = [
-        click.option("--wheels", type=click.Choice(["plugin", "urdf"]), default="plugin", show_default=True,
-                     help="Whose wheel separation/diameter turn cmd_vel into wheel rates: the diff-drive "
-                          "plugin's (as Gazebo does) or the URDF's. The URDF's always move the robot."),
+        wheels,
         click.option("--wheel-speed-max", type=click.FloatRange(min=0, min_open=True), default=None,
                      metavar="RAD/S", help="Wheel joint rate limit (both wheels scale, keeping the curvature)."),
         click.option("--wheel-accel-max", type=click.FloatRange(min=0, min_open=True), default=None,
                      metavar="RAD/S2", help="Wheel joint acceleration limit (linear ramps)."),
     ]
+    if names:
+        opts += [
+            click.option("--left-wheel", "left_wheels", multiple=True, metavar="JOINT",
+                         help="A left wheel joint (repeatable: a skid-steer base's left wheels turn together)."),
+            click.option("--right-wheel", "right_wheels", multiple=True, metavar="JOINT",
+                         help="A right wheel joint (repeatable)."),
+        ]
     for o in reversed(opts):
         f = o(f)
     return f
+
+
+def _wheel_names(wheels, left_wheels, right_wheels):
+    """(command geometry, left joints, right joints) from --wheels and --left-wheel/--right-wheel."""
+    left, right = tuple(left_wheels), tuple(right_wheels)
+    if wheels not in ("plugin", "urdf"):
+        parts = [p.strip() for p in wheels.split(",")]
+        if len(parts) != 2 or not all(parts):
+            raise click.BadParameter(f"expected plugin, urdf or LEFT,RIGHT (two wheel joints), got {wheels!r}",
+                                     param_hint="--wheels")
+        if left or right:
+            raise click.BadParameter("give the wheels either as --wheels LEFT,RIGHT or with --left-wheel/"
+                                     "--right-wheel, not both", param_hint="--wheels")
+        left, right, wheels = (parts[0],), (parts[1],), "urdf"
+    elif bool(left) != bool(right):
+        raise click.BadParameter("name both sides: --left-wheel and --right-wheel", param_hint="--left-wheel")
+    elif left:
+        wheels = "urdf"
+    return wheels, left, right
 
 
 def _finish(res, as_json, csv_path, plot_path):
@@ -154,29 +187,36 @@ def vuelta_cmd(inputs, duration, rate, as_json, csv_path, plot_path, progress, w
 @sim_cmd.command("drive")
 @input_options()
 @_outputs
-@_drive_options
+@functools.partial(_drive_options, names=True)
 @click.option("--twist", "twists", multiple=True, metavar="V,W,SECONDS",
               help="A script segment: linear m/s, angular rad/s, seconds. Repeatable. "
                    "Default: 0.2,0,5 then 0,0.5,4 then 0.2,0.4,5.")
 @click.option("--tolerance", type=click.FloatRange(min=0), default=0.02, show_default=True,
               help="Allowed relative error of the achieved speed and turn rate.")
 def drive_cmd(inputs, duration, rate, as_json, csv_path, plot_path, progress, wheels, wheel_speed_max,
-              wheel_accel_max, twists, tolerance):
-    """Drive any robot with a diff-drive plugin through a scripted twist.
+              wheel_accel_max, left_wheels, right_wheels, twists, tolerance):
+    """Drive any wheeled robot through a scripted twist.
 
     \b
-    Compares the commanded motion with what the URDF's wheels make of the
-    plugin's wheel rates. A plugin whose wheelSeparation/wheelDiameter disagree
-    with the URDF shows here: the Korean wander_bot (plugin 0.4/0.2, URDF
-    0.30/0.16) drives at 0.8x the speed and turns at 0.8 x 0.4/0.30 = 1.067x.
+    The drive is the one check and convert see (a diff-drive or skid-steer
+    plugin of any dialect, ros_control velocity wheels, or the joints named
+    with --wheels). Compares the commanded motion with what the URDF's wheels
+    make of the plugin's wheel rates. A plugin whose wheelSeparation/
+    wheelDiameter disagree with the URDF shows here: the Korean wander_bot
+    (plugin 0.4/0.2, URDF 0.30/0.16) drives at 0.8x the speed and turns at
+    0.8 x 0.4/0.30 = 1.067x; a ROS 1 plugin in legacy mode turns at -1x.
+    A skid-steer base drives as its equivalent diff drive.
 
     \b
     Examples:
       myrabot-desc sim drive tests/fixtures/wander_bot/urdf/robot.xacro -p wander_bot=tests/fixtures/wander_bot
       myrabot-desc sim drive robot.urdf --wheels urdf
+      myrabot-desc sim drive robot.urdf --wheels l_wheel_joint,r_wheel_joint
       myrabot-desc sim drive --twist 0.1,0.3,21 --plot out/circle.png     # the bundled MYRAbot
     """
     from myrabot_desc.sim import drive
+
+    wheels, left, right = _wheel_names(wheels, left_wheels, right_wheels)
 
     try:
         script = tuple(drive.parse_twist(t) for t in twists) or drive.DEFAULT_SCRIPT
@@ -187,7 +227,7 @@ def drive_cmd(inputs, duration, rate, as_json, csv_path, plot_path, progress, wh
         prog, close = _runner(duration or sum(s for *_, s in script), progress)
         try:
             res = drive.run(robot, rate=rate, duration=duration, script=script, wheels=wheels,
-                            wheel_speed_max=wheel_speed_max, wheel_accel_max=wheel_accel_max,
+                            left=left, right=right, wheel_speed_max=wheel_speed_max, wheel_accel_max=wheel_accel_max,
                             tolerance=tolerance, progress=prog)
         finally:
             close()

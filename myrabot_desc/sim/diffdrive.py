@@ -26,16 +26,6 @@ from dataclasses import dataclass, field
 
 from myrabot_desc.errors import InputError
 
-# Parameter spellings of the diff-drive plugins we know, per dialect.
-SEPARATION_KEYS = ("wheelSeparation", "wheel_separation")
-DIAMETER_KEYS = ("wheelDiameter", "wheel_diameter")
-RADIUS_KEYS = ("wheel_radius", "wheelRadius")
-LEFT_KEYS = ("leftJoint", "left_joint", "left_wheel_joint")
-RIGHT_KEYS = ("rightJoint", "right_joint", "right_wheel_joint")
-DRIVE_LIBS = ("gazebo_ros_diff_drive", "gazebo_ros_roomba", "gazebo_ros_create", "gazebo_ros_kobuki",
-              "diff-drive-system", "diff_drive", "DiffDrive")
-
-
 @dataclass(frozen=True)
 class PluginDrive:
     """What the diff-drive plugin believes about the wheels."""
@@ -68,10 +58,11 @@ class UrdfDrive:
 
     left: Wheel
     right: Wheel
+    track: float | None = None     # model/drive.py's separation (wheel centres along the axle)
 
     @property
     def separation(self) -> float:
-        return math.dist(self.left.xy, self.right.xy)
+        return self.track if self.track is not None else math.dist(self.left.xy, self.right.xy)
 
     @property
     def radius(self) -> float:
@@ -115,179 +106,119 @@ class Drive:
 
 
 # ------------------------------------------------------------------ reading the model
-def find_drive(robot, wheels: str = "plugin") -> Drive:
-    plugin = find_plugin(robot)
-    if plugin is not None:
-        left, right = plugin.left_joint, plugin.right_joint
-    else:
-        left, right = _guess_wheel_joints(robot)
-    urdf = urdf_wheels(robot, left, right)
+def find_drive(robot, wheels: str = "plugin", left=(), right=()) -> Drive:
+    """The base's drive from the one drive model (model/drive.py): the user's wheel joints, else
+    the first declared drive (a plugin of any dialect, ros_control velocity wheels), else
+    continuous joints named left/right wheel. A skid-steer base is its equivalent diff drive
+    (each side's wheels turn together; the separation is between the sides' centres)."""
+    from myrabot_desc.model import drive as D
+
+    d = D.main_drive(robot, tuple(left), tuple(right), guess=True)
+    if d is None:
+        raise InputError(f"{robot.name}: cannot tell the drive wheels (no drive plugin, no ros_control velocity "
+                         "wheels, no continuous joints named left*/right*wheel*): name them with "
+                         "--wheels LEFT,RIGHT", robot.loc)
+    for name in d.missing(robot):
+        raise InputError(f"diff-drive wheel joint {name!r} is not in the model", d.loc or robot.loc)
+    if not d.left or not d.right:
+        raise InputError(f"{d.label}: no left and right wheel joints given", d.loc or robot.loc)
+    plugin = _plugin_drive(d) if d.source == "plugin" else None
+    urdf = urdf_wheels(robot, d)
+    notes = []
     if wheels == "plugin" and plugin is None:
-        raise InputError(f"{robot.name}: no diff-drive plugin found (use --wheels urdf to drive with the "
-                         "URDF's own wheel geometry)", robot.loc)
-    d = Drive(urdf=urdf, plugin=plugin, wheels=wheels)
+        why = (f"{d.label} does not give its wheel separation and diameter" if d.source == "plugin" else
+               f"no drive plugin ({d.label}: {', '.join(d.joints)})")
+        notes.append(f"{why}: cmd_vel is turned into wheel rates with the URDF's own wheel geometry")
+        wheels = "urdf"
+    dr = Drive(urdf=urdf, plugin=plugin, wheels=wheels, notes=notes)
     if plugin is not None:
-        d.notes.extend(plugin.notes)
-        if plugin.left_joint != urdf.left.joint:
-            d.notes.append(f"the plugin's left joint {plugin.left_joint} sits on the right (y "
-                           f"{urdf.right.y:+.3f} m): it turns the wrong way")
-    return d
+        mirrored = plugin.left_joint != urdf.left.joint
+        notes = list(plugin.notes)
+        if mirrored and plugin.swapped:        # an old package written for legacy mode: the two swaps cancel
+            notes = [n for n in notes if "legacyMode" not in n]
+            notes.append(f"legacyMode swaps the wheels and the plugin's left joint {plugin.left_joint} sits on the "
+                         f"right (y {urdf.right.y:+.3f} m): the two cancel, it turns the right way")
+        elif mirrored:
+            notes.append(f"the plugin's left joint {plugin.left_joint} sits on the right (y "
+                         f"{urdf.right.y:+.3f} m): it turns the wrong way")
+        dr.notes.extend(notes)
+    if d.skid:
+        dr.notes.append(f"{d.label}: a skid-steer base driven as its equivalent diff drive ({len(d.left)} left and "
+                        f"{len(d.right)} right wheels turning together)")
+    return dr
 
 
-def _param(params: dict, keys) -> tuple[str | None, str | None]:
-    for k in keys:
-        if k in params and params[k] not in (None, ""):
-            return k, params[k]
-    return None, None
-
-
-def _num(text: str, what: str, loc) -> float:
-    try:
-        return float(text)
-    except (TypeError, ValueError):
-        raise InputError(f"diff-drive plugin: {what} is not a number: {text!r}", loc) from None
-
-
-def find_plugin(robot) -> PluginDrive | None:
-    for p in robot.plugins():
-        params = p.params or {}
-        lib = p.library or ""
-        tag = _local(getattr(p.element, "tag", ""))
-        is_drive = any(k in lib or k in (p.name or "") or k in tag for k in DRIVE_LIBS)
-        sk, sep = _param(params, SEPARATION_KEYS)
-        if not is_drive and sep is None:
-            continue
-        if sep is None:
-            continue
-        dk, dia = _param(params, DIAMETER_KEYS)
-        rk, rad = _param(params, RADIUS_KEYS)
-        if dia is None and rad is None:
-            continue
-        _, left = _param(params, LEFT_KEYS)
-        _, right = _param(params, RIGHT_KEYS)
-        if not left or not right:
-            continue
-        radius = _num(rad, rk, p.loc) if rad is not None else _num(dia, dk, p.loc) / 2
-        separation = _num(sep, sk, p.loc)
-        notes = []
-        swapped = False
-        if "gazebo_ros_diff_drive" in lib and "wheelSeparation" in params:
-            # ROS 1 plugin: legacyMode defaults to true and then swaps the turn direction.
-            legacy = (params.get("legacyMode") or "true").strip().lower() in ("1", "true")
-            if legacy:
-                swapped = True
-                notes.append("legacyMode is true (the ROS 1 default): the plugin turns the wrong way")
-        rate = None
-        _, ur = _param(params, ("updateRate", "update_rate"))
-        if ur is not None:
-            try:
-                rate = float(ur) or None
-            except ValueError:
-                rate = None
-        if separation <= 0 or radius <= 0:
-            raise InputError(f"diff-drive plugin {p.name}: wheel separation and diameter must be > 0", p.loc)
-        return PluginDrive(name=p.name or tag or lib, library=lib or tag, separation=separation, radius=radius,
-                           left_joint=left.strip(), right_joint=right.strip(), swapped=swapped,
-                           update_rate=rate, loc=p.loc, notes=tuple(notes))
-    return None
+def _plugin_drive(d) -> PluginDrive | None:
+    """What the plugin believes, its own defaults filling what it does not say (as the plugin does)."""
+    p, spec = d.plugin, d.spec
+    defaults = dict(spec.defaults)
+    notes = []
+    sep, rad = d.separation, d.radius
+    if sep is None and spec.separation in defaults:
+        sep = defaults[spec.separation]
+        notes.append(f"the plugin gives no {spec.separation}: it uses its default {sep:g} m")
+    if rad is None:
+        key = spec.radius or spec.diameter
+        if key in defaults:
+            rad = defaults[key] if spec.radius else defaults[key] / 2
+            notes.append(f"the plugin gives no {key}: it uses its default {defaults[key]:g} m")
+    for key, t in d.bad:
+        if key in (spec.separation, spec.diameter, spec.radius):
+            raise InputError(f"diff-drive plugin: {key} is not a number: {t!r}", d.loc)
+    if sep is None or rad is None:
+        return None
+    if sep <= 0 or rad <= 0:
+        raise InputError(f"diff-drive plugin {p.name}: wheel separation and diameter must be > 0", d.loc)
+    if d.legacy:
+        notes.append("legacyMode is true (the ROS 1 default): the plugin turns the wrong way"
+                     if not d.legacy_explicit else "legacyMode is true: the plugin turns the wrong way")
+    tag = _local(getattr(p.element, "tag", ""))
+    return PluginDrive(name=p.name or tag or p.library, library=p.library or tag, separation=sep, radius=rad,
+                       left_joint=d.left[0], right_joint=d.right[0], swapped=d.legacy,
+                       update_rate=d.update_rate or None, loc=d.loc, notes=tuple(notes))
 
 
 def _local(tag) -> str:
     return tag.rsplit("}", 1)[-1] if isinstance(tag, str) else ""
 
 
-def _guess_wheel_joints(robot) -> tuple[str, str]:
-    cands = [j for j in robot.joints.values() if j.type == "continuous" and "wheel" in j.name.lower()]
-    left = [j.name for j in cands if "left" in j.name.lower()]
-    right = [j.name for j in cands if "right" in j.name.lower()]
-    if len(left) != 1 or len(right) != 1:
-        raise InputError(f"{robot.name}: cannot tell the two drive wheels (no diff-drive plugin and no "
-                         "continuous joints named left*/right*wheel*)", robot.loc)
-    return left[0], right[0]
+def urdf_wheels(robot, d) -> UrdfDrive:
+    """The drive's wheels as built (model/drive.measure); each side's first wheel stands for the side."""
+    from myrabot_desc.model import drive as D
 
-
-def urdf_wheels(robot, left: str, right: str) -> UrdfDrive:
-    import numpy as np
-
-    from myrabot_desc.model.kinematics import world_transforms
-
-    tf = world_transforms(robot)
-    out = []
-    for name in (left, right):
-        j = robot.joints.get(name)
-        if j is None:
-            raise InputError(f"diff-drive wheel joint {name!r} is not in the model", robot.loc)
-        T = tf[j.child]
-        axis = T[:3, :3] @ np.asarray(j.axis, dtype=float)
-        axis = axis / (np.linalg.norm(axis) or 1.0)
-        fwd = float(np.cross(axis, [0.0, 0.0, 1.0])[0])
-        if abs(fwd) < 0.9:
-            raise InputError(f"wheel joint {name}: axis {tuple(round(a, 3) for a in axis)} is not lateral, "
+    g = D.measure(robot, d)
+    for w in g.wheels:
+        j = robot.joints[w.joint]
+        if abs(w.axis[1]) < 0.9:
+            raise InputError(f"wheel joint {w.joint}: axis {tuple(round(a, 3) for a in w.axis)} is not lateral, "
                              "so it cannot drive the base forward", j.loc)
-        r = wheel_radius(robot, j.child, axis, T)
-        out.append(Wheel(joint=name, link=j.child, y=float(T[1, 3]), xy=(float(T[0, 3]), float(T[1, 3])),
-                         radius=r, forward_sign=math.copysign(1.0, fwd)))
-    lw, rw = out
-    if lw.y < rw.y:            # 'left' is whichever wheel sits at +y; the plugin still drives by name
+        if w.radius is None and w.problem is not None:
+            raise w.problem
+        if w.radius is None:
+            link = robot.links[w.link]
+            raise InputError(f"wheel link {w.link} has no collision or visual geometry, so its radius is unknown",
+                             link.loc)
+    side = []
+    for group in (g.left, g.right):
+        w = group[0]
+        r = sum(x.radius for x in group) / len(group)
+        side.append(Wheel(joint=w.joint, link=w.link, y=float(w.origin[1]), xy=w.xy, radius=r,
+                          forward_sign=w.forward_sign))
+    lw, rw = side
+    if lw.y < rw.y:            # 'left' is whichever side sits at +y; the plugin still drives by name
         lw, rw = rw, lw
-    return UrdfDrive(left=lw, right=rw)
+    if not g.separation or g.separation < 1e-6:
+        raise InputError(f"{d.label}: the left and right wheels ({lw.joint}, {rw.joint}) are not apart along their "
+                         "axle, so they cannot steer the base", d.loc or robot.loc)
+    return UrdfDrive(left=lw, right=rw, track=g.separation)
 
 
-def wheel_radius(robot, link_name: str, axis_world, T_link) -> float:
-    """Radius of the wheel from its collision (else visual) geometry, about the joint axis."""
-    import numpy as np
+def wheel_radius(robot, joint_name: str) -> float | None:
+    """The radius of the wheel turned by a joint (model/drive.py's one rule)."""
+    from myrabot_desc.model import drive as D
 
-    from myrabot_desc.model.kinematics import pose_matrix
-
-    link = robot.links[link_name]
-    geoms = [(c.origin, c.geometry, c.loc) for c in link.collisions if c.geometry is not None]
-    if not geoms:
-        geoms = [(v.origin, v.geometry, v.loc) for v in link.visuals if v.geometry is not None]
-    if not geoms:
-        raise InputError(f"wheel link {link_name} has no collision or visual geometry, so its radius is unknown",
-                         link.loc)
-    best = 0.0
-    for origin, g, loc in geoms:
-        M = T_link @ pose_matrix(origin)
-        if g.kind == "sphere":
-            best = max(best, g.radius)
-            continue
-        if g.kind == "cylinder" and abs(float(M[:3, 2] @ axis_world)) > 0.99:
-            best = max(best, g.radius)        # a wheel drawn as a cylinder about the joint axis
-            continue
-        pts = _geometry_points(robot, g, loc)
-        world = pts @ M[:3, :3].T + M[:3, 3]
-        rel = world - T_link[:3, 3]
-        radial = rel - np.outer(rel @ axis_world, axis_world)
-        best = max(best, float(np.linalg.norm(radial, axis=1).max()))
-    return best
-
-
-def _geometry_points(robot, g, loc, n: int = 720):
-    """Surface points of a primitive or mesh (for extents; cylinders/spheres sampled n around)."""
-    import numpy as np
-
-    if g.kind == "box":
-        sx, sy, sz = (s / 2 for s in g.size)
-        return np.array([[x, y, z] for x in (-sx, sx) for y in (-sy, sy) for z in (-sz, sz)])
-    if g.kind == "cylinder":
-        a = np.linspace(0, 2 * np.pi, n + 1)[:-1]
-        ring = np.stack([g.radius * np.cos(a), g.radius * np.sin(a)], axis=1)
-        return np.vstack([np.column_stack([ring, np.full(len(a), z)]) for z in (-g.length / 2, g.length / 2)])
-    if g.kind == "sphere":
-        a = np.linspace(0, 2 * np.pi, n // 2 + 1)[:-1]
-        c, s = np.cos(a), np.sin(a)
-        r = g.radius
-        return np.vstack([np.column_stack([r * c, r * s, 0 * a]), np.column_stack([r * c, 0 * a, r * s]),
-                          np.column_stack([0 * a, r * c, r * s])])
-    if g.kind == "mesh":
-        from myrabot_desc.model import meshes as meshio
-
-        if g.path is None:
-            raise InputError(f"mesh {g.filename} cannot be resolved", loc)
-        # size/triangle limits; garbage -> one line
-        return meshio.vertices(g.path, loc) * np.asarray(g.scale)
-    raise InputError(f"unsupported geometry {g.kind}", loc)
+    w = D.wheel(robot, joint_name)
+    return None if w is None else w.radius
 
 
 # ------------------------------------------------------------------ integration

@@ -1,4 +1,4 @@
-"""``drive``: any robot with a diff-drive plugin, a scripted twist, expected vs achieved motion.
+"""``drive``: any wheeled robot the drive model knows, a scripted twist, expected vs achieved motion.
 
 Each script segment holds a twist (v, w) for some seconds. The expected motion
 is the commanded twist itself; the achieved motion is what the URDF's wheels do
@@ -29,14 +29,15 @@ def parse_twist(text: str) -> tuple[float, float, float]:
     return v, w, s
 
 
-def run(robot, *, rate=1000.0, duration=None, script=DEFAULT_SCRIPT, wheels="plugin", wheel_speed_max=None,
-        wheel_accel_max=None, tolerance=0.02, progress=None) -> SimResult:
+def run(robot, *, rate=1000.0, duration=None, script=DEFAULT_SCRIPT, wheels="plugin", left=(), right=(),
+        wheel_speed_max=None, wheel_accel_max=None, tolerance=0.02, progress=None) -> SimResult:
     import numpy as np
 
     from myrabot_desc.sim.diffdrive import find_drive, integrate
 
     wall0 = time.perf_counter()
-    drive = find_drive(robot, wheels)
+    drive = find_drive(robot, wheels, left, right)
+    wheels = drive.wheels
     drive.wheel_speed_max, drive.wheel_accel_max = wheel_speed_max, wheel_accel_max
     dt = 1.0 / rate
     total = sum(s for _, _, s in script)
@@ -109,7 +110,7 @@ def run(robot, *, rate=1000.0, duration=None, script=DEFAULT_SCRIPT, wheels="plu
     if drive.plugin is not None and wheels == "plugin":
         p = drive.plugin
         kv = u.radius / p.radius
-        kw = kv * p.separation / u.separation
+        kw = kv * p.separation / u.separation * (-1.0 if p.swapped else 1.0)   # legacy mode swaps the turn
         res.info["predicted ratios"] = f"speed {kv:.4f} (URDF r / plugin r), turn {kw:.4f} (× plugin sep / URDF sep)"
     res.info.update(_stance(robot, drive))
     res.moving = [("expected", ex, ey)]

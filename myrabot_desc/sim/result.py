@@ -94,19 +94,22 @@ class SimResult:
 
     # ------------------------------------------------------------ csv
     def csv_bytes(self) -> bytes:
-        """One table like the seed's merged joint_states: base pose, arm joints, then wheels."""
+        """One table like the seed's merged joint_states: base pose, arm joints, then wheels.
+
+        Each column name carries its unit: time_s, base_x_m, base_yaw_rad, arti1_rad (the arm's
+        servos are revolute), left_wheel_joint_rad (wheel angle)."""
         import io
 
         import numpy as np
 
         cols = [self.t, self.base.x, self.base.y, self.base.yaw]
-        head = ["time", "base_x", "base_y", "base_yaw"]
+        head = ["time_s", "base_x_m", "base_y_m", "base_yaw_rad"]
         if self.arm_q is not None:
             for i, n in enumerate(self.arm_names):
                 cols.append(self.arm_q[:, i])
-                head.append(n)
+                head.append(f"{n}_rad")
         cols += [self.base.wheel_left, self.base.wheel_right]
-        head += list(self.wheel_names)
+        head += [f"{n}_rad" for n in self.wheel_names]
         data = np.column_stack(cols)
         buf = io.StringIO()
         buf.write(",".join(head) + "\n")

@@ -41,11 +41,11 @@ class SceneObject:
     def points(self):
         import numpy as np
 
-        from myrabot_desc.sim.diffdrive import _geometry_points
+        from myrabot_desc.model.shapes import surface_points
 
         out = []
         for ln, g, M in self.shapes:
-            p = _geometry_points(None, g, None)
+            p = np.asarray(surface_points(g, 720))
             out.append(p @ M[:3, :3].T + M[:3, 3])
         return np.vstack(out) if out else np.zeros((0, 3))
 
@@ -76,9 +76,11 @@ class SceneObject:
             if g.kind == "cylinder" and abs(M[2, 2]) > 0.99:
                 out.append(("circle", ((float(M[0, 3]), float(M[1, 3])), g.radius)))
             else:
-                from myrabot_desc.sim.diffdrive import _geometry_points
+                import numpy as np
 
-                p = _geometry_points(None, g, None) @ M[:3, :3].T + M[:3, 3]
+                from myrabot_desc.model.shapes import surface_points
+
+                p = np.asarray(surface_points(g, 720)) @ M[:3, :3].T + M[:3, 3]
                 out.append(("poly", _hull(p[:, :2])))
         # big things first so that small ones stay visible
         out.sort(key=lambda o: -(o[1][1] if o[0] == "circle" else 1.0))

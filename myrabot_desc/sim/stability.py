@@ -37,7 +37,7 @@ def support_polygon(robot, drive) -> Support:
     import numpy as np
 
     from myrabot_desc.model.kinematics import pose_matrix, world_transforms
-    from myrabot_desc.sim.diffdrive import _geometry_points
+    from myrabot_desc.model.shapes import surface_points
 
     tf = world_transforms(robot)
     wheels = {drive.urdf.left.link: drive.urdf.left, drive.urdf.right.link: drive.urdf.right}
@@ -54,7 +54,7 @@ def support_polygon(robot, drive) -> Support:
             if c.geometry is None:
                 continue
             try:
-                p = _geometry_points(robot, c.geometry, c.loc, n=180)
+                p = np.asarray(surface_points(c.geometry, 180, loc=c.loc))
             except Exception:
                 continue
             M = tf[ln] @ pose_matrix(c.origin)
@@ -126,7 +126,7 @@ def footprint(robot):
     import numpy as np
 
     from myrabot_desc.model.kinematics import pose_matrix, world_transforms
-    from myrabot_desc.sim.diffdrive import _geometry_points
+    from myrabot_desc.model.shapes import surface_points
 
     tf = world_transforms(robot)
     pts = []
@@ -134,7 +134,7 @@ def footprint(robot):
         for c in link.collisions:
             if c.geometry is None or c.geometry.kind == "mesh":
                 continue
-            p = _geometry_points(robot, c.geometry, c.loc, n=72)
+            p = np.asarray(surface_points(c.geometry, 72, loc=c.loc))
             M = tf[ln] @ pose_matrix(c.origin)
             pts.append((p @ M[:3, :3].T + M[:3, 3])[:, :2])
     return _hull(np.vstack(pts)) if pts else []

@@ -1,0 +1,157 @@
+"""What stops a conversion: a model with no tree, values no URDF reader accepts, a collision
+mesh that cannot be read. ``convert`` refuses such a model (exit 2, every reason on its own
+``file:line: error:`` line, nothing written) unless ``--allow-errors`` is given; then the
+converters leave those parts out and the report says so.
+
+Pure Python (the SDF path must not import numpy): meshes are only checked for existence,
+size and, for binary STL, a header that matches the file (model/meshes.precheck); MJCF, which
+reads every mesh anyway, adds what its reader finds.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+# loader issues that no URDF reader would accept (urdfdom refuses the document): the text is not a
+# number, the element lacks what identifies it. NaN, inf and out-of-range numbers parse; they stay
+# warnings (check reports them).
+UNREADABLE = ("not a number", "expected 3 numbers", "expected 4 numbers", "without a name", "needs <parent",
+              "unknown geometry", "<geometry> is empty")
+
+
+class Problem(NamedTuple):
+    message: str
+    loc: object = None
+    kind: str = "model"          # report kind of what it concerns
+    name: str = ""
+
+    def __str__(self) -> str:
+        return f"{self.loc}: error: {self.message}" if self.loc else f"error: {self.message}"
+
+
+def tree_problems(robot) -> list[Problem]:
+    """Several roots, a link with two parents, links on a cycle (unreachable from the root)."""
+    out: list[Problem] = []
+    parents: dict[str, list] = {}
+    for j in robot.joints.values():
+        parents.setdefault(j.child, []).append(j)
+    for child, js in parents.items():
+        if len(js) > 1:
+            out.append(Problem(f"link '{child}' is the child of {len(js)} joints ("
+                               + ", ".join(f"'{j.name}'" for j in js) + "): not a tree", js[1].loc, "link", child))
+    roots = robot.roots
+    if len(roots) > 1:
+        out.append(Problem(f"the model has {len(roots)} root links ({', '.join(repr(r) for r in roots[:5])}"
+                           f"{', ...' if len(roots) > 5 else ''}): a URDF is one tree", robot.loc, "model"))
+    children = robot.joints_by_parent()
+    seen = set(roots)
+    todo = list(roots)
+    while todo:
+        for j in children.get(todo.pop(), ()):
+            if j.child not in seen:
+                seen.add(j.child)
+                todo.append(j.child)
+    lost = [n for n in robot.links if n not in seen]
+    if lost:
+        j = next((j for j in robot.joints.values() if j.child in lost), None)
+        out.append(Problem(f"the joints form a cycle: {len(lost)} link(s) cannot be reached from "
+                           f"{'a root' if roots else 'any root (there is none)'} ({', '.join(repr(n) for n in lost[:5])}"
+                           f"{', ...' if len(lost) > 5 else ''})", j.loc if j else robot.loc, "link", lost[0]))
+    return out
+
+
+def value_problems(robot) -> list[Problem]:
+    return [Problem(f"{d.code} {d.message}", d.loc, "value") for d in robot.load_issues
+            if any(k in d.message for k in UNREADABLE)]
+
+
+def mesh_problems(robot) -> list[Problem]:
+    """Collision meshes that are missing, outside the model's roots, empty or over the limits."""
+    from myrabot_desc.model import meshes as meshio
+
+    out: list[Problem] = []
+    checked: dict[object, str | None] = {}
+    for link in robot.links.values():
+        for k, c in enumerate(link.collisions):
+            g = c.geometry
+            if getattr(g, "kind", None) != "mesh":
+                continue
+            if g.path is None:
+                why = "cannot be found"
+            else:
+                if g.path not in checked:
+                    try:
+                        size = meshio.precheck(g.path)
+                        checked[g.path] = triangle_problem(g.path, size)
+                    except meshio.MeshError as exc:
+                        checked[g.path] = str(exc)
+                why = checked[g.path]
+            if why:
+                out.append(Problem(f"collision mesh {g.filename} of link '{link.name}': {why}", c.loc or link.loc,
+                                   "collision", link.name if k == 0 else f"{link.name}[{k}]"))
+    return out
+
+
+def triangle_problem(path, size: int) -> str | None:
+    """Why this mesh file holds no triangles a reader can take, or None. A structural look without
+    numpy: a binary STL's size must match its header, an ASCII STL needs a facet, an OBJ a face, a
+    COLLADA file must be XML with a triangle, polygon or polylist element."""
+    from myrabot_desc.errors import InputError
+
+    ext = path.suffix.lower()
+    if ext not in (".stl", ".obj", ".dae"):
+        return None
+    try:
+        with open(path, "rb") as fh:
+            data = fh.read(84) if ext == ".stl" else fh.read()
+            if ext == ".stl" and not data[:5].lower() == b"solid":
+                n = int.from_bytes(data[80:84], "little") if len(data) >= 84 else -1
+                if n <= 0 or size != 84 + 50 * n:
+                    return (f"{path.name} is not a binary STL ({size} bytes, its header announces {n} triangles)"
+                            if n > 0 else f"{path.name} holds no triangles")
+                return None
+            if ext == ".stl":
+                data += fh.read()
+    except OSError as exc:
+        return f"cannot read {path.name}: {exc.strerror}"
+    if ext == ".stl":
+        if b"facet" in data:
+            return None
+        # a binary STL whose 80-byte header starts with "solid": readers check the size instead
+        n = int.from_bytes(data[80:84], "little") if len(data) >= 84 else 0
+        return None if n > 0 and size == 84 + 50 * n else f"{path.name} holds no triangles (no facet)"
+    if ext == ".obj":
+        return None if any(line.startswith(b"f ") for line in data.splitlines()) else \
+            f"{path.name} holds no faces"
+    from myrabot_desc.safety import parse_xml_bytes
+
+    try:
+        root = parse_xml_bytes(data, path.name)
+    except InputError as exc:
+        return f"{path.name} is not readable COLLADA: {exc.message}"
+    for el in root.iter():
+        tag = el.tag.rsplit("}", 1)[-1] if isinstance(el.tag, str) else ""
+        if tag in ("triangles", "polylist", "polygons", "trifans", "tristrips") and el.get("count", "0") != "0":
+            return None
+    return f"{path.name} holds no triangles (no <triangles>, <polylist> or <polygons> with a count)"
+
+
+def problems(robot) -> list[Problem]:
+    return tree_problems(robot) + value_problems(robot) + mesh_problems(robot)
+
+
+def refuse_or_record(found: list[Problem], allow: bool, report=None, notes=None) -> None:
+    """Raise (every reason, exit 2) or, with --allow-errors, put each in the report as dropped."""
+    from myrabot_desc.errors import InputError
+
+    if not found:
+        return
+    if not allow:
+        rest = "".join(f"\n{p}" for p in found[1:])
+        raise InputError(found[0].message + rest, found[0].loc)
+    for p in found:
+        if notes is not None:
+            notes.warn(f"{p.message}: converted anyway (--allow-errors)", p.loc)
+        if report is not None:
+            report.set("error", p.message, "dropped", "converted anyway (--allow-errors): left out or read as "
+                       "the URDF default", p.loc)

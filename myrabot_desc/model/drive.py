@@ -1,0 +1,557 @@
+"""How a robot drives: the one answer that check, convert, sim and the MJCF writer share.
+
+``find(robot)`` lists every drive the model declares; ``measure(robot, drive)`` measures its
+wheels on the URDF (radius about the joint axis, separation along the axle). Both are pure
+Python (convert must not import numpy); a mesh wheel is read through model/meshes.
+
+Recognised declarations. Parameter names, defaults and units were read from the plugins'
+sources (gazebo_ros_pkgs ``gazebo_ros_diff_drive.cpp`` ROS 1 and ROS 2,
+``gazebo_ros_skid_steer_drive.cpp``, kobuki_gazebo_plugins, gz-sim ``DiffDrive.cc``):
+
+* Gazebo 0.x Electric controllers ``gazebo_ros_create``/``gazebo_ros_roomba`` (the bundled
+  MYRAbot) and ``gazebo_ros_kobuki`` (rosbuild): ``left_wheel_joint``/``right_wheel_joint``, ``wheel_separation``,
+  ``wheel_diameter``, ``torque``; ``front_castor_joint``/``rear_castor_joint`` name casters.
+* ROS 1 ``gazebo_ros_diff_drive``: ``leftJoint``/``rightJoint``, ``wheelSeparation``
+  (default 0.34 m), ``wheelDiameter`` (0.15 m), ``wheelTorque`` (5 N·m), ``updateRate`` (100 Hz),
+  ``wheelAcceleration`` (0 = none). The acceleration is of the wheel *surface*, m/s²: the plugin
+  ramps ``wheel_speed_instr_`` (m/s) by ``wheel_accel * dt`` and divides by the radius only when
+  it sets the joint velocity. ``legacyMode`` (Indigo–Melodic) defaults to true and then
+  commands the left joint with the right wheel's speed and vice versa: the robot turns the
+  wrong way (Noetic's plugin no longer reads the flag).
+* ROS 2 ``gazebo_ros_diff_drive``: ``num_wheel_pairs`` (1), ``left_joint``/``right_joint`` once
+  per pair, ``wheel_separation``/``wheel_diameter`` once per pair (0.34/0.15 m),
+  ``max_wheel_torque`` (5 N·m), ``max_wheel_acceleration`` (0; m/s² of the surface, same ramp),
+  ``update_rate`` (100 Hz).
+* gz-sim ``DiffDrive``: ``left_joint``/``right_joint`` (repeatable), ``wheel_separation`` (1 m),
+  ``wheel_radius`` (0.2 m), ``max_linear_acceleration`` (m/s² of the vehicle).
+* Vendor plugins of small round bases (``gazebo_ros_kobuki`` and its clones):
+  ``left_wheel_joint_name``/``right_wheel_joint_name``, ``wheel_separation``,
+  ``wheel_diameter``, ``torque``.
+* ROS 1 ``gazebo_ros_skid_steer_drive``: ``leftFrontJoint``/``leftRearJoint``/
+  ``rightFrontJoint``/``rightRearJoint``, ``wheelSeparation`` (0.4 m), ``wheelDiameter``
+  (0.15 m), ``torque`` (5 N·m), ``updateRate`` (100 Hz); every left wheel turns at
+  (v − ω s/2)/r and every right one at (v + ω s/2)/r: a diff drive over both pairs.
+* ros_control: ``<transmission>`` joints whose ``hardwareInterface`` is (…/)
+  ``VelocityJointInterface``, and ros2_control ``<joint>`` blocks with
+  ``<command_interface name="velocity"/>``. They are a diff drive when lateral-axis wheels
+  stand on both sides of the base (left at +y, REP-103).
+* Wheel joints named by the user (``sim drive --wheels A,B``).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+from myrabot_desc.model.transforms import IDENTITY, compose, pose_T, rotate
+
+ALIGNED = 0.99          # |cos| between a cylinder's axis and the joint axis for "a wheel drawn as a cylinder"
+LATERAL = 0.9           # |y| of a wheel axis (root frame) for "turns across the direction of travel"
+POINTS_N = 720          # samples around a circle when a wheel is measured from its points
+
+
+class Spec(NamedTuple):
+    """One plugin dialect's parameter names and the defaults the plugin uses when one is missing."""
+
+    dialect: str                      # 'electric' | 'ros1' | 'ros2' | 'gz' | 'vendor' | 'skid'
+    label: str
+    left: tuple[str, ...]             # keys naming left wheel joints (front first)
+    right: tuple[str, ...]
+    separation: str
+    diameter: str | None = None
+    radius: str | None = None
+    torque: str | None = None
+    accel: str | None = None          # the acceleration key
+    accel_unit: str = ""              # 'wheel m/s^2' (surface, per wheel) or 'vehicle m/s^2'
+    rate: str | None = None
+    fixed_ok: tuple[str, ...] = ()    # keys that may name non-wheel joints (casters)
+    known: frozenset = frozenset()
+    defaults: tuple = ()              # ((key, value), ...) the plugin's own defaults
+
+
+COMMON_CLASSIC = {"robotNamespace"}
+ROS1 = Spec(
+    "ros1", "gazebo_ros_diff_drive (ROS 1)", ("leftJoint",), ("rightJoint",), "wheelSeparation", "wheelDiameter",
+    torque="wheelTorque", accel="wheelAcceleration", accel_unit="wheel m/s^2", rate="updateRate",
+    known=frozenset(COMMON_CLASSIC | {
+        "leftJoint", "rightJoint", "wheelSeparation", "wheelDiameter", "wheelAcceleration", "wheelTorque",
+        "commandTopic", "odometryTopic", "odometryFrame", "robotBaseFrame", "updateRate", "publishWheelTF",
+        "publishOdomTF", "publishWheelJointState", "odometrySource", "legacyMode", "publishTf", "rosDebugLevel"}),
+    defaults=(("wheelSeparation", 0.34), ("wheelDiameter", 0.15), ("wheelTorque", 5.0),
+              ("wheelAcceleration", 0.0), ("updateRate", 100.0)))
+ROS2 = Spec(
+    "ros2", "gazebo_ros_diff_drive (ROS 2)", ("left_joint",), ("right_joint",), "wheel_separation", "wheel_diameter",
+    torque="max_wheel_torque", accel="max_wheel_acceleration", accel_unit="wheel m/s^2", rate="update_rate",
+    known=frozenset({
+        "ros", "left_joint", "right_joint", "wheel_separation", "wheel_diameter", "max_wheel_torque",
+        "max_wheel_acceleration", "update_rate", "publish_odom", "publish_odom_tf", "publish_wheel_tf",
+        "odometry_frame", "robot_base_frame", "odometry_source", "covariance_x", "covariance_y",
+        "covariance_yaw", "num_wheel_pairs"}),
+    defaults=(("wheel_separation", 0.34), ("wheel_diameter", 0.15), ("max_wheel_torque", 5.0),
+              ("max_wheel_acceleration", 0.0), ("update_rate", 100.0)))
+GZ = Spec(
+    "gz", "gz-sim DiffDrive", ("left_joint",), ("right_joint",), "wheel_separation", radius="wheel_radius",
+    accel="max_linear_acceleration", accel_unit="vehicle m/s^2", rate="odom_publish_frequency",
+    known=frozenset({
+        "left_joint", "right_joint", "wheel_separation", "wheel_radius", "odom_publish_frequency", "topic",
+        "odom_topic", "tf_topic", "frame_id", "child_frame_id", "min_velocity", "max_velocity",
+        "min_acceleration", "max_acceleration", "min_jerk", "max_jerk", "odom_covariance"}
+        | {f"{m}_{k}_{q}" for m in ("min", "max") for k in ("linear", "angular")
+           for q in ("velocity", "acceleration", "jerk")}),
+    defaults=(("wheel_separation", 1.0), ("wheel_radius", 0.2)))
+CREATE = Spec(
+    "electric", "gazebo_ros_create/roomba (Electric)", ("left_wheel_joint",), ("right_wheel_joint",),
+    "wheel_separation", "wheel_diameter", torque="torque", rate="updateRate",
+    fixed_ok=("front_castor_joint", "rear_castor_joint"),
+    known=frozenset({"alwaysOn", "updateRate", "robotNamespace", "node_namespace", "left_wheel_joint",
+                     "right_wheel_joint", "front_castor_joint", "rear_castor_joint", "wheel_separation",
+                     "wheel_diameter", "base_geom", "torque"}))
+VENDOR = Spec(
+    "vendor", "gazebo_ros_kobuki-style base plugin", ("left_wheel_joint_name",), ("right_wheel_joint_name",),
+    "wheel_separation", "wheel_diameter", torque="torque",
+    known=frozenset({"publish_tf", "left_wheel_joint_name", "right_wheel_joint_name", "wheel_separation",
+                     "wheel_diameter", "torque", "velocity_command_timeout", "cliff_sensor_left_name",
+                     "cliff_sensor_center_name", "cliff_sensor_right_name", "cliff_detection_threshold",
+                     "bumper_name", "imu_name", "base_prefix", "update_rate", "updateRate"}))
+SKID = Spec(
+    "skid", "gazebo_ros_skid_steer_drive (ROS 1)", ("leftFrontJoint", "leftRearJoint"),
+    ("rightFrontJoint", "rightRearJoint"), "wheelSeparation", "wheelDiameter", torque="torque", rate="updateRate",
+    known=frozenset(COMMON_CLASSIC | {
+        "leftFrontJoint", "rightFrontJoint", "leftRearJoint", "rightRearJoint", "wheelSeparation",
+        "wheelDiameter", "torque", "commandTopic", "odometryTopic", "odometryFrame", "robotBaseFrame",
+        "updateRate", "broadcastTF", "covariance_x", "covariance_y", "covariance_yaw"}),
+    defaults=(("wheelSeparation", 0.4), ("wheelDiameter", 0.15), ("torque", 5.0), ("updateRate", 100.0)))
+# The Electric-era kobuki controller (rosbuild kobuki_description) reads the Create controller's keys.
+KOBUKI_ELECTRIC = CREATE._replace(label="gazebo_ros_kobuki (Electric)")
+PLUGIN_SPECS = (ROS1, ROS2, GZ, CREATE, KOBUKI_ELECTRIC, VENDOR, SKID)
+
+
+class Drive(NamedTuple):
+    """A declared drive: the wheels it turns and the numbers it believes.
+
+    ``source``: 'plugin', 'ros_control' (transmissions), 'ros2_control', 'user' or 'guess'
+    (continuous joints named left*/right* wheel, sim only). Numbers are None when not given
+    (``spec.defaults`` says what the plugin then uses). ``accel`` is in ``spec.accel_unit``.
+    """
+
+    source: str
+    label: str
+    left: tuple[str, ...]             # wheel joints as declared (may not exist: see missing())
+    right: tuple[str, ...]
+    spec: Spec | None = None
+    plugin: object = None             # model.parts.Plugin
+    separation: float | None = None   # the plugin's (m)
+    radius: float | None = None       # the plugin's (m; diameter / 2)
+    torque: float | None = None       # N·m per wheel
+    accel: float | None = None
+    update_rate: float | None = None  # Hz
+    legacy: bool = False              # ROS 1 legacyMode: left/right commands swapped (turns the wrong way)
+    legacy_explicit: bool = False     # legacyMode given (else the default applied)
+    loc: object = None
+    bad: tuple[tuple[str, str], ...] = ()   # (key, text) numbers that do not parse
+
+    @property
+    def joints(self) -> tuple[str, ...]:
+        return self.left + self.right
+
+    @property
+    def skid(self) -> bool:
+        return len(self.left) > 1 or len(self.right) > 1
+
+    def missing(self, robot) -> list[str]:
+        return [j for j in self.joints if j not in robot.joints]
+
+
+class Wheel(NamedTuple):
+    """One wheel as built (root frame, q = 0)."""
+
+    joint: str
+    link: str
+    origin: tuple[float, float, float]     # the joint origin (on the rotation axis)
+    axis: tuple[float, float, float]       # unit joint axis
+    centre: tuple[float, float, float]     # centre of the shape that gives the radius (else the origin)
+    radius: float | None
+    shape: object = None                   # the collision/visual item that gives the radius
+    round: bool = False                    # a sphere, or a cylinder about the joint axis
+    forward_sign: float = 1.0              # +1 if a positive joint rate drives the base forward (+x)
+    problem: object = None                 # the InputError of a wheel mesh that could not be read
+
+    @property
+    def xy(self) -> tuple[float, float]:
+        return self.origin[0], self.origin[1]
+
+
+class Geometry(NamedTuple):
+    """The wheels of a drive as the URDF builds them."""
+
+    left: tuple[Wheel, ...]
+    right: tuple[Wheel, ...]
+    separation: float | None       # between the left and right wheel centres along the left axle (m)
+    radius: float | None           # mean radius of the wheels that have one (m)
+
+    @property
+    def wheels(self) -> tuple[Wheel, ...]:
+        return self.left + self.right
+
+
+# ------------------------------------------------------------------ the one plugin parameter parser
+def _local(tag) -> str:
+    return tag.rsplit("}", 1)[-1] if isinstance(tag, str) else ""
+
+
+def values(plugin, key: str) -> list[str]:
+    """Every value of a (repeatable) parameter, in order: a direct child's text or ``value=``."""
+    el = getattr(plugin, "element", None)
+    if el is None:
+        v = (plugin.params or {}).get(key)
+        return [v.strip()] if v and v.strip() else []
+    out = []
+    for c in el:
+        if _local(c.tag) == key:
+            v = (c.text or "").strip() or (c.get("value") or "").strip()
+            if v:
+                out.append(v)
+    return out
+
+
+def text(plugin, *keys: str) -> str | None:
+    """The first value of the first key given."""
+    for k in keys:
+        v = values(plugin, k)
+        if v:
+            return v[0]
+    return None
+
+
+def number(plugin, key: str | None):
+    """(value, ok) of a numeric parameter: (None, True) when absent, (None, False) when not a number."""
+    if key is None:
+        return None, True
+    t = text(plugin, key)
+    if t is None:
+        return None, True
+    try:
+        v = float(t)
+    except ValueError:
+        return None, False
+    return (v, True) if math.isfinite(v) else (None, False)
+
+
+def to_bool(t: str | None, default: bool) -> bool:
+    if t is None:
+        return default
+    return t.strip().lower() in ("1", "true")
+
+
+# ------------------------------------------------------------------ which plugin is a drive
+def plugin_spec(p) -> Spec | None:
+    """The dialect of a drive plugin, or None when the plugin does not drive wheels."""
+    lib = (p.library or "").lower()
+    name = (p.name or "").lower()
+    tag = _local(getattr(p.element, "tag", "")).lower()
+    if p.dialect == "electric":
+        if any(k in s for s in (lib, name, tag) for k in ("create", "roomba")):
+            return CREATE
+        if "kobuki" in lib or "kobuki" in tag or "left_wheel_joint" in p.params:
+            return KOBUKI_ELECTRIC
+        return None
+    if p.dialect == "gz":
+        return GZ if ("diff-drive" in lib or "diff_drive" in lib or "diffdrive" in name.replace("::", "")) else None
+    if "skid_steer" in lib:
+        return SKID
+    if "diff_drive" in lib or "diffdrive" in lib.replace("_", ""):
+        ros1 = any(k in p.params for k in ("leftJoint", "rightJoint", "wheelSeparation", "wheelDiameter"))
+        ros2 = any(k in p.params for k in ("left_joint", "right_joint", "wheel_separation", "wheel_diameter", "ros"))
+        return ROS2 if ros2 and not ros1 else ROS1
+    if "create" in lib or "roomba" in lib:
+        return CREATE
+    if "left_wheel_joint_name" in p.params or "right_wheel_joint_name" in p.params or "kobuki" in lib:
+        return VENDOR
+    return None
+
+
+def from_plugin(p, spec: Spec) -> Drive:
+    left = tuple(v for k in spec.left for v in values(p, k))
+    right = tuple(v for k in spec.right for v in values(p, k))
+    bad = []
+
+    def num(key):
+        v, ok = number(p, key)
+        if not ok:
+            bad.append((key, text(p, key)))
+        return v
+
+    sep = num(spec.separation)
+    if spec.radius:
+        rad = num(spec.radius)
+    else:
+        dia = num(spec.diameter)
+        rad = dia / 2 if dia is not None else None
+    legacy = explicit = False
+    if spec is ROS1:
+        t = text(p, "legacyMode")
+        explicit = t is not None
+        legacy = to_bool(t, True)
+    return Drive("plugin", spec.label, left, right, spec, p, sep, rad, num(spec.torque), num(spec.accel),
+                 num(spec.rate), legacy, explicit, p.loc, tuple(bad))
+
+
+# ------------------------------------------------------------------ ros_control
+VELOCITY_IFACES = ("VelocityJointInterface",)
+POSITION_IFACES = ("PositionJointInterface",)
+
+
+def velocity_joints(robot) -> tuple[list[str], str | None]:
+    """Joints commanded in velocity (a velocity interface and no position one), in file order, and
+    where they were declared ('ros_control' transmissions or 'ros2_control' blocks)."""
+    out, source = [], None
+    for t in robot.transmissions:
+        el = t.element
+        if el is None:
+            continue
+        for j in el.iter():
+            if _local(j.tag) != "joint" or not j.get("name"):
+                continue
+            ifaces = [(h.text or "").strip().rsplit("/", 1)[-1] for h in j if _local(h.tag) == "hardwareInterface"]
+            if any(i in VELOCITY_IFACES for i in ifaces) and not any(i in POSITION_IFACES for i in ifaces) \
+                    and j.get("name") not in out:
+                out.append(j.get("name"))
+                source = source or "ros_control"
+    root = robot.root_element
+    if root is not None:
+        for block in root:                      # <ros2_control> sits directly in <robot>
+            if _local(block.tag) != "ros2_control":
+                continue
+            for j in block:
+                if _local(j.tag) != "joint" or not j.get("name"):
+                    continue
+                cmds = [c.get("name") for c in j if _local(c.tag) == "command_interface"]
+                if "velocity" in cmds and "position" not in cmds and j.get("name") not in out:
+                    out.append(j.get("name"))
+                    source = source or "ros2_control"
+    return out, source
+
+
+def position_joints(robot) -> list[str]:
+    """Joints commanded in position by ros2_control (a ``position`` command interface), in file order."""
+    out = []
+    root = robot.root_element
+    if root is None:
+        return out
+    for block in root:
+        if _local(block.tag) != "ros2_control":
+            continue
+        for j in block:
+            if _local(j.tag) == "joint" and j.get("name") and j.get("name") not in out and \
+                    "position" in [c.get("name") for c in j if _local(c.tag) == "command_interface"]:
+                out.append(j.get("name"))
+    return out
+
+
+def _sided(robot, names, T=None) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """Split wheel joints into left (+y) and right (−y) by where they sit in the root frame;
+    joints whose axis is not lateral, or that sit on the centre line, are left out."""
+    T = T if T is not None else link_transforms(robot)
+    left, right = [], []
+    for n in names:
+        j = robot.joints.get(n)
+        if j is None or j.type not in ("continuous", "revolute") or j.parent not in T:
+            continue
+        R, p = compose(T[j.parent], pose_T(j.origin))
+        a = _unit(rotate(R, j.axis))
+        if a is None or abs(a[1]) < LATERAL or abs(p[1]) < 1e-4:
+            continue
+        (left if p[1] > 0 else right).append(n)
+    return tuple(left), tuple(right)
+
+
+def from_velocity_joints(robot, T=None) -> Drive | None:
+    names, source = velocity_joints(robot)
+    if not names:
+        return None
+    left, right = _sided(robot, names, T)
+    if not left or not right:
+        return None
+    label = "ros_control velocity wheels" if source == "ros_control" else "ros2_control velocity wheels"
+    return Drive(source, label, left, right)
+
+
+def user_drive(robot, left, right) -> Drive:
+    """Wheel joints named by the user (left list, right list)."""
+    return Drive("user", "wheel joints given", tuple(left), tuple(right), loc=robot.loc)
+
+
+def guess_drive(robot) -> Drive | None:
+    """Continuous joints named *left*wheel* / *right*wheel* (sim's fallback when nothing declares a drive)."""
+    cands = [j for j in robot.joints.values() if j.type == "continuous" and "wheel" in j.name.lower()]
+    left = [j.name for j in cands if "left" in j.name.lower()]
+    right = [j.name for j in cands if "right" in j.name.lower()]
+    if len(left) != 1 or len(right) != 1:
+        return None
+    return Drive("guess", "continuous joints named left/right wheel", (left[0],), (right[0],), loc=robot.loc)
+
+
+def find(robot) -> list[Drive]:
+    """Every drive the model declares, plugins first (in file order), then ros_control velocity wheels
+    (unless a plugin already drives those joints)."""
+    out = []
+    for p in robot.plugins():
+        s = plugin_spec(p)
+        if s is not None:
+            out.append(from_plugin(p, s))
+    rc = from_velocity_joints(robot)
+    if rc is not None and not any(set(rc.joints) & set(d.joints) for d in out):
+        out.append(rc)
+    return out
+
+
+def plugin_drives(robot) -> list[Drive]:
+    return [d for d in find(robot) if d.source == "plugin"]
+
+
+def main_drive(robot, left=(), right=(), guess: bool = False) -> Drive | None:
+    """The drive that moves the base: the user's wheels, else the first declared drive whose wheel
+    joints exist, else (guess=True) joints named like wheels."""
+    if left or right:
+        return user_drive(robot, left, right)
+    ds = find(robot)
+    for d in ds:
+        if d.left and d.right and not d.missing(robot):
+            return d
+    if ds:
+        return ds[0]
+    return guess_drive(robot) if guess else None
+
+
+# ------------------------------------------------------------------ geometry (pure Python)
+def link_transforms(robot) -> dict:
+    """World transform (R, p) of every link at q = 0 with each root at the origin."""
+    cache = getattr(robot, "derived", None)
+    if cache is not None and "drive.link_transforms" in cache:
+        return cache["drive.link_transforms"]
+    out = {}
+    todo = list(robot.roots)
+    for r in todo:
+        out[r] = IDENTITY
+    children = robot.joints_by_parent()
+    while todo:
+        link = todo.pop()
+        for j in children.get(link, []):
+            if j.child in out:
+                continue
+            out[j.child] = compose(out[link], pose_T(j.origin))
+            todo.append(j.child)
+    if cache is not None:
+        cache["drive.link_transforms"] = out
+    return out
+
+
+def _unit(v):
+    n = math.sqrt(sum(x * x for x in v))
+    return None if n < 1e-12 else tuple(x / n for x in v)
+
+
+def _dot(a, b) -> float:
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+def wheel_shapes(link):
+    """The shapes a wheel is measured on: its collisions, else its visuals."""
+    cols = [c for c in link.collisions if c.geometry is not None]
+    return cols or [v for v in link.visuals if v.geometry is not None]
+
+
+def wheel(robot, joint_name: str, T=None) -> Wheel | None:
+    """Measure one wheel: the largest distance of its collision (else visual) geometry from the
+    joint axis. A sphere gives its radius, a cylinder about the axis (|cos| > 0.99) its radius;
+    any other shape (box, tilted cylinder, mesh) the farthest of its points from the axis line."""
+    j = robot.joints.get(joint_name)
+    if j is None or j.child not in robot.links:
+        return None
+    T = T if T is not None else link_transforms(robot)
+    if j.parent not in T:
+        return None
+    Rj, pj = compose(T[j.parent], pose_T(j.origin))
+    axis = _unit(rotate(Rj, j.axis)) or (0.0, 1.0, 0.0)
+    best, best_item, best_round, centre, problem = None, None, False, pj, None
+    for it in wheel_shapes(robot.links[j.child]):
+        g = it.geometry
+        Rs, ps = compose((Rj, pj), pose_T(it.origin))
+        if g.kind == "sphere":
+            r, rnd = g.radius, True
+        elif g.kind == "cylinder" and abs(_dot((Rs[0][2], Rs[1][2], Rs[2][2]), axis)) > ALIGNED:
+            r, rnd = g.radius, True
+        else:
+            pts = _world_points(g, it, Rs, ps)
+            if isinstance(pts, Exception):
+                problem = problem or pts
+                continue
+            if not pts:
+                continue
+            r, rnd = _radial_extent(pts, pj, axis), False
+        if best is None or r > best:
+            best, best_item, best_round = r, it, rnd
+            centre = ps if rnd else _axial_mid(pts, pj, axis)
+    fwd = axis[1]          # (axis × z)[0]: a positive rate about +y rolls the base forward
+    return Wheel(joint_name, j.child, pj, axis, centre, best, best_item, best_round,
+                 math.copysign(1.0, fwd) if fwd else 1.0, problem)
+
+
+def _world_points(g, it, Rs, ps):
+    from myrabot_desc.model.shapes import surface_points
+
+    from myrabot_desc.errors import InputError
+
+    try:
+        pts = surface_points(g, POINTS_N, loc=getattr(it, "loc", None))
+    except InputError as exc:      # an unreadable mesh: no measured radius from it (the wheel keeps why)
+        return exc
+    except Exception as exc:       # a reader's own failure on a malformed file: the same, in one line
+        return InputError(f"mesh {getattr(g, 'filename', '?')} cannot be read ({type(exc).__name__})",
+                          getattr(it, "loc", None))
+    return [(_dot(Rs[0], q) + ps[0], _dot(Rs[1], q) + ps[1], _dot(Rs[2], q) + ps[2]) for q in _rows(pts)]
+
+
+def _rows(pts):
+    return pts.tolist() if hasattr(pts, "tolist") else pts
+
+
+def _radial_extent(pts, origin, axis) -> float:
+    """The farthest of the points from the axis line through origin."""
+    best = 0.0
+    for q in pts:
+        d = (q[0] - origin[0], q[1] - origin[1], q[2] - origin[2])
+        a = _dot(d, axis)
+        best = max(best, _dot(d, d) - a * a)
+    return math.sqrt(max(best, 0.0))
+
+
+def _axial_mid(pts, origin, axis):
+    """The wheel's mid-plane point on its axis (the middle of the points' extent along the axis)."""
+    s = [_dot((q[0] - origin[0], q[1] - origin[1], q[2] - origin[2]), axis) for q in pts]
+    m = (min(s) + max(s)) / 2
+    return tuple(origin[k] + m * axis[k] for k in range(3))
+
+
+def separation(left: tuple[Wheel, ...], right: tuple[Wheel, ...]) -> float | None:
+    """Track width: the left and right wheel centres (means of each side) along the first left wheel's axle."""
+    if not left or not right:
+        return None
+    cl = [sum(w.centre[k] for w in left) / len(left) for k in range(3)]
+    cr = [sum(w.centre[k] for w in right) / len(right) for k in range(3)]
+    d = (cl[0] - cr[0], cl[1] - cr[1], cl[2] - cr[2])
+    return abs(_dot(d, left[0].axis))
+
+
+def measure(robot, drive: Drive) -> Geometry:
+    """The drive's wheels measured on the URDF (joints that do not exist are left out)."""
+    T = link_transforms(robot)
+    left = tuple(w for w in (wheel(robot, n, T) for n in drive.left) if w is not None)
+    right = tuple(w for w in (wheel(robot, n, T) for n in drive.right) if w is not None)
+    radii = [w.radius for w in left + right if w.radius is not None]
+    return Geometry(left, right, separation(left, right), sum(radii) / len(radii) if radii else None)
+
+
+def turn_sign(drive: Drive) -> float:
+    """−1 when the plugin swaps the wheels (ROS 1 legacyMode): it turns the other way."""
+    return -1.0 if drive.legacy else 1.0

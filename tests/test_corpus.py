@@ -34,13 +34,12 @@ XACRO = Path(sys.executable).with_name("xacro")
 _ALL = ("build", "check", "info", "sdf", "mjcf")
 # robot id -> {case: reason}: what fails today. A refused build fails every case (each needs the build).
 # Fixed since this file was written (their entries removed): dict(...) (UR, Kinova), str.split (franka),
-# str.upper (Husky PACS), a xacro top file named .gazebo (rotors), non-<robot> roots.
+# str.upper (Husky PACS), a xacro top file named .gazebo (rotors), non-<robot> roots, MJCF of a URDF with
+# zero-size boxes (pioneer3at).
 XFAIL = {
     "husky_pacs_risers": dict.fromkeys(_ALL, "X005: the safe evaluator refuses list.pop, a mutating method: "
                                              "${int(levels.pop(0).strip())} (husky_description/urdf/pacs.urdf.xacro:250, "
                                              "reported at :253); xacro 2.x evaluates it"),
-    "pioneer3at": {"mjcf": "convert --to mjcf exits 2: the URDF's <box size=\"0 0 0\"/> geometries (7, in "
-                           "p2os_urdf/defs/pioneer3at_body.xacro) go to MuJoCo, which rejects a size-0 geom"},
 }
 
 pytestmark = pytest.mark.corpus

@@ -295,9 +295,7 @@ def test_dynamics_finding_points_at_the_first_massless_joint(tmp_path):
 
 
 # ---------------------------------------------------------------- the same on the real-robot corpus
-CORPUS = Path(__file__).parent / "corpus"
-needs_corpus = pytest.mark.skipif(not (CORPUS / "robots.yaml").is_file(),
-                                  reason="tests/corpus (the real-robot corpus) is not merged yet")
+CORPUS = Path(__file__).parent / "corpus"          # tests/corpus/README.md: sources and licences
 
 
 def corpus_check(*args):
@@ -306,7 +304,6 @@ def corpus_check(*args):
     return json.loads(res.stdout)["files"]
 
 
-@needs_corpus
 @pytest.mark.parametrize("top", ["turtlebot3_burger.urdf.xacro", "turtlebot3_waffle_pi.urdf.xacro"])
 def test_corpus_turtlebot3_full_scan_is_not_degrees(top):
     gz = CORPUS / "turtlebot3_description" / "urdf" / top.replace(".urdf.", ".gazebo.")
@@ -315,7 +312,6 @@ def test_corpus_turtlebot3_full_scan_is_not_degrees(top):
     assert f["links"] > 5 and f["diagnostics"] == []
 
 
-@needs_corpus
 def test_corpus_pr2_cameras_and_gripper_dynamics():
     (f,) = corpus_check(CORPUS / "pr2_description" / "robots" / "pr2.urdf.xacro", "--select", "G010,P003")
     cams = [p for p in f["diagnostics"] if p["code"] == "G010"]
@@ -326,7 +322,6 @@ def test_corpus_pr2_cameras_and_gripper_dynamics():
     assert 'name="${side}_gripper_joint"' in src.read_text().splitlines()[p3["line"] - 1]
 
 
-@needs_corpus
 def test_corpus_firefly_gazebo_top_file_builds_with_args():
     args = ("mav_name:=firefly namespace:=firefly enable_logging:=false enable_ground_truth:=true "
             "enable_mavlink_interface:=false log_file:=firefly wait_to_record_bag:=false").split()
@@ -335,7 +330,6 @@ def test_corpus_firefly_gazebo_top_file_builds_with_args():
     assert not [d for d in f["diagnostics"] if d["code"] in ("T001", "T017")]
 
 
-@needs_corpus
 def test_corpus_parts_files_named_on_the_command_line_are_not_errors():
     parts = [CORPUS / "turtlebot3_description" / "urdf" / "common_properties.xacro",
              CORPUS / "pr2_description" / "urdf" / "sensors" / "wge100_camera.gazebo.xacro"]

@@ -94,8 +94,8 @@ EXTERNAL_RULES: dict[str, ExternalRule] = {r.code: r for r in (
                 filename="robot.urdf.xacro")),
     ExternalRule(
         "X005", "expression-refused", "error", "A ${} expression was refused by the safe evaluator.",
-        "A `${}` expression uses something outside the safe evaluator's allow-list (attribute access, "
-        "imports, calls); model files are untrusted input in CI.",
+        "A `${}` expression uses something outside the safe evaluator's allow-list (dunder names and "
+        "attributes, imports, file or process access); model files are untrusted input in CI.",
         "Rewrite the expression with arithmetic and the allowed functions, or pass `--unsafe-eval` for "
         "a trusted file.",
         Example(_ROBOT + '  <xacro:property name="x" value="${__import__(\'os\').getcwd()}"/>\n'

@@ -27,10 +27,15 @@ def _check_target(target: Path, protect=()) -> None:
 
 
 def _special(p: Path) -> bool:
-    """An existing target that is not a regular file or a folder (a device, a FIFO)."""
+    """A target to write into rather than rename over: a device or FIFO (/dev/null), anything
+    under /dev or /proc (/dev/stdout is a symlink to /proc/self/fd/1), an existing symlink."""
     import stat
 
+    if str(p.absolute()).startswith(("/dev/", "/proc/")):
+        return True
     try:
+        if stat.S_ISLNK(os.lstat(p).st_mode):
+            return True
         mode = os.stat(p).st_mode
     except OSError:
         return False

@@ -16,6 +16,9 @@ $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install -q --upgrade pip
 	$(BIN)/python -m pip install -q -e '.[test]'
+	# pip compiles what it installs, but not an editable project: compile ours too, so that no
+	# command pays for compiling its modules (PYTHONDONTWRITEBYTECODE may be set)
+	$(BIN)/python -m compileall -q myrabot_desc
 	$(MAKE) --no-print-directory system-tools
 	touch $(STAMP)
 

@@ -72,7 +72,7 @@ def main(argv=None):
     res["vuelta_full_sim_per_wall"] = round(S / med, 1)
 
     def unprepared():
-        prepared.clear()
+        prepared.clear(robot)
         return vuelta.run(robot, duration=S)
 
     med_p, best_p, _ = timed(unprepared, a.repeat)

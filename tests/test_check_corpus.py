@@ -26,7 +26,14 @@ EXPECTED_ERRORS = {
     "alex_description/urdf/alex_psyonic_hands.urdf": {"I005": 4, "T012": 8},
     "allegro_hand_description/urdf/allegro_left_hand.urdf": {"I005": 4},
     "allegro_hand_description/urdf/allegro_right_hand.urdf": {"I005": 4},
-    "anymal_c_simple_description/urdf/anymal.urdf": {"I005": 4},
+    # six equal entries (1e-6 or 0.001 everywhere): principal moments 0, 0, 3e-6 break A + B >= C
+    "anymal_b_simple_description/robots/anymal-kinova.urdf": {"I005": 1},
+    "anymal_b_simple_description/robots/anymal.urdf": {"I005": 1},
+    "anymal_c_simple_description/urdf/anymal.urdf": {"I005": 5},
+    "b1_description/urdf/b1-z1.urdf": {"I005": 1},
+    "b1_description/urdf/b1.urdf": {"I005": 1},
+    "go1_description/urdf/go1.urdf": {"I005": 1},
+    "hyq_description/robots/hyq_no_sensors.urdf": {"I005": 5},
     "pr2_description/urdf/pr2.urdf": {"I005": 2},
     "romeo_description/urdf/romeo.urdf": {"I001": 24, "P003": 1},
     "romeo_description/urdf/romeo_laas_small.urdf": {"I004": 3, "I005": 2, "M001": 20, "P003": 1},
@@ -34,7 +41,6 @@ EXPECTED_ERRORS = {
     "tiago_description/robots/tiago.urdf": {"I004": 2},
     "tiago_description/robots/tiago_dual.urdf": {"I004": 2},
     "tiago_description/robots/tiago_no_hand.urdf": {"I004": 2},
-    "ur_description/urdf/ur3.urdf": {"T001": 1},
 }
 
 
@@ -79,7 +85,8 @@ def test_every_triangle_error_is_true(report):
     for f, d in _errors(report, "I005"):
         link = _xml(f).find(f"link[@name='{d['data']['link']}']")
         a, b, c = np.linalg.eigvalsh(_tensor(link))
-        assert a > 0 and a + b < c * 0.999, (f, d["message"])
+        noise = 1e-9 * c                      # eigenvalues of (0, 0, 3x) come out as ±1e-22
+        assert a > -noise and max(a, 0) + max(b, 0) < c * 0.999, (f, d["message"])
 
 
 def test_every_positive_definite_error_is_true(report):
@@ -124,6 +131,10 @@ def test_every_dynamics_error_is_true(report):
         assert not np.all(np.isfinite(a)), f
 
 
-def test_empty_robot_error_is_true(report):
+def test_empty_robot_is_information_not_an_error(report):
+    """ur3.urdf is a generated placeholder without links: T017 (info), not an error."""
+    r = report["ur_description/urdf/ur3.urdf"]
+    assert _xml("ur_description/urdf/ur3.urdf").findall("link") == [] and r["links"] == 0
+    assert [(d["code"], d["severity"]) for d in r["diagnostics"]] == [("T017", "info")]
     for f, d in _errors(report, "T001"):
-        assert _xml(f).findall("link") == []
+        assert _xml(f).findall("link") != []

@@ -44,7 +44,7 @@ def test_good_arm_has_no_error(tmp_path):
 
 def test_tree_two_roots_cycle_missing_duplicate(tmp_path):
     r = robot(tmp_path, link("a") + link("b") + link("island"))
-    assert "2 root links" in diag(r, "T001").message or "3 root links" in diag(r, "T001").message
+    assert "3 root links (a, b, island)" in diag(r, "T001").message
     r = robot(tmp_path, link("a") + link("b") + link("a") + joint("j", "a", "ghost") + joint("k", "a", "b"))
     assert "'ghost' does not exist" in diag(r, "T003").message
     assert "named 'a'" in diag(r, "T004").message

@@ -13,7 +13,7 @@ from hypothesis import strategies as st
 from lxml import etree
 
 from myrabot_desc.errors import InputError
-from myrabot_desc.materials import ogre, stock
+from myrabot_desc.materials import ogre, scripts, stock
 from myrabot_desc.materials.cli import materials_cmd
 from myrabot_desc.materials.resolve import (
     MaterialResolver,
@@ -31,7 +31,7 @@ SEED_OBJETOS = Path(__file__).parent / "fixtures" / "seed_myrabot" / "objetos_fe
 
 # ------------------------------------------------------------------ the seed's script
 def test_seed_myrabot_fer_blocks():
-    s = ogre.parse_file(FER)
+    s = scripts.parse_file(FER)
     assert list(s.materials) == ["material_fer/NOMBRE_DEL_NUEVO_MATERIAL", "material_fer/Amstel",
                                  "Gazebo/CocaCola"]
     assert [m.loc.line for m in s.materials.values()] == [1, 29, 57]
@@ -58,7 +58,7 @@ def test_fixture_copy_matches_seed_fixture():
 
 
 def test_brazo_fer_two_named_passes_and_transparency():
-    s = ogre.parse_file(BRAZO_FER)
+    s = scripts.parse_file(BRAZO_FER)
     black, white, wt = (s.materials[n] for n in ("brazo_fer/Black", "brazo_fer/White", "brazo_fer/WhiteTransparent"))
     assert black.ambient == (0, 0, 0, 1) and black.diffuse == (0, 0, 0, 1) and black.lighting is True
     passes = white.techniques[0].passes
@@ -72,7 +72,7 @@ def test_brazo_fer_two_named_passes_and_transparency():
 
 # ------------------------------------------------------------------ inheritance, comments
 def test_inheritance_override_by_name_position_stock_and_import():
-    s = ogre.parse_file(FIX / "inheritance.material")
+    s = scripts.parse_file(FIX / "inheritance.material")
     base, glow, red = s.materials["fer/Base"], s.materials["fer/Glow"], s.materials["fer/GlowRed"]
     assert base.ambient == (0.2, 0.2, 0.2, 1) and base.diffuse == (0.6, 0.6, 0.6, 1) and base.shininess == 64
     assert glow.parent == "fer/Base"
@@ -92,13 +92,13 @@ def test_inheritance_override_by_name_position_stock_and_import():
 def test_new_named_pass_is_appended():
     text = ("material A { technique { pass one { ambient 0.1 0.1 0.1 } } }\n"
             "material B : A { technique { pass two { diffuse 0 0 1 } } }\n")
-    s = ogre.parse_text(text, "t.material")
+    s = scripts.parse_text(text, "t.material")
     assert [p.name for p in s.materials["B"].techniques[0].passes] == ["one", "two"]
     assert s.materials["B"].ambient == (0.1, 0.1, 0.1, 1) and s.materials["B"].diffuse == (0, 0, 1, 1)
 
 
 def test_comments_programs_and_quotes_are_skipped():
-    s = ogre.parse_file(FIX / "comments.material")
+    s = scripts.parse_file(FIX / "comments.material")
     assert list(s.materials) == ["fer/Water", "fer/OneLine"]                     # fer/Ghost is commented out
     water = s.materials["fer/Water"]
     assert water.ambient == (0, 0.3, 0.6, 1)                                       # /* inline */ removed
@@ -126,7 +126,7 @@ def test_comments_programs_and_quotes_are_skipped():
      lambda m: m.diffuse == (1, 0, 0, 1) and m.transparency == 0.75),
 ])
 def test_pass_attributes(text, check):
-    mats = ogre.parse_text(text, "t.material").materials
+    mats = scripts.parse_text(text, "t.material").materials
     assert check(list(mats.values())[-1])
 
 
@@ -144,7 +144,7 @@ def test_pass_attributes(text, check):
 def test_malformed_scripts_raise_with_line(name, line, words):
     path = FIX / "malformed" / f"{name}.material"
     with pytest.raises(InputError) as ei:
-        ogre.parse_file(path)
+        scripts.parse_file(path)
     assert ei.value.loc.file == str(path) and ei.value.loc.line == line
     assert words in ei.value.message
 
@@ -161,21 +161,21 @@ def test_malformed_scripts_raise_with_line(name, line, words):
 ])
 def test_inline_errors(text, line, words):
     with pytest.raises(InputError) as ei:
-        ogre.parse_text(text, "inline.material")
+        scripts.parse_text(text, "inline.material")
     assert ei.value.loc.line == line and words in ei.value.message
 
 
 def test_limits_size_and_depth(tmp_path):
     deep = "material A\n" + "{ x\n" * 40 + "}\n" * 40
     with pytest.raises(InputError, match="deeper than 32"):
-        ogre.parse_text(deep, "deep.material")
-    ogre.parse_text("material A\n" + "{ x\n" * 30 + "}\n" * 30, "ok.material")      # 31 levels is fine
+        scripts.parse_text(deep, "deep.material")
+    scripts.parse_text("material A\n" + "{ x\n" * 30 + "}\n" * 30, "ok.material")      # 31 levels is fine
     big = tmp_path / "big.material"
     big.write_bytes(b"// padding\n" * ((5 * 1024 * 1024) // 11 + 1))
     with pytest.raises(InputError, match="over the 5242880-byte limit"):
-        ogre.parse_file(big)
+        scripts.parse_file(big)
     with pytest.raises(InputError, match="over the 100-byte limit"):
-        ogre.parse_file(BRAZO_FER, max_bytes=100)
+        scripts.parse_file(BRAZO_FER, max_bytes=100)
 
 
 def test_size_limit_from_the_environment(tmp_path, monkeypatch):
@@ -183,7 +183,7 @@ def test_size_limit_from_the_environment(tmp_path, monkeypatch):
     big = tmp_path / "big.material"
     big.write_bytes(b"// padding\n" * ((5 * 1024 * 1024) // 11 + 1) + b"material A { }\n")
     monkeypatch.setenv("MYRABOT_DESC_MAX_MATERIAL_BYTES", str((5 * 1024 * 1024) * 2))
-    assert "A" in ogre.parse_file(big).materials
+    assert "A" in scripts.parse_file(big).materials
     monkeypatch.setenv("MYRABOT_DESC_MAX_MATERIAL_BYTES", "100")
     r = _run(BRAZO_FER)
     assert r.exit_code == 2
@@ -196,7 +196,7 @@ def test_size_limit_from_the_environment(tmp_path, monkeypatch):
 def test_colour_round_trip(vals, four):
     cols = vals if four else vals[:3]
     text = f"material R {{ technique {{ pass {{ diffuse {' '.join(repr(v) for v in cols)} }} }} }}"
-    m = ogre.parse_text(text, "r.material").materials["R"]
+    m = scripts.parse_text(text, "r.material").materials["R"]
     assert m.diffuse == (tuple(cols) if four else (*cols, 1.0))
 
 
@@ -394,12 +394,12 @@ def test_latin1_and_crlf_scripts(tmp_path):
     p = tmp_path / "viejo.material"
     p.write_bytes("// añadir al final del archivo\r\nmaterial fer/Añejo\r\n{\r\n technique\r\n {\r\n"
                   "  pass\r\n  {\r\n   diffuse 0.5 0.25 0 1\r\n  }\r\n }\r\n}\r\n".encode("latin-1"))
-    m = ogre.parse_file(p).materials["fer/Añejo"]
+    m = scripts.parse_file(p).materials["fer/Añejo"]
     assert m.diffuse == (0.5, 0.25, 0, 1) and m.loc.line == 2
 
 
 def test_variables_and_abstract_templates():
-    s = ogre.parse_file(FIX / "variables.material")
+    s = scripts.parse_file(FIX / "variables.material")
     assert list(s.materials) == ["fer/TintedRed", "fer/TintedDefault"]          # the template is not output
     red, plain = s.materials["fer/TintedRed"], s.materials["fer/TintedDefault"]
     assert red.diffuse == (1, 0, 0, 1) and red.specular == (0.5, 0.5, 0.5, 1) and red.shininess == 16
@@ -407,7 +407,7 @@ def test_variables_and_abstract_templates():
     assert plain.diffuse == (1, 1, 1, 1) and plain.texture == "blank.png"       # the template's defaults
     text = (FIX / "variables.material").read_text() + "\nmaterial fer/NoShine : fer/Tinted\n{\n}\n"
     with pytest.raises(InputError) as ei:
-        ogre.parse_text(text, "v.material")
+        scripts.parse_text(text, "v.material")
     assert ei.value.loc.line == 12 and "variable $shine is not set" in ei.value.message
 
 

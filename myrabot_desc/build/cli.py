@@ -26,10 +26,10 @@ def limit_options(func):
 @click.option("--allow-errors", is_flag=True, help="Write the URDF even when the build reports errors (X002).")
 @limit_options
 def build_cmd(inputs, output, deps, resolve_uris, allow_errors, **limit_flags):
-    """Expand a xacro file into URDF, with no ROS installed.
+    """Expand a xacro file into URDF (or any XML: SDF, SRDF, launch), with no ROS installed.
 
-    FILE defaults to the bundled MYRAbot (xacro/myrabot.urdf.xacro). Files written
-    for ROS Electric/Fuerte (un-prefixed <macro>, <include>, <property>,
+    FILE defaults to the bundled MYRAbot (xacro/myrabot.urdf.xacro). <robot> files
+    written for ROS Electric/Fuerte (un-prefixed <macro>, <include>, <property>,
     <insert_block>, bare macro calls) are upgraded and reported (X001). Packages
     for $(find pkg) and package://pkg come from -p, the input's own package
     (package.xml or manifest.xml), --package-path, ROS_PACKAGE_PATH,
@@ -59,14 +59,16 @@ def build_cmd(inputs, output, deps, resolve_uris, allow_errors, **limit_flags):
     # GC stays off, and what the build left is frozen out of that last collection.
     gc.disable()
     from myrabot_desc.build.driver import build_file
-    from myrabot_desc.safety import LIMITS, Limits
     from myrabot_desc.output import write_output
+    from myrabot_desc.safety import LIMITS, Limits
 
     with guarded():
         limits = Limits(**{lim.field: limit_flags[lim.flag[2:].replace("-", "_")] for lim in LIMITS if lim.flag})
         src = inputs.file
         if src is None:
-            from myrabot_desc.model.loader import bundled_path  # imports the model classes (~25 ms): only when needed
+            from myrabot_desc.model.loader import (
+                bundled_path,  # imports the model classes (~25 ms): only when needed
+            )
 
             src = str(bundled_path())
         result = build_file(src, inputs.mappings, packages=inputs.packages, package_paths=inputs.package_paths,

@@ -15,16 +15,27 @@ from lxml import etree
 XACRO_NS = "http://www.ros.org/wiki/xacro"
 
 # tag -> attribute that must be present for the element to be read as xacro
-# (guards against SDF's own <include>, which has no filename attribute)
+# (guards against SDF's own <include>, which has no filename attribute, and roslaunch's
+# <arg name= value=>: a xacro arg always had a default)
 LEGACY_TAGS = {
     "macro": "name",
     "property": "name",
     "include": "filename",
     "insert_block": "name",
-    "arg": "name",
+    "arg": "default",
     "if": "value",
     "unless": "value",
 }
+
+
+def is_legacy_tag(el) -> bool:
+    """An un-prefixed element that old xacro read as one of its own.
+
+    As xacro 1.x did, an <include> with element children is not a xacro include."""
+    tag = el.tag
+    if tag not in LEGACY_TAGS or el.get(LEGACY_TAGS[tag]) is None:
+        return False
+    return not (tag == "include" and any(isinstance(c.tag, str) for c in el))
 
 
 def local_name(el) -> str:
@@ -75,8 +86,7 @@ def include_filenames(root) -> list[tuple[str, int]]:
 
 def needs_upgrade(root, known_macros: set[str]) -> bool:
     for el in root.iter():
-        if is_plain(el) and (el.tag in LEGACY_TAGS and el.get(LEGACY_TAGS[el.tag]) is not None
-                             or el.tag in known_macros):
+        if is_plain(el) and (is_legacy_tag(el) or el.tag in known_macros):
             return True
     return False
 
@@ -96,7 +106,7 @@ def upgrade(root, known_macros: set[str]):
         if not is_plain(el):
             continue
         tag = el.tag
-        if tag in LEGACY_TAGS and el.get(LEGACY_TAGS[tag]) is not None:
+        if is_legacy_tag(el):
             kind = f"<{tag}>"
         elif tag in known_macros:
             kind = "bare macro call"

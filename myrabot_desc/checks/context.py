@@ -28,33 +28,9 @@ class Context:
 
     # ---------------------------------------------------------------- locations
     def loc_of(self, el) -> Loc | None:
-        """Source location of a raw URDF element: the loader's map when it has one, else the
-        location of the nearest enclosing link/joint/gazebo block, else the URDF line."""
-        r = self.robot
-        finder = getattr(r, "loc_of", None)
-        if callable(finder):
-            try:
-                loc = finder(el)
-            except Exception:
-                loc = None
-            if loc:
-                return loc
-        e = el
-        while e is not None:
-            tag = e.tag if isinstance(e.tag, str) else ""
-            name = e.get("name")
-            if tag == "link" and name in r.links and r.links[name].loc:
-                return r.links[name].loc
-            if tag == "joint" and name in r.joints and r.joints[name].loc:
-                return r.joints[name].loc
-            if tag == "gazebo":
-                for g in r.gazebo:
-                    if g.element is e and g.loc:
-                        return g.loc
-            e = e.getparent()
-        if not r.from_xacro and r.source is not None and getattr(el, "sourceline", None):
-            return Loc(str(r.source), el.sourceline)
-        return r.loc
+        """Source location of a raw URDF element (the loader maps every element of the tree;
+        the robot's own location for anything else)."""
+        return self.robot.loc_of(el) or self.robot.loc
 
     # ---------------------------------------------------------------- kinematics
     @cached_property

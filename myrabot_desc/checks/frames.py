@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from myrabot_desc.checks.registry import Finding, rule
+from myrabot_desc.checks.rule import Finding, rule
 
 FRAME_PARAMS = ("bodyName", "frameName", "frameId", "frame_name", "robotBaseFrame", "robot_base_frame",
                 "gz_frame_id", "ignition_frame_id", "optical_frame_id")
@@ -15,6 +15,69 @@ RAY_TYPES = {"ray", "gpu_ray", "lidar", "gpu_lidar", "sonar"}
 
 WORLD_FRAMES = {"world", "map", "odom", "earth"}    # frames outside the robot that plugins may name
 
+# Example snippets (placed in checks.rule.TEMPLATE, whose only link is base_link).
+_SENSOR_LINK = """<link name="{link}">
+  <inertial>
+    <mass value="0.05"/>
+    <inertia ixx="1e-05" ixy="0" ixz="0" iyy="1e-05" iyz="0" izz="1e-05"/>
+  </inertial>
+</link>
+<joint name="{link}_joint" type="fixed">
+  <origin xyz="0.1 0 0.2" rpy="{rpy}"/>
+  <parent link="base_link"/>
+  <child link="{link}"/>
+</joint>"""
+
+_SONAR = _SENSOR_LINK.format(link="sonar_link", rpy="0 0 0") + """
+<gazebo reference="sonar_link">
+  <sensor type="ray" name="sonar_front">
+    <ray>
+      <scan><horizontal><samples>5</samples><min_angle>-0.25</min_angle><max_angle>0.25</max_angle></horizontal></scan>
+      <range><min>0.02</min><max>4</max></range>
+    </ray>
+    <plugin name="sonar_front_controller" filename="libgazebo_ros_range.so">
+      <topicName>sonar_front</topicName>
+      <frameName>sonar_link</frameName>
+      <fov>{fov}</fov>
+    </plugin>
+  </sensor>
+</gazebo>"""
+
+_LIDAR = _SENSOR_LINK.format(link="base_scan", rpy="0 0 0") + """
+<gazebo reference="base_scan">
+  <sensor type="ray" name="lds_lfcd_sensor">
+    <ray>
+      <scan><horizontal><samples>360</samples><min_angle>0.0</min_angle><max_angle>{max_angle}</max_angle></horizontal></scan>
+      <range><min>{min}</min><max>{max}</max></range>
+    </ray>
+    <plugin name="gazebo_ros_lds_lfcd_controller" filename="libgazebo_ros_laser.so">
+      <topicName>scan</topicName>
+      <frameName>{frame}</frameName>
+    </plugin>
+  </sensor>
+</gazebo>"""
+
+_CAMERA = _SENSOR_LINK.format(link="camera_link", rpy="0 0 0") + """
+<link name="camera_optical_frame"/>
+<joint name="camera_optical_joint" type="fixed">
+  <origin rpy="-1.5708 0 -1.5708"/>
+  <parent link="camera_link"/>
+  <child link="camera_optical_frame"/>
+</joint>
+<gazebo reference="camera_link">
+  <sensor type="camera" name="front_camera">
+    <camera>
+      <horizontal_fov>{fov}</horizontal_fov>
+      <image><width>640</width><height>480</height></image>
+      <clip><near>0.05</near><far>50</far></clip>
+    </camera>
+    <plugin name="front_camera_controller" filename="libgazebo_ros_camera.so">
+      <cameraName>front_camera</cameraName>
+      <frameName>{frame}</frameName>
+    </plugin>
+  </sensor>
+</gazebo>"""
+
 
 def _frame_names(ctx) -> set[str]:
     return set(ctx.robot.links) | WORLD_FRAMES
@@ -24,7 +87,12 @@ def _clean(name: str) -> str:
     return (name or "").strip().lstrip("/")
 
 
-@rule("S001", "gazebo-reference-exists", "error")
+@rule("S001", "gazebo-reference-exists", "error",
+      bad=_LIDAR.format(max_angle="6.28319", min="0.12", max="3.5", frame="base_scan")
+          .replace('<gazebo reference="base_scan">', '<gazebo reference="base_scn">'),
+      message='<gazebo reference="base_scn"> names no link or joint; its content is lost (sensor '
+              'lds_lfcd_sensor); did you mean base_scan?',
+      good=_LIDAR.format(max_angle="6.28319", min="0.12", max="3.5", frame="base_scan"))
 def gazebo_reference(ctx):
     """Every `<gazebo reference="X">` names an existing link or joint.
 
@@ -50,7 +118,11 @@ def gazebo_reference(ctx):
                           {"reference": g.reference, "suggestion": guess, "content": what}, severity=sev)
 
 
-@rule("S002", "plugin-frame-exists", "error")
+@rule("S002", "plugin-frame-exists", "error",
+      bad=_LIDAR.format(max_angle="6.28319", min="0.12", max="3.5", frame="base_scn"),
+      message="plugin gazebo_ros_lds_lfcd_controller: frameName 'base_scn' is not a link of this robot; "
+              "did you mean base_scan?",
+      good=_LIDAR.format(max_angle="6.28319", min="0.12", max="3.5", frame="base_scan"))
 def plugin_frames(ctx):
     """Plugin parameters that name a frame (bodyName, frameName, frameId, frame_name, robotBaseFrame...) name an existing link.
 
@@ -89,7 +161,12 @@ def _is_camera(sensor) -> bool:
     return sensor.type in CAMERA_TYPES
 
 
-@rule("S003", "camera-optical-frame", "warning")
+@rule("S003", "camera-optical-frame", "warning",
+      bad=_CAMERA.format(fov="1.047", frame="camera_link"),
+      message="camera front_camera stamps images in camera_link (plugin frameName), whose z axis is (0 0 1) in "
+              "camera_link; the camera looks along camera_link's +x, so the image frame should be an optical "
+              'frame (z forward): add a frame with rpy="-1.5708 0 -1.5708" under camera_link and use it (REP-103)',
+      good=_CAMERA.format(fov="1.047", frame="camera_optical_frame"))
 def optical_frame(ctx):
     """Cameras report in a REP-103 optical frame: z forward, x right, y down.
 
@@ -122,7 +199,13 @@ def optical_frame(ctx):
                        "fix": {"parent": s.reference, "rpy": [-math.pi / 2, 0.0, -math.pi / 2]}})
 
 
-@rule("S004", "sensor-on-massless-link", "warning")
+@rule("S004", "sensor-on-massless-link", "warning",
+      bad='<link name="imu_link"/>\n<joint name="imu_joint" type="revolute">\n  <parent link="base_link"/>\n'
+          '  <child link="imu_link"/>\n  <axis xyz="0 0 1"/>\n  <limit lower="-1" upper="1" effort="1" velocity="1"/>\n'
+          '</joint>\n<gazebo reference="imu_link">\n  <sensor type="imu" name="imu"/>\n</gazebo>',
+      message="sensor imu (imu) sits on massless leaf link imu_link: its joint is not fixed",
+      good=_SENSOR_LINK.format(link="imu_link", rpy="0 0 0")
+           + '\n<gazebo reference="imu_link">\n  <sensor type="imu" name="imu"/>\n</gazebo>')
 def massless_sensor_link(ctx):
     """A sensor attached to a massless leaf link can vanish in URDF→SDF conversion.
 
@@ -181,7 +264,10 @@ def _ranges(s):
     return [(a, b, lab) for a, b, lab in out if a is not None or b is not None]
 
 
-@rule("S005", "sensor-range", "error")
+@rule("S005", "sensor-range", "error",
+      bad=_LIDAR.format(max_angle="6.28319", min="3.5", max="0.12", frame="base_scan"),
+      message="sensor lds_lfcd_sensor: ray/range min 3.5 ≥ max 0.12",
+      good=_LIDAR.format(max_angle="6.28319", min="0.12", max="3.5", frame="base_scan"))
 def sensor_range(ctx):
     """A sensor's minimum range (near clip) must be below its maximum (far clip), and above 0 for rays.
 
@@ -200,39 +286,67 @@ def sensor_range(ctx):
 
 
 RADIAN_PARAMS = {"fov": "sensor_msgs/Range.field_of_view"}
+FULL_TURN = 2 * math.pi
 
 
-@rule("S006", "angle-units", "error")
+def _child(el, *path):
+    """The descendant element at path (local names), or None."""
+    from myrabot_desc.checks.urdf_syntax import local
+
+    for p in path:
+        el = next((c for c in el if local(c.tag) == p), None) if el is not None else None
+    return el
+
+
+def _slack(text: str | None) -> float:
+    """Half a unit of the last digit written: 2π written as 6.28319 (or 6.2832, 6.3) is a full turn,
+    not a value past it."""
+    t = (text or "").strip().lower()
+    if "." in t and "e" not in t:
+        return max(0.5 * 10.0 ** -len(t.split(".", 1)[1]), 1e-6)
+    return 1e-6
+
+
+@rule("S006", "angle-units", "error",
+      bad=_SONAR.format(fov="32"),
+      message="sensor sonar_front: plugin sonar_front_controller fov 32 looks like degrees; expected radians "
+              "(sensor_msgs/Range.field_of_view): 32° = 0.5585 rad",
+      good=_SONAR.format(fov="0.5585"))
 def angle_units(ctx):
     """Angles in degrees where radians are expected (sonar `fov 32`, SDF `horizontal_fov 60`).
 
     SDF sensors and ROS messages use radians; the Electric dialect's `hfov`, `minAngle`
     and `maxAngle` were degrees, so copied values keep their degree numbers. A sonar
-    `fov` of 32 becomes a 32-radian cone in sensor_msgs/Range. Fix: the value in
-    radians (given: 32° = 0.5585 rad).
+    `fov` of 32 becomes a 32-radian cone in sensor_msgs/Range. A full turn written with
+    few decimals (`max_angle 6.28319`, 2π rounded) is radians, not degrees. The finding
+    points at the element holding the value. Fix: the value in radians (given: 32° = 0.5585 rad).
     """
     for s in ctx.robot.sensors():
         checks = []
         if s.dialect == "electric":
             hf = _num(s.param("hfov"))
             if hf is not None and not 0 < hf < 180:
-                checks.append(("hfov", hf, "degrees in (0, 180)"))
+                checks.append(("hfov", hf, "degrees in (0, 180)", _child(s.element, "hfov")))
         else:
+            el = _child(s.element, "camera", "horizontal_fov")
             hf = _num(s.param("camera", "horizontal_fov"))
-            if hf is not None and not 0 < hf <= 2 * math.pi:
-                checks.append(("camera/horizontal_fov", hf, "radians in (0, 2π]"))
+            if hf is not None and not 0 < hf <= FULL_TURN + _slack(el.text if el is not None else None):
+                checks.append(("camera/horizontal_fov", hf, "radians in (0, 2π]", el))
             for root in ("ray", "lidar"):
                 for axis in ("horizontal", "vertical"):
                     for k in ("min_angle", "max_angle"):
+                        el = _child(s.element, root, "scan", axis, k)
                         v = _num(s.param(root, "scan", axis, k))
-                        if v is not None and abs(v) > 2 * math.pi + 1e-6:
-                            checks.append((f"{root}/scan/{axis}/{k}", v, "radians in [-2π, 2π]"))
+                        if v is not None and abs(v) > FULL_TURN + _slack(el.text if el is not None else None):
+                            checks.append((f"{root}/scan/{axis}/{k}", v, "radians in [-2π, 2π]", el))
         for p in s.plugins:
             for key, what in RADIAN_PARAMS.items():
+                el = _child(p.element, key)
                 v = _num(p.params.get(key))
-                if v is not None and v > 2 * math.pi:
-                    checks.append((f"plugin {p.name or p.library} {key}", v, f"radians ({what})"))
-        for label, v, expected in checks:
+                if v is not None and v > FULL_TURN + _slack(p.params.get(key)):
+                    checks.append((f"plugin {p.name or p.library} {key}", v, f"radians ({what})", el))
+        fallback = next((p.loc for p in s.plugins if p.loc), s.loc)
+        for label, v, expected, el in checks:
             if "degrees" in expected:
                 msg = f"sensor {s.name}: {label} {v:g} is out of range (expected {expected})"
                 fix = None
@@ -240,13 +354,16 @@ def angle_units(ctx):
                 fix = math.radians(v)
                 msg = (f"sensor {s.name}: {label} {v:g} looks like degrees; expected {expected}: "
                        f"{v:g}° = {fix:.4g} rad")
-            yield Finding(msg, next((p.loc for p in s.plugins if p.loc), s.loc),
+            yield Finding(msg, (ctx.loc_of(el) if el is not None else None) or fallback,
                           {"sensor": s.name, "param": label, "value": v, "fix": fix})
 
 
-@rule("S007", "camera-fov-range", "warning")
+@rule("S007", "camera-fov-range", "warning",
+      bad=_CAMERA.format(fov="3.3", frame="camera_optical_frame"),
+      message="camera front_camera: horizontal_fov 3.3 rad (189°) is outside a pinhole camera's range",
+      good=_CAMERA.format(fov="1.047", frame="camera_optical_frame"))
 def camera_fov(ctx):
-    """A pinhole camera's horizontal field of view should lie between about 0.1 and 3.0 rad.
+    """A pinhole camera's horizontal field of view should lie between 0.05 rad and π.
 
     Gazebo renders a pinhole camera only up to just under π; wider views need a
     wide-angle camera type. Fix: the lens's real field of view (a webcam is ~1.0 rad).

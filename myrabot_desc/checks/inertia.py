@@ -4,10 +4,28 @@ from __future__ import annotations
 
 from collections import defaultdict
 
-from myrabot_desc.checks.registry import Finding, rule
+from myrabot_desc.checks.rule import Finding, rule
 
 TRIANGLE_TOL = 1e-3      # relative: a + b >= c (1 - tol); URDF files round to ~6 digits
 ZERO_MOMENT = 1e-12      # kg·m²: below this a moment is rounding noise (1 g at 0.03 mm); MuJoCo's mjMINVAL is 1e-15
+NOISE = 1e-9             # relative to the largest moment: eigenvalues this small are round-off of 0
+
+
+def _inertial(body: str, name: str = "finger", jtype: str = "revolute") -> str:
+    """Example snippet: link `name` with `body` inside, on a joint to base_link."""
+    inner = "\n".join("  " + line for line in body.splitlines())
+    more = ('\n  <axis xyz="0 1 0"/>\n  <limit lower="-1" upper="1" effort="2" velocity="3"/>'
+            if jtype == "revolute" else "")
+    return (f'<link name="{name}">\n{inner}\n</link>\n<joint name="{name}_joint" type="{jtype}">\n'
+            f'  <parent link="base_link"/>\n  <child link="{name}"/>{more}\n</joint>')
+
+
+def _inertia(mass, ixx, iyy, izz, ixy=0, ixz=0, iyz=0) -> str:
+    return (f'<inertial>\n  <mass value="{mass}"/>\n  <inertia ixx="{ixx}" ixy="{ixy}" ixz="{ixz}" '
+            f'iyy="{iyy}" iyz="{iyz}" izz="{izz}"/>\n</inertial>')
+
+
+_FINGER_BOX = '<collision><geometry><box size="0.02 0.02 0.06"/></geometry></collision>'
 
 
 def _has_geometry(ctx, head: str) -> list[str]:
@@ -15,7 +33,10 @@ def _has_geometry(ctx, head: str) -> list[str]:
     return [n for n, h in ctx.body_of.items() if h == head and (r.links[n].visuals or r.links[n].collisions)]
 
 
-@rule("I001", "moving-link-mass", "error")
+@rule("I001", "moving-link-mass", "error",
+      bad=_inertial(_FINGER_BOX),
+      message="link finger moves (joint finger_joint, revolute) and has geometry but no mass",
+      good=_inertial(_FINGER_BOX + "\n" + _inertia(0.02, 6.667e-06, 6.667e-06, 1.333e-06)))
 def moving_link_mass(ctx):
     """A link that moves (its parent joint is not fixed) and has geometry needs a positive mass.
 
@@ -37,7 +58,15 @@ def moving_link_mass(ctx):
                           r.links[head].loc, {"link": head, "joint": pj.name})
 
 
-@rule("I002", "massless-moving-frame", "warning")
+@rule("I002", "massless-moving-frame", "warning",
+      bad=_inertial("<!-- no inertial, no geometry -->", "wrist_virtual") + "\n"
+          + _inertial(_FINGER_BOX + "\n" + _inertia(0.02, 6.667e-06, 6.667e-06, 1.333e-06), "hand")
+          .replace('"base_link"', '"wrist_virtual"'),
+      message="link wrist_virtual (joint wrist_virtual_joint, revolute) has no mass and no geometry; converting "
+              "to SDF drops it with its children (hand)",
+      good=_inertial(_inertia(0.001, 1e-06, 1e-06, 1e-06), "wrist_virtual") + "\n"
+           + _inertial(_FINGER_BOX + "\n" + _inertia(0.02, 6.667e-06, 6.667e-06, 1.333e-06), "hand")
+           .replace('"base_link"', '"wrist_virtual"'))
 def massless_moving_frame(ctx):
     """A massless link without geometry on a moving joint: SDF conversion drops it and its subtree.
 
@@ -57,7 +86,10 @@ def massless_moving_frame(ctx):
                       r.links[head].loc, {"link": head, "joint": pj.name, "children": below})
 
 
-@rule("I003", "mass-positive", "error")
+@rule("I003", "mass-positive", "error",
+      bad=_inertial(_inertia(-1, 0.001, 0.001, 0.001), "arm", "fixed"),
+      message="link arm has mass -1 kg",
+      good=_inertial(_inertia(1, 0.001, 0.001, 0.001), "arm", "fixed"))
 def mass_positive(ctx):
     """A declared mass must not be negative (and an inertial with mass 0 but a tensor is contradictory).
 
@@ -80,7 +112,10 @@ def principal(i):
     return np.linalg.eigvalsh(i.tensor())
 
 
-@rule("I004", "inertia-positive-definite", "error")
+@rule("I004", "inertia-positive-definite", "error",
+      bad=_inertial(_inertia(0.001, 9e-08, 3.5e-08, 1e-08, ixz=6.3e-08), "antenna", "fixed"),
+      message="link antenna: inertia not positive definite, principal moments -2.463e-08/3.5e-08/1.246e-07",
+      good=_inertial(_inertia(0.001, 9e-08, 9e-08, 1e-08), "antenna", "fixed"))
 def positive_definite(ctx):
     """An inertia tensor must be positive definite (all principal moments > 0).
 
@@ -99,36 +134,46 @@ def positive_definite(ctx):
             yield Finding(f"link {link.name}: inertia not positive definite, principal moments "
                           + "/".join(f"{e:.4g}" for e in ev), i.loc or link.loc,
                           {"link": link.name, "principal": ev.tolist()})
-        elif ev.min() <= max(1e-12 * scale, ZERO_MOMENT):
-            if ctx.moving(link.name):
+        elif ev.min() <= max(1e-12 * scale, ZERO_MOMENT) and triangle_gap(i) is None:
+            if ctx.moving(link.name):         # (0, 0, c) is no rod: I005 reports it
                 yield Finding(f"link {link.name} ({i.mass:g} kg) has a zero principal moment of inertia "
                               f"({'/'.join(f'{e:.3g}' for e in ev)}): a point mass or a rod", i.loc or link.loc,
                               {"link": link.name, "principal": ev.tolist()}, severity="warning")
 
 
-@rule("I005", "inertia-triangle", "error")
+@rule("I005", "inertia-triangle", "error",
+      bad=_inertial(_inertia(0.05, 0.002, 0, 0)),
+      message="link finger: impossible inertia, principal moments 0 + 0 = 0 < 0.002 (triangle inequality)",
+      good=_inertial(_inertia(0.05, 0.002, 0.002, 0.0001)))
 def triangle(ctx):
     """The principal moments must satisfy the triangle inequality: A + B ≥ C.
 
     For any real body the sum of two principal moments is at least the third; a tensor
     that violates it cannot exist (sdformat "invalid inertia", MuJoCo "A + B >= C",
-    unstable ODE contacts in Gazebo). Example: ixx 1, iyy 10, izz 1. Fix: the solid-body
-    values for the link's shape (`check --inertia --suggest`).
+    unstable ODE contacts in Gazebo). Moments within round-off of zero count as 0: a
+    finger with ixx 0.002 and iyy = izz = 0 (0 + 0 < 0.002), or six equal entries
+    (principal moments 0, 0, 3·ixx), are impossible too, not point masses or rods. Fix:
+    the solid-body values for the link's shape (`check --inertia --suggest`).
     """
     for link in ctx.robot.links.values():
         i = link.inertial
         if i is None or i.mass <= 0:
             continue
-        a, b, c = sorted(principal(i))
-        if a <= 0 or c <= ZERO_MOMENT:
-            continue
-        if a + b < c * (1 - TRIANGLE_TOL):
+        gap = triangle_gap(i)
+        if gap is not None:
+            a, b, c = gap
             yield Finding(f"link {link.name}: impossible inertia, principal moments {a:.4g} + {b:.4g} = {a + b:.4g} "
                           f"< {c:.4g} (triangle inequality)", i.loc or link.loc,
                           {"link": link.name, "principal": [a, b, c], "declared": _decl(i)})
 
 
-@rule("I009", "placeholder-inertia", "warning")
+@rule("I009", "placeholder-inertia", "warning",
+      bad=_inertial(_inertia(0.001, 0.01, 0.01, 0.01), "screen", "fixed") + "\n"
+          + _inertial(_inertia(0.1, 0.01, 0.01, 0.01), "plate", "fixed"),
+      message="the same inertia 0.01/0.01/0.01 is used by 3 links with masses 0.001–1 kg (1000×): a placeholder "
+              "(base_link, screen, plate)",
+      good=_inertial(_inertia(0.001, 1e-07, 1e-07, 2e-07), "screen", "fixed") + "\n"
+           + _inertial(_inertia(0.1, 0.0005, 0.0005, 0.001), "plate", "fixed"))
 def placeholder(ctx):
     """One inertia tensor reused for links of very different mass: a placeholder.
 
@@ -154,6 +199,26 @@ def placeholder(ctx):
                           links[0].inertial.loc or links[0].loc,
                           {"tensor": {"ixx": ixx, "iyy": iyy, "izz": izz}, "links": names,
                            "mass_min": min(masses), "mass_max": max(masses)})
+
+
+def triangle_gap(i):
+    """The principal moments (a, b, c), ascending, when they break A + B ≥ C; else None.
+
+    Moments within round-off of zero count as 0, so ixx = 0.002 with iyy = izz = 0 (0 + 0 < 0.002)
+    and a tensor whose six entries are equal (principal moments 0, 0, 3·ixx) are violations, as
+    convert treats them. A point mass (every moment ~0) and a clearly negative moment (I004's
+    error) are not reported here.
+    """
+    if i is None or i.mass <= 0:
+        return None
+    a, b, c = sorted(float(e) for e in principal(i))
+    if c <= ZERO_MOMENT:
+        return None
+    noise = NOISE * c
+    if a < -noise and -a > ZERO_MOMENT:
+        return None
+    a, b = (0.0 if abs(x) <= noise else x for x in (a, b))
+    return (a, b, c) if a + b < c * (1 - TRIANGLE_TOL) else None
 
 
 def _decl(i) -> dict:

@@ -9,8 +9,29 @@ from __future__ import annotations
 import math
 from functools import lru_cache
 
+from myrabot_desc.checks.examples import tetrahedron_stl
+from myrabot_desc.checks.rule import Finding, rule
 from myrabot_desc.model import shapes as G
-from myrabot_desc.checks.registry import Finding, rule
+
+
+def _part(body: str, name: str = "chassis") -> str:
+    """Example snippet: link `name` with `body` inside, fixed to base_link."""
+    inner = "\n".join("  " + line for line in body.splitlines())
+    return (f'<link name="{name}">\n{inner}\n</link>\n<joint name="{name}_joint" type="fixed">\n'
+            f'  <parent link="base_link"/>\n  <child link="{name}"/>\n</joint>')
+
+
+def _inertial(mass, ixx, iyy, izz, xyz="0 0 0") -> str:
+    return (f'<inertial>\n  <origin xyz="{xyz}"/>\n  <mass value="{mass}"/>\n'
+            f'  <inertia ixx="{ixx}" ixy="0" ixz="0" iyy="{iyy}" iyz="0" izz="{izz}"/>\n</inertial>')
+
+
+def _collision(geometry: str, xyz="0 0 0") -> str:
+    return f'<collision>\n  <origin xyz="{xyz}"/>\n  <geometry>{geometry}</geometry>\n</collision>'
+
+
+_BOX = '<box size="0.3 0.25 0.1"/>'
+_DISC = '<cylinder radius="0.17" length="0.063"/>'
 
 RATIO_LIMIT = 10.0
 MARKER_SIZE = 0.005                 # m: geometry smaller than this is a frame marker; findings drop to info
@@ -21,6 +42,7 @@ class Solid:
     """A link's geometry as a uniform solid at the declared mass (link frame), or why not."""
 
     def __init__(self, ctx, link):
+        from myrabot_desc.model.kinematics import pose_matrix
         self.link = link
         self.source, self.items = ctx.shapes(link, "collision")
         self.props = None
@@ -48,7 +70,7 @@ class Solid:
                                 if mesh is not None and not mesh.is_watertight else
                                 f"mesh {g.filename.rsplit('/', 1)[-1]} has no positive volume (inverted or open)")
                 return
-            parts.append((*sp, it.origin.matrix()))
+            parts.append((*sp, pose_matrix(it.origin)))
         mass = link.inertial.mass if link.inertial else 0.0
         self.props = G.combine(parts, mass if mass > 0 else 1.0)
         sizes = [G.size_of(it.geometry, ctx.mesh(it.geometry) if it.geometry.kind == "mesh" else None)
@@ -64,7 +86,9 @@ class Solid:
         """(com in inertial frame, tensor in inertial axes about the solid's com)."""
         import numpy as np
 
-        T = self.link.inertial.origin.matrix()
+        from myrabot_desc.model.kinematics import pose_matrix
+
+        T = pose_matrix(self.link.inertial.origin)
         R, p = T[:3, :3], T[:3, 3]
         t = R.T @ self.props.inertia @ R
         t[abs(t) < 1e-6 * abs(t).max()] = 0.0          # rotation round-off (rpy 1.570796) is not a product of inertia
@@ -91,7 +115,12 @@ def inertia_line(t) -> str:
             f'iyy="{t[1, 1]:.4g}" iyz="{t[1, 2]:.4g}" izz="{t[2, 2]:.4g}"/>').replace('"-0"', '"0"')
 
 
-@rule("I006", "inertia-vs-geometry", "warning")
+@rule("I006", "inertia-vs-geometry", "warning",
+      bad=_part(_collision(_BOX) + "\n" + _inertial(1, 1, 1, 1)),
+      message="link chassis: inertia ixx/iyy/izz 1/1/1 kg·m², but a solid box 0.3×0.25×0.1 m of 1 kg gives "
+              "0.00604/0.00833/0.0127 (ratio 166×/120×/79×); fix: "
+              '<inertia ixx="0.006042" ixy="0" ixz="0" iyy="0.008333" iyz="0" izz="0.01271"/>',
+      good=_part(_collision(_BOX) + "\n" + _inertial(1, 0.006042, 0.008333, 0.01271)))
 def inertia_vs_geometry(ctx):
     """The inertia differs more than 10× from the solid body of the link's collision geometry.
 
@@ -140,7 +169,11 @@ def _ratio(r: float) -> str:
     return f"{txt}×" if r >= 1 else f"1/{txt}"
 
 
-@rule("I007", "radius-of-gyration", "warning")
+@rule("I007", "radius-of-gyration", "warning",
+      bad=_part(_collision(_DISC) + "\n" + _inertial(3.6, 0.01, 0.01, 0.5)),
+      message="link chassis: radius of gyration √(0.5/3.6) = 0.373 m about axis (0 0 1), but no point of the "
+              "geometry is farther than 0.17 m from that axis",
+      good=_part(_collision(_DISC) + "\n" + _inertial(3.6, 0.0272, 0.0272, 0.05202)))
 def radius_of_gyration(ctx):
     """A radius of gyration √(I/m) larger than the body: no mass distribution inside the shape gives it.
 
@@ -151,6 +184,8 @@ def radius_of_gyration(ctx):
     """
     import numpy as np
 
+    from myrabot_desc.model.kinematics import pose_matrix
+
     r = ctx.robot
     for name, s in solids(ctx).items():
         link = s.link
@@ -158,7 +193,7 @@ def radius_of_gyration(ctx):
         if pts is None:
             continue
         i = link.inertial
-        T = i.origin.matrix()
+        T = pose_matrix(i.origin)
         local = (pts - T[:3, 3]) @ T[:3, :3]            # points in the inertial frame
         ev, vec = np.linalg.eigh(i.tensor())
         worst = None
@@ -188,6 +223,8 @@ def _hull_points(ctx, link):
     """
     import numpy as np
 
+    from myrabot_desc.model.kinematics import pose_matrix
+
     out = []
     cols = [c for c in link.collisions if c.geometry is not None]
     vis = [v for v in link.visuals if v.geometry is not None]
@@ -208,7 +245,7 @@ def _hull_points(ctx, link):
             local = np.asarray(mesh.vertices)    # the rules use extremes only: no hull needed (nor scipy)
         else:
             local = _primitive_points(g)
-        T = it.origin.matrix()
+        T = pose_matrix(it.origin)
         out.append(local @ T[:3, :3].T + T[:3, 3])
     return np.vstack(out)
 
@@ -233,7 +270,13 @@ def _primitive_points(g):
     return np.vstack([ring + [0, 0, g.length / 2], ring - [0, 0, g.length / 2]])
 
 
-@rule("I008", "density-plausible", "warning")
+@rule("I008", "density-plausible", "warning",
+      bad=_part(_collision('<cylinder radius="0.135" length="0.015"/>') + "\n"
+                + _inertial(0.05, 0.000229, 0.000229, 0.000456), "plate"),
+      message="link plate: 0.05 kg in cylinder r 0.135 l 0.015 m (0.000859 m³) is a density of 58.2 kg/m³ "
+              "(wood is 500–700, aluminium 2700)",
+      good=_part(_collision('<cylinder radius="0.135" length="0.015"/>') + "\n"
+                 + _inertial(0.52, 0.00238, 0.00238, 0.00474), "plate"))
 def density(ctx):
     """The mass over the geometry's volume gives an implausible density (< 100 or > 23000 kg/m³).
 
@@ -256,7 +299,11 @@ def density(ctx):
                           severity=s.severity)
 
 
-@rule("I010", "inertial-origin-inside", "warning")
+@rule("I010", "inertial-origin-inside", "warning",
+      bad=_part(_collision(_BOX, "0.125 0 0") + "\n" + _inertial(1, 0.006042, 0.008333, 0.01271, "-0.2 0 0")),
+      message="link chassis: inertial origin (-0.2 0 0) lies 0.175 m outside the box bounding its geometry "
+              "(-0.025 -0.125 -0.05 .. 0.275 0.125 0.05); geometric centroid (0.125 0 0)",
+      good=_part(_collision(_BOX, "0.125 0 0") + "\n" + _inertial(1, 0.006042, 0.008333, 0.01271, "0.125 0 0")))
 def origin_inside(ctx):
     """The centre of mass (`<inertial><origin>`) must lie within the link's geometry.
 
@@ -287,7 +334,14 @@ def origin_inside(ctx):
                           {"link": name, "origin": p.tolist(), "distance": out, "centroid": centroid})
 
 
-@rule("I011", "inertia-not-measurable", "info", needs="meshes")
+@rule("I011", "inertia-not-measurable", "info", needs="meshes", options=("inertia",),
+      bad=_part(_collision('<mesh filename="meshes/shell.stl"/>') + "\n" + _inertial(0.1, 1e-05, 1e-05, 1e-05),
+                "shell"),
+      message="link shell: inertia not compared with geometry: mesh shell.stl is not watertight",
+      good=_part(_collision('<mesh filename="meshes/closed.stl"/>') + "\n" + _inertial(0.1, 1e-05, 1e-05, 1e-05),
+                 "shell"),
+      files={"meshes/shell.stl": tetrahedron_stl(0.1, open_=True), "meshes/closed.stl": tetrahedron_stl(0.1)},
+      note="meshes/shell.stl: a 0.1 m tetrahedron with one face missing; meshes/closed.stl: the whole one.")
 def not_measurable(ctx):
     """The link's inertia could not be compared with its geometry (mesh not watertight or unreadable).
 

@@ -2,7 +2,16 @@
 
 from __future__ import annotations
 
-from myrabot_desc.checks.registry import Finding, rule
+from myrabot_desc.checks.examples import tetrahedron_stl
+from myrabot_desc.checks.rule import Finding, rule
+
+
+def _shell(geometry: str, kind: str = "collision", name: str = "cover") -> str:
+    """Example snippet: link `name` with one visual or collision, fixed to base_link."""
+    return (f'<link name="{name}">\n  <{kind}><geometry>{geometry}</geometry></{kind}>\n</link>\n'
+            f'<joint name="{name}_joint" type="fixed">\n  <parent link="base_link"/>\n  <child link="{name}"/>\n</joint>')
+
+
 
 
 def _mesh_uses(ctx):
@@ -14,7 +23,12 @@ def _mesh_uses(ctx):
                     yield link, kind, it
 
 
-@rule("M001", "mesh-file-resolves", "error")
+@rule("M001", "mesh-file-resolves", "error",
+      bad=_shell('<mesh filename="package://missing_pkg/meshes/cover.stl"/>', "visual"),
+      message="mesh package://missing_pkg/meshes/cover.stl (visual of cover) cannot be resolved: package "
+              "'missing_pkg' is not found (give -p missing_pkg=PATH or --package-path)",
+      good=_shell('<mesh filename="meshes/cover.stl"/>', "visual"),
+      files={"meshes/cover.stl": tetrahedron_stl(0.1)}, note="meshes/cover.stl: a 0.1 m tetrahedron.")
 def mesh_resolves(ctx):
     """Every mesh filename resolves to a file: `package://` to a known package, paths to existing files.
 
@@ -65,7 +79,11 @@ def _loaded(ctx, g, kind="collision"):
     return None if m is None or isinstance(m, str) else m
 
 
-@rule("M002", "mesh-scale", "warning", needs="meshes")
+@rule("M002", "mesh-scale", "warning", needs="meshes", options=("meshes",),
+      bad=_shell('<mesh filename="meshes/arm.stl"/>', "visual", "arm"),
+      message="mesh meshes/arm.stl (visual of arm) is 350 m across after scale 1 1 1: millimetres exported as metres?",
+      good=_shell('<mesh filename="meshes/arm.stl" scale="0.001 0.001 0.001"/>', "visual", "arm"),
+      files={"meshes/arm.stl": tetrahedron_stl(350)}, note="meshes/arm.stl: a tetrahedron 350 units across (mm).")
 def mesh_scale(ctx):
     """After scale, a mesh's bounding box should lie between 1 mm and 10 m.
 
@@ -90,7 +108,13 @@ def mesh_scale(ctx):
                           it.loc or link.loc, {"filename": g.filename, "extent": ext, "suggested_scale": guess})
 
 
-@rule("M003", "mesh-watertight", "info", needs="meshes")
+@rule("M003", "mesh-watertight", "info", needs="meshes", options=("inertia",),
+      bad=_shell('<mesh filename="meshes/cover.stl"/>'),
+      message="collision mesh meshes/cover.stl of cover is not watertight (3 faces): its volume and inertia "
+              "are undefined",
+      good=_shell('<mesh filename="meshes/closed.stl"/>'),
+      files={"meshes/cover.stl": tetrahedron_stl(0.1, open_=True), "meshes/closed.stl": tetrahedron_stl(0.1)},
+      note="meshes/cover.stl: a 0.1 m tetrahedron with one face missing; meshes/closed.stl: the whole one.")
 def mesh_watertight(ctx):
     """A collision mesh should be watertight (closed) to have a volume.
 
@@ -113,7 +137,12 @@ def mesh_watertight(ctx):
                           {"filename": g.filename, "link": link.name})
 
 
-@rule("M004", "mesh-normals-outward", "warning", needs="meshes")
+@rule("M004", "mesh-normals-outward", "warning", needs="meshes", options=("inertia",),
+      bad=_shell('<mesh filename="meshes/inside_out.stl"/>'),
+      message="mesh meshes/inside_out.stl (collision of cover) is inside out: volume -0.000167 m³",
+      good=_shell('<mesh filename="meshes/closed.stl"/>'),
+      files={"meshes/inside_out.stl": tetrahedron_stl(0.1, flipped=True), "meshes/closed.stl": tetrahedron_stl(0.1)},
+      note="meshes/inside_out.stl: a 0.1 m tetrahedron wound inward; meshes/closed.stl: wound outward.")
 def mesh_normals(ctx):
     """A closed mesh's faces should wind outward (positive volume).
 

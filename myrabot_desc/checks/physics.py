@@ -4,8 +4,19 @@ from __future__ import annotations
 
 import math
 
+from myrabot_desc.checks.examples import drive_example as _drive
+from myrabot_desc.checks.rule import Finding, rule
 from myrabot_desc.model import shapes as G
-from myrabot_desc.checks.registry import Finding, rule
+
+_FINGER = """<link name="finger">{inertial}</link>
+<joint name="finger_joint" type="revolute">
+  <parent link="base_link"/>
+  <child link="finger"/>
+  <axis xyz="0 1 0"/>
+  <limit lower="-1" upper="1" effort="2" velocity="3"/>
+</joint>"""
+_FINGER_MASS = ('\n  <inertial>\n    <mass value="0.02"/>\n'
+                '    <inertia ixx="6.7e-06" ixy="0" ixz="0" iyy="6.7e-06" iyz="0" izz="1.3e-06"/>\n  </inertial>\n')
 
 CONTACT_TOL = 0.003      # m: geometry this close to the lowest point touches the ground
 SPAWN_TOL = 0.002        # m: penetration Gazebo resolves without a visible jump
@@ -99,7 +110,12 @@ def support(ctx):
     return zmin, contacts, convex_hull(pts), np.asarray(com), mass
 
 
-@rule("P001", "static-support", "error")
+@rule("P001", "static-support", "error",
+      bad=_drive(caster=False, x="0.1"),
+      message="no static support: the ground contacts (left_wheel, right_wheel) lie on one line (x 0.1), with no "
+              "caster; the centre of mass is 50.0 mm behind that line (centre of mass x 0.05 y 0); the robot tips "
+              "until another part drags",
+      good=_drive(x="0.1"))
 def static_support(ctx):
     """A wheeled robot at rest must stand: its centre of mass inside the support polygon of its ground contacts.
 
@@ -184,7 +200,11 @@ def _tip(ctx, hull, com, zmin):
     return best
 
 
-@rule("P002", "spawn-above-ground", "warning")
+@rule("P002", "spawn-above-ground", "warning",
+      bad=_drive(z="0.03"),
+      message="with base_link at z 0, collision geometry reaches z -0.05 m (left_wheel, right_wheel): the robot "
+              "spawns 50 mm into the ground",
+      good=_drive())
 def spawn_penetration(ctx):
     """Collision geometry below the ground when a wheeled robot is spawned with its root at z = 0.
 
@@ -209,13 +229,16 @@ def spawn_penetration(ctx):
                                                             "fix": {"raise_by": depth}})
 
 
-@rule("P003", "dynamics-finite", "error")
+@rule("P003", "dynamics-finite", "error",
+      bad=_FINGER.format(inertial=""),
+      message="ABA returns NaN at a random configuration: nothing below joint(s) finger_joint has mass",
+      good=_FINGER.format(inertial=_FINGER_MASS))
 def dynamics_finite(ctx):
     """Pinocchio's inverse and forward dynamics (RNEA, ABA) stay finite at random configurations.
 
     A joint whose subtree has no mass (or no inertia about the joint) makes the mass
-    matrix singular: ABA returns NaN and every simulator struggles. Fix: give the links
-    below that joint a mass and inertia.
+    matrix singular: ABA returns NaN and every simulator struggles. The finding points at
+    the first such joint. Fix: give the links below that joint a mass and inertia.
     """
     if not ctx.tree_ok or not ctx.robot.joints:
         return
@@ -253,18 +276,23 @@ def dynamics_finite(ctx):
         if model.parents[i] > 0:
             sub_mass[model.parents[i]] += sub_mass[i]
     massless = [model.names[i] for i in range(1, model.njoints) if sub_mass[i] <= 0]
+    first = ctx.robot.joints.get(massless[0]) if massless else None
     yield Finding(f"{bad} returns NaN at a random configuration"
                   + (f": nothing below joint(s) {', '.join(massless[:6])} has mass" if massless else
-                     ": the mass matrix is singular"), ctx.robot.loc, {"algorithm": bad, "massless_joints": massless})
+                     ": the mass matrix is singular"), (first.loc if first else None) or ctx.robot.loc,
+                  {"algorithm": bad, "massless_joints": massless})
 
 
-@rule("P004", "mass-summary", "info")
+@rule("P004", "mass-summary", "info",
+      bad=_drive(),
+      message="total mass 2.1 kg; centre of mass (-0.00571 0 0.04) m in base_link, 0.04 m above the ground contacts",
+      good=None)
 def mass_summary(ctx):
     """Total mass and centre of mass at q = 0 (information).
 
     For a wheeled robot the height is above the ground contacts; otherwise above the root
     link's origin. A surprising total (0.59 kg for a wooden structure) points at masses
-    that were never weighed.
+    that were never weighed. A robot without any mass gets a warning under this code.
     """
     if not ctx.tree_ok:
         return

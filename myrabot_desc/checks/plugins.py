@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from myrabot_desc.checks.registry import Finding, rule
-
+from myrabot_desc.checks.examples import ELECTRIC_IMU, MODERN_IMU, drive_example as _drive
+from myrabot_desc.checks.rule import Finding, rule
 
 @dataclass(frozen=True)
 class DriveSpec:
@@ -167,7 +167,11 @@ def _pair(ctx, p, spec):
     return lj, rj
 
 
-@rule("G001", "drive-wheel-separation", "error")
+@rule("G001", "drive-wheel-separation", "error",
+      bad=_drive(sep="0.4"),
+      message="wheelSeparation 0.4 m, but the wheel joints left_wheel_joint and right_wheel_joint are 0.3 m apart "
+              "(y 0.15 and -0.15): the robot turns at 1.33× the commanded rate (before any diameter error)",
+      good=_drive())
 def wheel_separation(ctx):
     """A diff-drive plugin's wheel separation must match the distance between the wheels in the URDF.
 
@@ -205,7 +209,11 @@ def wheel_separation(ctx):
                            "fix": round(real, 6)})
 
 
-@rule("G002", "drive-wheel-size", "error")
+@rule("G002", "drive-wheel-size", "error",
+      bad=_drive(dia="0.2"),
+      message="wheelDiameter 0.2 m, but wheel left_wheel (joint left_wheel_joint) has a collision diameter of "
+              "0.16 m: the robot drives at 0.8× the commanded speed",
+      good=_drive())
 def wheel_size(ctx):
     """A diff-drive plugin's wheel diameter (or radius) must match the wheel's collision geometry.
 
@@ -235,7 +243,11 @@ def wheel_size(ctx):
                 break
 
 
-@rule("G003", "drive-joints-exist", "error")
+@rule("G003", "drive-joints-exist", "error",
+      bad=_drive(left="left_wheel_jiont"),
+      message="gazebo_ros_diff_drive (ROS 1): leftJoint 'left_wheel_jiont' is not a joint of this robot; "
+              "did you mean left_wheel_joint?",
+      good=_drive())
 def drive_joints_exist(ctx):
     """The joints a drive plugin names must exist in the URDF.
 
@@ -257,7 +269,11 @@ def drive_joints_exist(ctx):
             yield Finding(f"{spec.label}: no {spec.left[0]}/{spec.right[0]} given", p.loc, {"plugin": p.name})
 
 
-@rule("G004", "drive-joints-continuous", "error")
+@rule("G004", "drive-joints-continuous", "error",
+      bad=_drive(jtype="fixed"),
+      message="gazebo_ros_diff_drive (ROS 1): leftJoint left_wheel_joint is fixed: fixed joints are merged away "
+              "in URDF→SDF conversion, so the plugin cannot find it",
+      good=_drive())
 def drive_joints_continuous(ctx):
     """Wheel joints of a drive plugin must be continuous (revolute stops at its limits; fixed is gone).
 
@@ -285,7 +301,11 @@ def drive_joints_continuous(ctx):
                               {"plugin": p.name, "joint": name, "type": j.type}, severity=sev)
 
 
-@rule("G005", "drive-axis-across-travel", "error")
+@rule("G005", "drive-axis-across-travel", "error",
+      bad=_drive(axis="0 0 1"),
+      message="gazebo_ros_diff_drive (ROS 1): left wheel joint left_wheel_joint turns about (0 0 1) in base_link: "
+              "not across the direction of travel (y)",
+      good=_drive())
 def drive_axis(ctx):
     """Drive wheels must turn about an axis across the direction of travel (the base's y).
 
@@ -322,7 +342,10 @@ def drive_axis(ctx):
                               {"joint": j.name, "y": float(y)}, severity="warning")
 
 
-@rule("G007", "plugin-unknown-parameter", "warning")
+@rule("G007", "plugin-unknown-parameter", "warning",
+      bad=_drive(extra="<torque>5</torque>"),
+      message="gazebo_ros_diff_drive (ROS 1) does not read <torque> (ROS 1 gazebo_ros_diff_drive reads wheelTorque)",
+      good=_drive())
 def unknown_params(ctx):
     """A parameter that the (recognised) plugin does not read.
 
@@ -354,7 +377,11 @@ def unknown_params(ctx):
             yield Finding(msg, p.loc, {"plugin": p.name, "param": k, "suggestion": guess})
 
 
-@rule("G008", "electric-plugin-attribute", "error")
+@rule("G008", "electric-plugin-attribute", "error",
+      bad=ELECTRIC_IMU.format(attr="filename"),
+      message='controller imu_controller declares its library with filename="libgazebo_ros_imu.so"; the Electric '
+              "controller loader reads plugin=, so it is never loaded",
+      good=ELECTRIC_IMU.format(attr="plugin"))
 def electric_filename(ctx):
     """An Electric-era `<controller:...>` must name its library with `plugin=`, not `filename=`.
 
@@ -369,7 +396,10 @@ def electric_filename(ctx):
                           {"plugin": p.name, "fix": f'plugin="{p.filename}"'})
 
 
-@rule("G009", "material-resolves", "warning")
+@rule("G009", "material-resolves", "warning",
+      bad='<gazebo reference="base_link">\n  <material>MyRobot/Black</material>\n</gazebo>',
+      message="material MyRobot/Black (on base_link) is not a stock Gazebo material nor in any script found (0 read)",
+      good='<gazebo reference="base_link">\n  <material>Gazebo/Black</material>\n</gazebo>')
 def material_resolves(ctx):
     """A Gazebo material name must resolve: a stock `Gazebo/*` name or a script the model ships.
 
@@ -404,25 +434,83 @@ def material_resolves(ctx):
 TOPIC_KEYS = ("topicName", "topic", "imageTopicName", "cameraInfoTopicName", "pointCloudTopicName",
               "depthImageTopicName", "depthImageCameraInfoTopicName", "odometryTopic", "commandTopic",
               "odom_topic", "tf_topic")
+# Plugins built on gazebo_ros's camera utilities: they advertise every topic on a node handle in
+# <robotNamespace>/<cameraName> (ROS 1 GazeboRosCameraUtils), so cameras with the same
+# imageTopicName but their own cameraName do not collide.
+CAMERA_LIBS = ("gazebo_ros_camera", "gazebo_ros_multicamera", "gazebo_ros_depth_camera", "gazebo_ros_openni_kinect",
+               "gazebo_ros_kinect", "gazebo_ros_prosilica", "gazebo_ros_triggered_camera",
+               "gazebo_ros_triggered_multicamera", "gazebo_ros_wideanglecamera")
 
 
-@rule("G010", "topic-unique", "warning")
+def _namespace(p) -> str:
+    """The plugin's ROS namespace: ROS 1 robotNamespace, or the ROS 2 <ros><namespace>."""
+    ns = p.params.get("robotNamespace")
+    if not ns:
+        from myrabot_desc.checks.urdf_syntax import local
+
+        ros = next((c for c in p.element if local(c.tag) == "ros"), None) if p.element is not None else None
+        inner = next((c for c in ros if local(c.tag) == "namespace"), None) if ros is not None else None
+        ns = (inner.text or "") if inner is not None else ""
+    return ns.strip().strip("/")
+
+
+def published_topics(p) -> list[tuple[str, str]]:
+    """[(full topic, parameter)] the plugin publishes, from the topic parameters it gives."""
+    ns = _namespace(p)
+    lib = p.library.lower()
+    camera = (p.params.get("cameraName") or "").strip().strip("/")
+    if not any(c in lib for c in CAMERA_LIBS) or "$" in camera:
+        camera = ""
+    out = []
+    for key in TOPIC_KEYS:
+        if key == "commandTopic":
+            continue                      # subscribers may share
+        t = p.params.get(key)
+        if not t or "$" in t:
+            continue
+        full = t if t.startswith("/") else "/" + "/".join(x for x in (ns, camera, t) if x)
+        out.append((full, key))
+    return out
+
+
+def _two_lasers(topic2: str) -> str:
+    """Example snippet: two lasers on their own links, publishing `scan` and `topic2`."""
+    out = []
+    for name, topic, y in (("front_laser", "scan", "0.1"), ("rear_laser", topic2, "-0.1")):
+        out.append(f'''<link name="{name}"/>
+<joint name="{name}_joint" type="fixed">
+  <origin xyz="0 {y} 0.2"/>
+  <parent link="base_link"/>
+  <child link="{name}"/>
+</joint>
+<gazebo reference="{name}">
+  <sensor type="ray" name="{name}">
+    <plugin name="{name}_controller" filename="libgazebo_ros_laser.so">
+      <topicName>{topic}</topicName>
+      <frameName>{name}</frameName>
+    </plugin>
+  </sensor>
+</gazebo>''')
+    return "\n".join(out)
+
+
+@rule("G010", "topic-unique", "warning",
+      bad=_two_lasers("scan"),
+      message="topic /scan is published by 2 plugins: front_laser_controller (topicName), "
+              "rear_laser_controller (topicName)",
+      good=_two_lasers("scan_rear"))
 def topic_unique(ctx):
     """Two sensors or plugins publish on the same topic.
 
     Two publishers of one topic interleave their messages (two LaserScans on /scan from
-    different frames): consumers see both. Fix: distinct topicName values or namespaces.
+    different frames): consumers see both. Topics are resolved as the plugins do: under
+    the robot namespace, and for gazebo_ros camera plugins under their `<cameraName>`
+    (two cameras publishing `image_raw` under their own names do not collide). Fix:
+    distinct topicName values or namespaces.
     """
     seen: dict[str, list] = {}
     for p in ctx.robot.plugins():
-        ns = (p.params.get("robotNamespace") or "").strip("/")
-        for key in TOPIC_KEYS:
-            if key == "commandTopic":
-                continue                      # subscribers may share
-            t = p.params.get(key)
-            if not t or "$" in t:
-                continue
-            full = t if t.startswith("/") else "/" + "/".join(x for x in (ns, t) if x)
+        for full, key in published_topics(p):
             seen.setdefault(full, []).append((p, key))
     for t, users in sorted(seen.items()):
         if len(users) > 1:
@@ -431,7 +519,11 @@ def topic_unique(ctx):
                           {"topic": t, "publishers": names})
 
 
-@rule("G011", "electric-dialect", "info")
+@rule("G011", "electric-dialect", "info",
+      bad=ELECTRIC_IMU.format(attr="plugin"),
+      message="1 Electric-era controllers and 0 sensors (<controller:…>/<sensor:…>): today's Gazebo ignores them; "
+              "`myrabot-desc convert` translates them",
+      good=MODERN_IMU)
 def electric_dialect(ctx):
     """The model uses the pre-SDF Electric dialect (`<controller:…>`, `<sensor:…>`, `<interface:…>`).
 
@@ -448,7 +540,10 @@ def electric_dialect(ctx):
                       {"controllers": n_ctrl, "sensors": n_sens})
 
 
-@rule("G012", "drive-parameter-conflict", "warning")
+@rule("G012", "drive-parameter-conflict", "warning",
+      bad=_drive(extra="<torque>10</torque>"),
+      message="gazebo_ros_diff_drive (ROS 1): <torque> 10 and <wheelTorque> 5 disagree; the plugin reads wheelTorque (5)",
+      good=_drive())
 def drive_conflict(ctx):
     """Two parameters for the same thing with different values (torque 10 vs wheelTorque 5).
 

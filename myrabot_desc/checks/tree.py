@@ -5,21 +5,43 @@ from __future__ import annotations
 import math
 from collections import Counter
 
-from myrabot_desc.checks.registry import Finding, rule
+from myrabot_desc.checks.rule import Finding, rule
+
+# Example snippets (placed in checks.rule.TEMPLATE, whose only link is base_link).
+_ARM_LINK = """<link name="arm">
+  <inertial>
+    <mass value="0.5"/>
+    <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/>
+  </inertial>
+</link>"""
 
 
-@rule("T001", "single-root", "error")
+def _arm(inner: str, jtype: str = "revolute", name: str = "shoulder") -> str:
+    """A link `arm` on joint `name` under base_link; `inner` goes inside the <joint>."""
+    body = "\n".join("  " + line for line in inner.splitlines())
+    return (f'{_ARM_LINK}\n<joint name="{name}" type="{jtype}">\n  <parent link="base_link"/>\n'
+            f'  <child link="arm"/>\n{body}\n</joint>')
+
+
+_LIMIT = '<limit lower="-1.5" upper="1.5" effort="5" velocity="2"/>'
+
+
+@rule("T001", "single-root", "error",
+      bad='<link name="island"/>',
+      message="2 root links (base_link, island): a URDF is one tree; connect them with joints",
+      good='<link name="island"/>\n<joint name="island_joint" type="fixed">\n  <parent link="base_link"/>\n'
+           '  <child link="island"/>\n</joint>')
 def single_root(ctx):
     """The links must form one tree with exactly one root link.
 
     Two roots mean a part floats unattached (urdfdom: "Two root links found"); no root
-    means every link is someone's child (a cycle). Fix: connect the extra root with a
-    joint (often a fixed joint to the base) or remove the stray link.
+    means every link is someone's child (a cycle). A robot without links is T017. Fix:
+    connect the extra root with a joint (often a fixed joint to the base) or remove the
+    stray link.
     """
     r = ctx.robot
     if not r.links:
-        yield Finding("the robot has no links", r.loc)
-        return
+        return                       # T017
     roots = r.roots
     if len(roots) > 1:
         yield Finding(f"{len(roots)} root links ({', '.join(roots[:6])}{'...' if len(roots) > 6 else ''}): "
@@ -29,7 +51,36 @@ def single_root(ctx):
         yield Finding("no root link: every link is the child of a joint (the joints form a cycle)", r.loc)
 
 
-@rule("T002", "no-cycle", "error")
+@rule("T017", "no-links", "info",
+      bad='<?xml version="1.0"?>\n<robot name="placeholder"/>\n',
+      message="the robot has no links (an empty placeholder, or a file of macros that another file "
+              "includes): nothing to check",
+      good='<!-- one link or more: the template has base_link -->')
+def no_links(ctx):
+    """A robot without any link: a placeholder (`empty.urdf`) or a macro library named on the command line.
+
+    Repositories keep such files on purpose (a placeholder for a generated model, a
+    parts file of macros that the robot includes; `check -r` skips the included ones,
+    but pre-commit passes every changed file). Nothing in them can be checked, so this
+    is information, not an error. When the file was meant to be a robot, the build's
+    X003 says which macros it defines. Fix: none needed; check the file that includes it.
+    """
+    r = ctx.robot
+    if not r.links:
+        yield Finding("the robot has no links (an empty placeholder, or a file of macros that another file "
+                      "includes): nothing to check", r.loc)
+
+
+@rule("T002", "no-cycle", "error",
+      bad='<link name="a"/>\n<link name="b"/>\n'
+          '<joint name="base_a" type="fixed"><parent link="base_link"/><child link="a"/></joint>\n'
+          '<joint name="base_b" type="fixed"><parent link="base_link"/><child link="b"/></joint>\n'
+          '<joint name="a_b" type="fixed"><parent link="a"/><child link="b"/></joint>',
+      message="link b is the child of 2 joints (base_b, a_b): a link has one parent",
+      good='<link name="a"/>\n<link name="b"/>\n'
+           '<joint name="base_a" type="fixed"><parent link="base_link"/><child link="a"/></joint>\n'
+           '<joint name="a_b" type="fixed"><parent link="a"/><child link="b"/></joint>\n'
+           '<!-- close the loop in SDF (<gazebo><joint>) or MJCF (equality) -->')
 def no_cycle(ctx):
     """No link may have two parent joints, and the joints may not form a cycle.
 
@@ -54,7 +105,10 @@ def no_cycle(ctx):
                       r.links[cyc[0]].loc, {"links": sorted(cyc)})
 
 
-@rule("T003", "joint-links-exist", "error")
+@rule("T003", "joint-links-exist", "error",
+      bad=_ARM_LINK + '\n<joint name="arm_joint" type="fixed">\n  <parent link="base_lnk"/>\n  <child link="arm"/>\n</joint>',
+      message="joint arm_joint: parent link 'base_lnk' does not exist; did you mean base_link?",
+      good=_arm("", "fixed", "arm_joint"))
 def joint_links_exist(ctx):
     """Every joint's parent and child name existing links.
 
@@ -73,7 +127,13 @@ def joint_links_exist(ctx):
                               {"joint": j.name, "role": role, "link": name, "suggestion": guess})
 
 
-@rule("T004", "unique-names", "error")
+@rule("T004", "unique-names", "error",
+      bad='<link name="wheel"/>\n<link name="wheel"/>  <!-- a macro called twice without a prefix -->\n'
+          '<joint name="wheel_joint" type="fixed"><parent link="base_link"/><child link="wheel"/></joint>',
+      message="2 top-level <link> elements are named 'wheel'",
+      good='<link name="left_wheel"/>\n<link name="right_wheel"/>\n'
+           '<joint name="left_wheel_joint" type="fixed"><parent link="base_link"/><child link="left_wheel"/></joint>\n'
+           '<joint name="right_wheel_joint" type="fixed"><parent link="base_link"/><child link="right_wheel"/></joint>')
 def unique_names(ctx):
     """Link, joint and top-level material names are unique.
 
@@ -96,7 +156,10 @@ def _is_limited(j) -> bool:
     return j.type in ("revolute", "prismatic")
 
 
-@rule("T008", "axis-nonzero", "error")
+@rule("T008", "axis-nonzero", "error",
+      bad=_arm('<axis xyz="0 0 0"/>\n' + _LIMIT),
+      message="joint shoulder (revolute) has axis 0 0 0: no direction",
+      good=_arm('<axis xyz="0 0 1"/>\n' + _LIMIT))
 def axis_nonzero(ctx):
     """A moving joint's axis must be a non-zero vector.
 
@@ -111,7 +174,10 @@ def axis_nonzero(ctx):
                               {"joint": j.name, "axis": list(j.axis)})
 
 
-@rule("T009", "limits-present", "error")
+@rule("T009", "limits-present", "error",
+      bad=_arm('<axis xyz="0 0 1"/>'),
+      message="revolute joint shoulder has no <limit>",
+      good=_arm('<axis xyz="0 0 1"/>\n' + _LIMIT))
 def limits_present(ctx):
     """Revolute and prismatic joints need a `<limit>` with effort and velocity.
 
@@ -131,7 +197,10 @@ def limits_present(ctx):
                           {"joint": j.name, "missing": missing})
 
 
-@rule("T015", "limits-ordered", "error")
+@rule("T015", "limits-ordered", "error",
+      bad=_arm('<axis xyz="0 0 1"/>\n<limit lower="1.5" upper="-1.5" effort="5" velocity="2"/>'),
+      message="joint shoulder: lower 1.5 > upper -1.5",
+      good=_arm('<axis xyz="0 0 1"/>\n' + _LIMIT))
 def limits_ordered(ctx):
     """A joint's lower limit must not exceed its upper limit.
 
@@ -146,7 +215,10 @@ def limits_ordered(ctx):
                            "fix": {"lower": lim.upper, "upper": lim.lower}})
 
 
-@rule("T011", "limits-positive", "warning")
+@rule("T011", "limits-positive", "warning",
+      bad=_arm('<axis xyz="0 0 1"/>\n<limit lower="-1.5" upper="1.5" effort="0" velocity="0"/>'),
+      message="joint shoulder: effort 0, velocity 0 (must be > 0)",
+      good=_arm('<axis xyz="0 0 1"/>\n' + _LIMIT))
 def limits_positive(ctx):
     """Effort and velocity limits should be positive.
 
@@ -165,7 +237,14 @@ def limits_positive(ctx):
                           severity="error" if any(v < 0 for v in bad.values()) else None)
 
 
-@rule("T012", "mimic-target", "error")
+@rule("T012", "mimic-target", "error",
+      bad=_arm('<axis xyz="0 0 1"/>\n' + _LIMIT, name="finger_left") + "\n"
+          + _arm('<axis xyz="0 0 1"/>\n' + _LIMIT + '\n<mimic joint="finger_lft"/>', name="finger_right")
+          .replace('"arm"', '"arm2"'),
+      message="joint finger_right mimics 'finger_lft', which does not exist; did you mean finger_left?",
+      good=_arm('<axis xyz="0 0 1"/>\n' + _LIMIT, name="finger_left") + "\n"
+           + _arm('<axis xyz="0 0 1"/>\n' + _LIMIT + '\n<mimic joint="finger_left"/>', name="finger_right")
+           .replace('"arm"', '"arm2"'))
 def mimic_target(ctx):
     """A `<mimic joint=...>` must name another existing, moving joint.
 
@@ -189,7 +268,10 @@ def mimic_target(ctx):
             yield Finding(f"joint {j.name} mimics {t}, a fixed joint", j.loc, {"joint": j.name, "target": t})
 
 
-@rule("T013", "limits-zero-range", "warning")
+@rule("T013", "limits-zero-range", "warning",
+      bad=_arm('<axis xyz="0 1 0"/>\n<limit effort="5" velocity="10"/>', name="wheel_joint"),
+      message="revolute joint wheel_joint has range [0, 0] (no lower/upper given: both default to 0): it cannot move",
+      good=_arm('<axis xyz="0 1 0"/>\n<limit effort="5" velocity="10"/>', "continuous", "wheel_joint"))
 def zero_range(ctx):
     """A revolute/prismatic joint whose `<limit>` leaves lower = upper cannot move.
 
@@ -208,7 +290,10 @@ def zero_range(ctx):
                               {"joint": j.name, "lower": lo, "upper": hi})
 
 
-@rule("T014", "axis-normalised", "info")
+@rule("T014", "axis-normalised", "info",
+      bad=_arm('<axis xyz="0 0 10"/>\n' + _LIMIT),
+      message="joint shoulder axis 0 0 10 has length 10; parsers normalise it",
+      good=_arm('<axis xyz="0 0 1"/>\n' + _LIMIT))
 def axis_normalised(ctx):
     """A joint axis should be a unit vector.
 
@@ -223,7 +308,10 @@ def axis_normalised(ctx):
                               j.loc, {"joint": j.name, "norm": n})
 
 
-@rule("T016", "joint-type-known", "error")
+@rule("T016", "joint-type-known", "error",
+      bad=_arm('<axis xyz="0 0 1"/>\n' + _LIMIT, "revolut"),
+      message="joint shoulder has type 'revolut', not a URDF joint type; did you mean revolute?",
+      good=_arm('<axis xyz="0 0 1"/>\n' + _LIMIT))
 def joint_type_known(ctx):
     """A joint's type must be one of revolute, continuous, prismatic, fixed, floating, planar.
 

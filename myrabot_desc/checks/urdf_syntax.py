@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import difflib
 
-from myrabot_desc.checks.registry import Finding, rule
+from myrabot_desc.checks.rule import Finding, rule
 
 # element -> (allowed attributes, allowed children); None = anything (free-form body)
 SCHEMA: dict[str, tuple[set[str], set[str] | None]] = {
@@ -105,7 +105,10 @@ def _walk(ctx):
     return
 
 
-@rule("T005", "unknown-element", "warning")
+@rule("T005", "unknown-element", "warning",
+      bad='<gaezebo reference="base_link">\n  <material>Gazebo/White</material>\n</gaezebo>',
+      message='unknown element <gaezebo> in <robot name="example">: URDF parsers ignore it; did you mean <gazebo>?',
+      good='<gazebo reference="base_link">\n  <material>Gazebo/White</material>\n</gazebo>')
 def unknown_element(ctx):
     """An element URDF does not know (a typo like <gaezebo>): parsers skip it silently.
 
@@ -131,7 +134,14 @@ def unknown_element(ctx):
         yield Finding(msg, ctx.loc_of(el), {"element": name, "parent": parent, "suggestion": guess})
 
 
-@rule("T006", "unknown-attribute", "warning")
+@rule("T006", "unknown-attribute", "warning",
+      bad='<link name="plate">\n  <visual><geometry><box size="0.3 0.24 0.01" rpy="0 0 0.1"/></geometry></visual>\n'
+          '</link>\n<joint name="plate_joint" type="fixed"><parent link="base_link"/><child link="plate"/></joint>',
+      message='unknown attribute rpy="0 0 0.1" on <box>: URDF parsers ignore it; rpy is not an attribute of <box>; '
+              'put the rotation on the <origin> of the <visual>/<collision>',
+      good='<link name="plate">\n  <visual>\n    <origin xyz="0 0 0" rpy="0 0 0.1"/>\n'
+           '    <geometry><box size="0.3 0.24 0.01"/></geometry>\n  </visual>\n'
+           '</link>\n<joint name="plate_joint" type="fixed"><parent link="base_link"/><child link="plate"/></joint>')
 def unknown_attribute(ctx):
     """An attribute URDF does not know (fricction=, <box rpy=...>): parsers ignore it.
 
@@ -153,7 +163,13 @@ def unknown_attribute(ctx):
         yield Finding(msg, ctx.loc_of(el), {"attribute": name, "element": tag, "suggestion": guess})
 
 
-@rule("T007", "ros2-block-outside-plugin", "warning")
+@rule("T007", "ros2-block-outside-plugin", "warning",
+      bad='<ros>\n  <namespace>/</namespace>\n  <argument>/cmd_vel:=cmd_vel</argument>\n</ros>',
+      message="ROS 2 <ros> block at robot level (<namespace>/, <argument>/cmd_vel:=cmd_vel) is read by no one; "
+              "it belongs inside a ROS 2 gazebo_ros <plugin>",
+      good='<gazebo>\n  <plugin name="imu" filename="libgazebo_ros_imu_sensor.so">\n'
+           '    <ros>\n      <namespace>/</namespace>\n      <remapping>~/out:=imu</remapping>\n    </ros>\n'
+           '  </plugin>\n</gazebo>')
 def ros_block(ctx):
     """A ROS 2 `<ros>` block directly under `<robot>`: it only means something inside a ROS 2 plugin.
 

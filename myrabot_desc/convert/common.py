@@ -108,14 +108,6 @@ def local(tag) -> str:
     return tag.rsplit("}", 1)[-1] if isinstance(tag, str) else ""
 
 
-def ns_kind(tag) -> str | None:
-    """'controller', 'sensor', 'interface'... for Electric-dialect elements, else None."""
-    if isinstance(tag, str) and tag.startswith("{"):
-        uri = tag[1:].split("}", 1)[0]
-        if "#" in uri:
-            return uri.rsplit("#", 1)[1]
-    return None
-
 
 def xml_text(el) -> str:
     """An element as compact one-line-ish XML text (for comments)."""

@@ -96,7 +96,7 @@ def materials_cmd(file, fmt, output, names, texture_prefix, stock):
       myrabot-desc materials brazo_fer.material --name brazo_fer/White
       myrabot-desc materials --stock --name Gazebo/Grey
     """
-    from myrabot_desc.materials import ogre
+    from myrabot_desc.materials import scripts
     from myrabot_desc.materials.resolve import MaterialResolver, find_texture, resolved
     from myrabot_desc.materials.stock import stock_material
     from myrabot_desc.output import write_output
@@ -118,7 +118,7 @@ def materials_cmd(file, fmt, output, names, texture_prefix, stock):
                 own = siblings._load().get(name)      # noqa: SLF001 (same package)
                 return own if own is not None else stock_material(name)
 
-            script = ogre.parse_file(path, parents=parents)
+            script = scripts.parse_file(path, parents=parents)
             available, warnings, where = script.materials, script.warnings, "this file"
         mats = list(available.values())
         if names:

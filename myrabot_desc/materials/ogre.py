@@ -595,18 +595,17 @@ def summarize(name: str, parent: str | None, techniques: tuple[Technique, ...], 
         variables=dict(variables or {}), abstract=abstract)
 
 
-def _did_you_mean(name: str, local) -> str:
+def _did_you_mean(name: str, local, known=()) -> str:
     import difflib
 
-    from myrabot_desc.materials.stock import names as stock_names
-
-    close = difflib.get_close_matches(name, sorted(set(local) | set(stock_names())), n=2, cutoff=0.75)
+    close = difflib.get_close_matches(name, sorted(set(local) | set(known)), n=2, cutoff=0.75)
     return f"; did you mean {' or '.join(map(repr, close))}?" if close else ""
 
 
 def build_materials(raws: list[RawMaterial], external: Callable[[str], Material | None] | None = None,
-                    on_error: Callable[[InputError], None] | None = None) -> dict[str, Material]:
-    """Apply inheritance. Parents are looked up among ``raws`` first, then ``external(name)``.
+                    on_error: Callable[[InputError], None] | None = None, known=()) -> dict[str, Material]:
+    """Apply inheritance. Parents are looked up among ``raws`` first, then ``external(name)``
+    (``known``: the names ``external`` knows, for did-you-mean hints).
 
     An unknown parent or a cycle raises InputError at the child's line, or, when ``on_error``
     is given, is passed to it and the material is left out.
@@ -633,7 +632,7 @@ def build_materials(raws: list[RawMaterial], external: Callable[[str], Material 
                 if ext is None:
                     raise InputError(f"material {raw.name!r}: parent {raw.parent!r} is not defined "
                                      "(not in this script, its imports, or Gazebo's stock materials)"
-                                     + _did_you_mean(raw.parent, by_name), raw.loc)
+                                     + _did_you_mean(raw.parent, by_name, known), raw.loc)
                 base, base_vars = ext.techniques, ext.variables
         techs = tuple(_merge_list(list(base), raw.techniques, _merge_technique))
         variables = {**base_vars, **raw.variables}
@@ -657,20 +656,15 @@ def build_materials(raws: list[RawMaterial], external: Callable[[str], Material 
 
 
 # ------------------------------------------------------------------ entry points
-def _stock_external(name: str) -> Material | None:
-    from myrabot_desc.materials.stock import stock_material
-
-    return stock_material(name)
-
-
 def parse_text(text: str, file: str = "<string>", *, parents: Callable[[str], Material | None] | None = None,
-               max_bytes: int | None = None, max_depth: int = MAX_DEPTH) -> Script:
+               known=(), max_bytes: int | None = None, max_depth: int = MAX_DEPTH) -> Script:
     """Parse a script held in memory. Imports are not followed (see :func:`parse_file`).
 
-    ``parents`` finds parents defined elsewhere; by default Gazebo's stock materials.
+    ``parents`` finds parents defined elsewhere (``materials.scripts`` passes Gazebo's stock
+    materials); ``known`` names them for did-you-mean hints.
     """
     raws, imports, warnings = parse_raw(text, file, max_bytes=max_bytes, max_depth=max_depth)
-    mats = build_materials(raws, parents or _stock_external)
+    mats = build_materials(raws, parents, known=known)
     return Script(file, mats, [i for i, _ in imports], warnings)
 
 
@@ -702,7 +696,7 @@ def read_script_text(path: Path, file: str, max_bytes: int | None = None) -> str
 
 
 def parse_file(path: str | Path, *, parents: Callable[[str], Material | None] | None = None,
-               max_bytes: int | None = None, max_depth: int = MAX_DEPTH) -> Script:
+               known=(), max_bytes: int | None = None, max_depth: int = MAX_DEPTH) -> Script:
     """Parse a .material file, following ``import ... from "x.material"`` next to it.
 
     Imported materials serve as parents only; ``Script.materials`` holds this file's own.
@@ -739,15 +733,14 @@ def parse_file(path: str | Path, *, parents: Callable[[str], Material | None] | 
 
     follow(imports, path.parent, 1)
     pool = {r.name: r for r in imported}
-    ext = parents or _stock_external
     built_imports: dict[str, Material] = {}
 
     def external(name: str) -> Material | None:
         if name in pool:
             if name not in built_imports:
-                built_imports.update(build_materials(list(pool.values()), ext))
+                built_imports.update(build_materials(list(pool.values()), parents, known=known))
             return built_imports.get(name)
-        return ext(name)
+        return parents(name) if parents else None
 
-    mats = build_materials(raws, external)
+    mats = build_materials(raws, external, known=set(known) | set(pool))
     return Script(file, mats, [i for i, _ in imports], warnings)

@@ -28,6 +28,7 @@ from pathlib import Path
 
 from myrabot_desc.errors import InputError
 from myrabot_desc.materials import ogre
+from myrabot_desc.materials.stock import names as stock_names
 from myrabot_desc.materials.stock import stock_material
 
 RGBA = tuple[float, float, float, float]
@@ -132,7 +133,8 @@ class MaterialResolver:
                 first_def.setdefault(m.name, str(m.loc))
                 raws.append(m)
         # Imports are implied: every script on the media path is loaded, as Gazebo does.
-        self._materials = ogre.build_materials(raws, stock_material, on_error=self.errors.append)
+        self._materials = ogre.build_materials(raws, stock_material, on_error=self.errors.append,
+                                               known=stock_names())
         return self._materials
 
     # ---------------------------------------------------------------- queries
@@ -155,8 +157,6 @@ class MaterialResolver:
         """Names defined by the loaded scripts (plus the stock table if asked), sorted."""
         found = set(self._load())
         if include_stock:
-            from myrabot_desc.materials.stock import names as stock_names
-
             found.update(stock_names())
         return sorted(found)
 

@@ -7,6 +7,7 @@ the ``myrabot_description`` package shipped with this tool).
 from __future__ import annotations
 
 import math
+import re
 from pathlib import Path
 
 from myrabot_desc.build.packages import BUNDLED_ASSEMBLY, bundled_path, data_root  # noqa: F401  (library API)
@@ -34,26 +35,57 @@ from myrabot_desc.model.parts import (
     Visual,
 )
 
-ELECTRIC_SUFFIXES = ("#controller", "#sensor", "#interface")
 # Sizes, offsets, masses and inertias beyond this (SI units) are typing errors or attacks: 1e300
 # overflows volumes and inertias downstream. Joint limits and dynamics are exempt (1e16 is a
 # common "unlimited").
 MAX_MAGNITUDE = 1e6
 
+# xacro's namespace as files declare it (any prefix); a generated URDF often keeps the declaration
+# with nothing in it, so a file counts as xacro only when it *uses* the namespace or a substitution.
+_XACRO_NS = re.compile(rb"""xmlns:([A-Za-z_][\w.-]*)\s*=\s*["']https?://(?:www\.|wiki\.)?ros\.org/(?:wiki/)?xacro/?["']""")
+_SUBSTITUTION = re.compile(rb"\$\{|\$\((?:arg|find|env|optenv|eval|dirname|cwd)\s")
+_COMMENT = re.compile(rb"<!--.*?(?:-->|\Z)", re.S)
+_PREFIXED_TAG = re.compile(rb"<([A-Za-z_][\w.-]*):[A-Za-z_]")
 
 
-def is_xacro(path: Path) -> bool:
-    return path.name.endswith(".xacro") or path.suffix == ".xacro"
+def is_xacro(path: Path, data: bytes | None = None) -> bool:
+    """True for a ``.xacro`` name, or for content that uses xacro whatever the name (a drone's top-level
+    ``.gazebo`` file built with args): an element in the xacro namespace (``<xacro:include>``), or a
+    ``${...}`` / ``$(arg ...)`` substitution, outside comments. ``data``: the file's bytes when read."""
+    if path.name.endswith(".xacro"):
+        return True
+    if data is None:
+        return False
+    text = _COMMENT.sub(b"", data)
+    if _SUBSTITUTION.search(text):
+        return True
+    prefixes = {m.group(1) for m in _XACRO_NS.finditer(text)}
+    # one pass over the prefixed tags (a search per declaration would be quadratic on hostile files)
+    return bool(prefixes) and any(m.group(1) in prefixes for m in _PREFIXED_TAG.finditer(text))
 
 
 def load_robot(path=None, **build_options) -> Robot:
-    """Build (``.xacro``) or read (anything else) ``path`` into a Robot. None = bundled MYRAbot."""
+    """Build (xacro: see is_xacro) or read (plain URDF) ``path`` into a Robot. None = bundled MYRAbot."""
     src = Path(path) if path is not None else bundled_path()
     if not src.exists():
         raise InputError(f"no such file: {src}")
     if src.is_dir():
         raise InputError(f"{src} is a folder; give a .urdf or .xacro file")
-    if is_xacro(src):
+    data = None
+    if not is_xacro(src):
+        from myrabot_desc.safety import Limits
+
+        from myrabot_desc.safety import read_input
+
+        limit = (build_options.get("limits") or Limits()).max_input_bytes
+        try:
+            size = src.stat().st_size
+        except OSError as exc:
+            raise InputError(f"cannot read {src}: {exc.strerror}") from None
+        if size > limit:
+            raise InputError(f"{src} is {size} bytes, over the {limit}-byte limit")
+        data = read_input(src, limit)       # bounded: /dev/zero or an endless pipe stops at the limit
+    if data is None or is_xacro(src, data):
         from myrabot_desc.build.driver import build_file
 
         result = build_file(src, build_options.pop("mappings", None), **build_options)
@@ -62,18 +94,6 @@ def load_robot(path=None, **build_options) -> Robot:
                               build_warnings=result.diagnostics, from_xacro=True,
                               packages=build_options.get("packages"),
                               package_paths=build_options.get("package_paths", ()))
-    from myrabot_desc.safety import Limits
-
-    limit = (build_options.get("limits") or Limits()).max_input_bytes
-    from myrabot_desc.safety import read_input
-
-    try:
-        size = src.stat().st_size
-    except OSError as exc:
-        raise InputError(f"cannot read {src}: {exc.strerror}") from None
-    if size > limit:
-        raise InputError(f"{src} is {size} bytes, over the {limit}-byte limit")
-    data = read_input(src, limit)       # bounded: /dev/zero or an endless pipe stops at the limit
     return read_urdf_bytes(data, src, packages=build_options.get("packages"),
                            package_paths=build_options.get("package_paths", ()))
 
@@ -97,9 +117,24 @@ def read_urdf_text(text: str, src: Path, locations=None, package_roots=None, bui
                  packages, package_paths)
 
 
+# What a file that is not a URDF robot is, by its root element (for the message that refuses it).
+DOCUMENT_KINDS = {"sdf": "an SDF model", "gazebo": "an SDF model (old <gazebo> root)", "mujoco": "a MuJoCo MJCF model",
+                  "launch": "a roslaunch file", "world": "a world file", "html": "an HTML page"}
+
+
+def what_document(tag: str) -> str:
+    """'an SDF model (root <sdf>, not <robot>)'... for a root element tag (lxml's: {ns}name)."""
+    if tag.startswith("{"):
+        ns, name = tag[1:].split("}", 1)
+        return f"the root element is <{name}> in namespace {ns}, not a plain <robot>"
+    if tag in DOCUMENT_KINDS:
+        return f"{DOCUMENT_KINDS[tag]} (root <{tag}>, not <robot>)"
+    return f"the root element is <{tag}>, not <robot>"
+
+
 # ---------------------------------------------------------------- reading
 class _Reader:
-    def __init__(self, root, src: Path, locations, from_xacro: bool):
+    def __init__(self, root, src: Path, locations):
         self.src = src
         self.issues: list[Diagnostic] = []
         self.loc_of: dict[int, Loc] = {}
@@ -223,9 +258,10 @@ def _read(root, text, src: Path, locations, package_roots, build_warnings, from_
     )
 
     if root.tag != "robot":
-        raise InputError(f"the root element is <{root.tag}>, not <robot>: not a URDF file",
-                         Loc(str(src), root.sourceline))
-    r = _Reader(root, src, locations, from_xacro)
+        loc = locations[0] if locations and locations[0] is not None else Loc(str(src), root.sourceline)
+        raise InputError(f"{what_document(root.tag)}: check, convert, info and sim read URDF robots; "
+                         "`build` expands any xacro file", loc)
+    r = _Reader(root, src, locations)
 
     # Resolve every package named by a package:// URI (meshes, textures).
     roots = dict(package_roots)

@@ -33,12 +33,6 @@ class Pose(NamedTuple):
     def is_identity(self) -> bool:
         return not any(self.xyz) and not any(self.rpy)
 
-    def matrix(self):
-        """4x4 homogeneous transform (numpy), URDF convention R = Rz(y) Ry(p) Rx(r)."""
-        from myrabot_desc.model.kinematics import pose_matrix
-
-        return pose_matrix(self)
-
 
 # ---------------------------------------------------------------- geometry
 class Box(NamedTuple):
@@ -248,6 +242,9 @@ class Robot:
     # id(lxml element of root_element) -> Loc, for consumers that walk the raw XML (check's T005/T006).
     element_locs: dict = field(default_factory=dict, repr=False)
     _elements: list = field(default_factory=list, repr=False)      # keeps those lxml proxies (and ids) alive
+    # Facts derived from the robot, built once by whoever needs them first (sim/prepared.py);
+    # the robot is not modified after loading, so they stay true for its lifetime.
+    derived: dict = field(default_factory=dict, repr=False, compare=False)
 
     def loc_of(self, el) -> Loc | None:
         """Source location of an element of ``root_element`` (None when unknown)."""

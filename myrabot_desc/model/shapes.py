@@ -130,20 +130,6 @@ def combine(parts, mass: float):
     return MassProps(vol, com, inertia, mass)
 
 
-def half_extent(g, R, e, mesh=None) -> float | None:
-    """Half-width of the shape along unit direction e (R: the shape's rotation in e's frame)."""
-    import numpy as np
-
-    e = np.asarray(e, float)
-    if g.kind == "box":
-        return float(sum(abs(R[:, i] @ e) * g.size[i] / 2 for i in range(3)))
-    if g.kind == "cylinder":
-        c = abs(R[:, 2] @ e)
-        return float(g.length / 2 * c + g.radius * math.sqrt(max(0.0, 1 - c * c)))
-    if g.kind == "sphere":
-        return float(g.radius)
-    return None
-
 
 def lowest_points(g, T, mesh=None, tol: float = 1e-3):
     """(min z, [xyz points within tol of it]) of a shape placed by world pose T, or None."""

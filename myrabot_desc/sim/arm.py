@@ -77,6 +77,8 @@ class Arm:
         """Gripper axis in the wrist joint frame, and the tip distance along it."""
         import numpy as np
 
+        from myrabot_desc.model.kinematics import pose_matrix
+
         oMi = self.fk(np.zeros(len(self.names)))
         j2, j3 = self.jid[2], self.jid[3]
         p2, p3 = oMi[j2].translation.copy(), oMi[j3].translation.copy()
@@ -103,7 +105,7 @@ class Arm:
                 if c.geometry is None:
                     continue
                 pts = _geometry_points(robot, c.geometry, c.loc)
-                M = tf[ln] @ c.origin.matrix()
+                M = tf[ln] @ pose_matrix(c.origin)
                 w = pts @ M[:3, :3].T + M[:3, 3]
                 best = max(best, float(((w - T3[:3, 3]) @ d).max()))
         self.tip_length = best if best > 0 else float(np.linalg.norm(p3 - p2))

@@ -15,7 +15,6 @@ Both report what testing every pair would (tests/test_sim.py checks that).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from pathlib import Path
 
 # Distance queries cost ~10 collision tests each; the closest approach is found at the
 # joints' extremes (always probed) plus this many evenly spread poses.
@@ -48,16 +47,8 @@ class ArmCollider:
         self.arm = arm
         robot = arm.robot
         model = arm.model
-        # package:// URIs -> absolute paths (a package's folder need not carry its name)
-        text = robot.urdf_text
-        for name, root in sorted((robot.package_roots or {}).items()):
-            text = text.replace(f"package://{name}/", f"{Path(root).resolve()}/")
         self.notes = []
-        try:
-            gm = pin.buildGeomFromUrdfString(model, text, pin.GeometryType.COLLISION, None, [])
-        except Exception:               # unresolvable meshes: primitives only
-            gm = _primitives_only(model, robot)
-            self.notes.append("some collision meshes could not be loaded; checked primitives only")
+        gm = geometry_model(model, robot, self.notes)
         # scene objects: fixed in the robot's root frame (the base stands still in escoja/seguir)
         for obj in scene:
             for name, shape, M in obj.coal_shapes():
@@ -244,11 +235,16 @@ def cold_gjk(gdata):
             r.enable_cached_gjk_guess = False
 
 
-def _primitives_only(model, robot):
-    """A GeometryModel from the robot's primitive collision shapes (meshes skipped)."""
+def geometry_model(model, robot, notes: list):
+    """A Pinocchio GeometryModel of the robot's collision shapes, from our model (meshes read
+    through model/meshes.py, with its roots and limits); named ``{link}_{index}`` as Pinocchio's
+    URDF reader names them. A mesh that cannot be read is left out, with a note."""
     import pinocchio as pin
 
+    from myrabot_desc.model.kinematics import pose_matrix
+
     gm = pin.GeometryModel()
+    skipped = []
     for ln, link in robot.links.items():
         if not model.existFrame(ln):
             continue
@@ -257,14 +253,21 @@ def _primitives_only(model, robot):
         for i, c in enumerate(link.collisions):
             shape = coal_shape(c.geometry)
             if shape is None:
+                if c.geometry is not None and c.geometry.kind == "mesh":
+                    skipped.append(c.geometry.filename)
                 continue
-            M = f.placement.homogeneous @ c.origin.matrix()
+            M = f.placement.homogeneous @ pose_matrix(c.origin)
             gm.addGeometryObject(pin.GeometryObject(f"{ln}_{i}", f.parentJoint, fid,
                                                     pin.SE3(M[:3, :3], M[:3, 3]), shape))
+    if skipped:
+        names = sorted(set(skipped))
+        notes.append(f"{len(skipped)} collision mesh(es) could not be read and were left out "
+                     f"({', '.join(names[:3])}{', ...' if len(names) > 3 else ''})")
     return gm
 
 
 def coal_shape(g):
+    """A coal collision shape of a URDF geometry (meshes as bounding-volume hierarchies), or None."""
     import coal
 
     if g is None:
@@ -275,6 +278,21 @@ def coal_shape(g):
         return coal.Cylinder(g.radius, g.length)
     if g.kind == "sphere":
         return coal.Sphere(g.radius)
+    if g.kind == "mesh" and g.path is not None:
+        import numpy as np
+
+        from myrabot_desc.model import meshes
+
+        try:
+            m = meshes.load(g.path, process=False)
+        except meshes.MeshError:
+            return None
+        bvh = coal.BVHModelOBBRSS()
+        bvh.beginModel(len(m.faces), len(m.vertices))
+        bvh.addVertices(np.asarray(m.vertices, dtype=float) * np.asarray(g.scale, dtype=float))
+        bvh.addTriangles(np.asarray(m.faces, dtype=np.int64))
+        bvh.endModel()
+        return bvh
     return None
 
 

@@ -237,6 +237,8 @@ def wheel_radius(robot, link_name: str, axis_world, T_link) -> float:
     """Radius of the wheel from its collision (else visual) geometry, about the joint axis."""
     import numpy as np
 
+    from myrabot_desc.model.kinematics import pose_matrix
+
     link = robot.links[link_name]
     geoms = [(c.origin, c.geometry, c.loc) for c in link.collisions if c.geometry is not None]
     if not geoms:
@@ -246,7 +248,7 @@ def wheel_radius(robot, link_name: str, axis_world, T_link) -> float:
                          link.loc)
     best = 0.0
     for origin, g, loc in geoms:
-        M = T_link @ origin.matrix()
+        M = T_link @ pose_matrix(origin)
         if g.kind == "sphere":
             best = max(best, g.radius)
             continue

@@ -117,7 +117,7 @@ def run(robot, *, rate=1000.0, duration=None, script=DEFAULT_SCRIPT, wheels="plu
                   Series("v achieved", np.concatenate([base.v, base.v[-1:]]), "m/s", group="twist"),
                   Series("w commanded", _cmd_series(bounds, N, 3), "rad/s", group="twist"),
                   Series("w achieved", np.concatenate([base.w, base.w[-1:]]), "rad/s", group="twist")]
-    from myrabot_desc.sim.vuelta import footprint
+    from myrabot_desc.sim.stability import footprint
 
     res.outline_of = lambda: footprint(robot)
     res.wall = time.perf_counter() - wall0

@@ -3,35 +3,25 @@
 The Pinocchio model of the arm, the collision geometry (meshes read, bounding volumes,
 broadphase), the drive's wheel geometry, the support polygon and the footprint depend on
 the robot, not on the run: the counterpart of MuJoCo compiling an MjModel before stepping
-it. The first run on a Robot object builds them; later runs on the same object (a
-benchmark, a script running several programs) reuse them. Robots are not modified after
-loading. The last few robots are kept; ``clear()`` forgets them all.
+it. The first run on a Robot object builds them and keeps them on the robot
+(``Robot.derived``); later runs on the same object (a benchmark, a script running several
+programs) reuse them, and they go when the robot goes. Robots are not modified after loading.
 """
 
 from __future__ import annotations
 
-from collections import OrderedDict
-
-KEEP = 2
-_CACHE: OrderedDict = OrderedDict()      # id(robot) -> (robot, {key: value})
-
 
 def get(robot, key, build):
     """``build()``, built once for ``robot`` and ``key``."""
-    entry = _CACHE.get(id(robot))
-    if entry is None or entry[0] is not robot:      # the robot is held, so its id is not reused meanwhile
-        entry = _CACHE[id(robot)] = (robot, {})
-        while len(_CACHE) > KEEP:
-            _CACHE.popitem(last=False)
-    _CACHE.move_to_end(id(robot))
-    values = entry[1]
+    values = robot.derived
     if key not in values:
         values[key] = build()
     return values[key]
 
 
-def clear() -> None:
-    _CACHE.clear()
+def clear(robot) -> None:
+    """Forget what was built for ``robot`` (benchmarks time the preparation this way)."""
+    robot.derived.clear()
 
 
 def drive(robot, wheels: str):
@@ -64,6 +54,6 @@ def support(robot, wheels: str):
 
 
 def footprint(robot) -> list:
-    from myrabot_desc.sim.vuelta import footprint as outline
+    from myrabot_desc.sim.stability import footprint as outline
 
     return list(get(robot, "footprint", lambda: outline(robot)))

@@ -97,7 +97,7 @@ def load_layout(path: Path, robot_pose=None) -> list[SceneObject]:
     import numpy as np
 
     from myrabot_desc.build.packages import data_root
-    from myrabot_desc.model.kinematics import world_transforms
+    from myrabot_desc.model.kinematics import pose_matrix, world_transforms
     from myrabot_desc.model.loader import load_robot
 
     from myrabot_desc.build.yaml_load import load_path
@@ -129,7 +129,7 @@ def load_layout(path: Path, robot_pose=None) -> list[SceneObject]:
             for c in link.collisions:
                 if c.geometry is None or c.geometry.kind == "mesh" or ln not in tf:
                     continue
-                shapes.append((ln, c.geometry, T @ tf[ln] @ c.origin.matrix()))
+                shapes.append((ln, c.geometry, T @ tf[ln] @ pose_matrix(c.origin)))
         out.append(SceneObject(str(entry.get("model", obj_robot.name)), f, pose, shapes, selectable=pose[2] > 0))
     return out
 

@@ -36,7 +36,7 @@ class Support:
 def support_polygon(robot, drive) -> Support:
     import numpy as np
 
-    from myrabot_desc.model.kinematics import world_transforms
+    from myrabot_desc.model.kinematics import pose_matrix, world_transforms
     from myrabot_desc.sim.diffdrive import _geometry_points
 
     tf = world_transforms(robot)
@@ -57,7 +57,7 @@ def support_polygon(robot, drive) -> Support:
                 p = _geometry_points(robot, c.geometry, c.loc, n=180)
             except Exception:
                 continue
-            M = tf[ln] @ c.origin.matrix()
+            M = tf[ln] @ pose_matrix(c.origin)
             w = p @ M[:3, :3].T + M[:3, 3]
             zmin = float(w[:, 2].min())
             if zmin < lowest[0]:
@@ -119,3 +119,22 @@ def _hull(points):
     from myrabot_desc.model.hull2d import convex_hull
 
     return convex_hull(np.asarray(points, dtype=float).reshape(-1, 2).tolist())
+
+
+def footprint(robot):
+    """Convex outline (root frame, xy) of the robot's primitive collision geometry at the zero pose."""
+    import numpy as np
+
+    from myrabot_desc.model.kinematics import pose_matrix, world_transforms
+    from myrabot_desc.sim.diffdrive import _geometry_points
+
+    tf = world_transforms(robot)
+    pts = []
+    for ln, link in robot.links.items():
+        for c in link.collisions:
+            if c.geometry is None or c.geometry.kind == "mesh":
+                continue
+            p = _geometry_points(robot, c.geometry, c.loc, n=72)
+            M = tf[ln] @ pose_matrix(c.origin)
+            pts.append((p @ M[:3, :3].T + M[:3, 3])[:, :2])
+    return _hull(np.vstack(pts)) if pts else []

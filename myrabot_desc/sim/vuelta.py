@@ -230,23 +230,3 @@ def _verdict(res, robot, drive, arm, segments, commands, swing_cmds, dt, check_c
                             f"COM ({com[0]:.3f}, {com[1]:.3f}, {com[2]:.3f}) m, centripetal "
                             f"{math.hypot(*a):.4f} m/s², support {', '.join(sup.links)}"))
     res.notes.extend(sup.notes)
-
-
-def footprint(robot):
-    """Convex outline (root frame, xy) of the robot's primitive collision geometry at the zero pose."""
-    import numpy as np
-
-    from myrabot_desc.model.kinematics import world_transforms
-    from myrabot_desc.sim.diffdrive import _geometry_points
-    from myrabot_desc.sim.stability import _hull
-
-    tf = world_transforms(robot)
-    pts = []
-    for ln, link in robot.links.items():
-        for c in link.collisions:
-            if c.geometry is None or c.geometry.kind == "mesh":
-                continue
-            p = _geometry_points(robot, c.geometry, c.loc, n=72)
-            M = tf[ln] @ c.origin.matrix()
-            pts.append((p @ M[:3, :3].T + M[:3, 3])[:, :2])
-    return _hull(np.vstack(pts)) if pts else []

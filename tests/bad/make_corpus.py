@@ -291,12 +291,12 @@ def make_xml():
     add("xml/deep_nesting.urdf.xacro", f'<?xml version="1.0"?>\n<robot name="d" {XACRO_NS}>{deep}</robot>\n',
         "model", "reject", "3000 nested elements (xacro)")
     add("xml/wrong_root_sdf.urdf", '<?xml version="1.0"?>\n<sdf version="1.9"><model name="m"/></sdf>\n', "model",
-        "reject", "an SDF file")
-    add("xml/wrong_root_html.urdf", "<html><body><p>robot</p></body></html>\n", "model", "reject", "HTML")
+        "not-robot", "an SDF file")
+    add("xml/wrong_root_html.urdf", "<html><body><p>robot</p></body></html>\n", "model", "not-robot", "HTML")
     add("xml/wrong_root_launch.urdf.xacro", '<?xml version="1.0"?>\n<launch><node name="n" pkg="p" type="t"/>'
-        "</launch>\n", "model", "reject", "a roslaunch file")
+        "</launch>\n", "model", "not-robot", "a roslaunch file")
     add("xml/wrong_root_ns.urdf", '<?xml version="1.0"?>\n<x:robot xmlns:x="urn:x" name="n"><x:link name="a"/>'
-        "</x:robot>\n", "model", "reject", "namespaced <robot>")
+        "</x:robot>\n", "model", "not-robot", "namespaced <robot>")
     add("xml/comment_only.urdf", '<?xml version="1.0"?>\n<!-- nothing here -->\n', "model", "reject",
         "only a comment")
     add("xml/xml_decl_only.urdf", '<?xml version="1.0"?>\n', "model", "reject", "only the XML declaration")
@@ -309,8 +309,8 @@ def make_xml():
     add("xml/utf16.urdf", good.replace('<?xml version="1.0"?>', '<?xml version="1.0" encoding="UTF-16"?>')
         .encode("utf-16"), "model", "reject", "UTF-16 (refused as binary)")
     add("xml/no_robot_name.urdf", good.replace(' name="badbot"', "", 1), "model", "warn", "<robot> without a name")
-    add("xml/empty_robot.urdf", '<?xml version="1.0"?>\n<robot name="nothing"/>\n', "model", "defect",
-        "<robot> with no links")
+    add("xml/empty_robot.urdf", '<?xml version="1.0"?>\n<robot name="nothing"/>\n', "model", "warn",
+        "<robot> with no links (a placeholder: check says T017, info)")
     add("xml/only_joints.urdf", '<?xml version="1.0"?>\n<robot name="j"><joint name="j" type="fixed">'
         '<parent link="a"/><child link="b"/></joint></robot>\n', "model", "defect", "joints but no links")
     add("xml/huge_attribute.urdf", good.replace('name="badbot"', 'name="' + "x" * 300_000 + '"', 1), "model", "warn",
@@ -899,8 +899,10 @@ def main() -> None:
              f"{len(CASES) - len(inputs)} supporting files (meshes, includes, YAML).", "",
              "expect: **reject** = every command exits 2 with one `file:line: error:` line; **defect** = the",
              "model loads, `check` reports errors (exit 1), the other commands work on what is there or exit 2;",
-             "**warn** = loads, may warn. In every case: no traceback, no hang (5 s), nothing half-written, no",
-             "file read outside the input's folder and package roots, no network, no subprocess.", "",
+             "**warn** = loads, may warn; **not-robot** = XML that is no URDF robot: `build` expands it (as",
+             "xacro does), every other command exits 2 saying what it is. In every case: no traceback, no hang",
+             "(5 s), nothing half-written, no file read outside the input's folder and package roots, no",
+             "network, no subprocess.", "",
              "| input | commands | expect | what |", "|---|---|---|---|"]
     for c in CASES:
         lines.append(f"| `{c['path']}` | {c['targets']} | {c['expect']} | {c['what'].replace('|', '/')} |")

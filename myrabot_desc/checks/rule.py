@@ -1,0 +1,109 @@
+"""What a rule module needs: :class:`Finding`, :class:`Rule`, :class:`Example` and the :func:`rule` decorator.
+
+A rule is a function ``f(ctx) -> Iterable[Finding]`` decorated with :func:`rule`. The
+decorator only attaches a :class:`Rule` to the function (``f.rule``); it registers
+nothing. ``checks/registry.py`` imports the rule modules and collects them, so no rule
+module imports the registry (no import knot).
+
+Each rule carries its example next to it (ruff's "what, why, example, fix"): ``bad``
+is a URDF (or xacro) that makes the rule fire with ``message``, ``good`` the fixed
+version that keeps it quiet. Either is a whole document (it starts with ``<?xml`` or
+``<robot``) or a snippet that :func:`document` places into :data:`TEMPLATE`, a minimal
+robot of one link. tests/test_rule_examples.py runs every example through ``check``,
+and docs/rules.md is generated from them (``python -m myrabot_desc.checks.docs``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable
+
+FAMILIES = {
+    "X": "build (xacro)",
+    "T": "tree and URDF syntax",
+    "I": "inertia",
+    "S": "sensors and frames",
+    "G": "Gazebo and plugins",
+    "M": "meshes",
+    "P": "physics and stability",
+}
+
+# The robot a snippet example is placed in: one link with a valid mass and inertia and no
+# geometry, so the snippet alone decides what fires. "{snippet}" is replaced, indented.
+TEMPLATE = """<?xml version="1.0"?>
+<robot name="example" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <link name="base_link">
+    <inertial>
+      <mass value="1"/>
+      <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/>
+    </inertial>
+  </link>
+{snippet}
+</robot>
+"""
+
+
+def is_document(text: str) -> bool:
+    s = text.lstrip()
+    return s.startswith("<?xml") or s.startswith("<robot")
+
+
+def document(text: str) -> str:
+    """The whole file for an example: the text itself, or the snippet inside TEMPLATE."""
+    if is_document(text):
+        return text if text.endswith("\n") else text + "\n"
+    body = "\n".join(("  " + line) if line.strip() else "" for line in text.strip("\n").splitlines())
+    return TEMPLATE.replace("{snippet}", body)
+
+
+@dataclass(frozen=True)
+class Example:
+    """A rule's example: ``bad`` fires with ``message``; ``good`` is quiet for the code."""
+
+    bad: str
+    message: str                     # as check prints it after "CODE " (numbers included)
+    good: str | None = None          # None: nothing to show (a summary such as P004)
+    options: tuple = ()              # CheckOptions flags the example needs: "inertia", "meshes"
+    files: dict = field(default_factory=dict)   # extra files next to the model: name -> text
+    filename: str = "robot.urdf"     # the model's file name ("robot.urdf.xacro" for xacro)
+    note: str = ""                   # one line shown with the example (what the extra files are)
+
+
+@dataclass
+class Finding:
+    """What a rule yields: the message with the numbers, where, and machine data."""
+
+    message: str
+    loc: object = None               # diagnostics.Loc or None
+    data: dict = field(default_factory=dict)
+    severity: str | None = None      # overrides the rule's default (documented per rule)
+
+
+@dataclass(frozen=True)
+class Rule:
+    code: str
+    name: str                        # kebab-case, e.g. "inertia-triangle"
+    severity: str                    # default severity: error | warning | info
+    func: Callable
+    example: Example
+    needs: str | None = None         # 'meshes' (loads mesh files) or None
+    summary: str = ""
+
+    @property
+    def doc(self) -> str:
+        return (self.func.__doc__ or "").strip()
+
+
+def rule(code: str, name: str, severity: str, *, bad: str, message: str, good: str | None,
+         needs: str | None = None, options: tuple = (), files: dict | None = None,
+         filename: str = "robot.urdf", note: str = ""):
+    """Mark ``func`` as rule ``code`` with its example (see the module docstring)."""
+
+    def deco(func):
+        summary = (func.__doc__ or "").strip().splitlines()[0] if func.__doc__ else name
+        ex = Example(bad, message, good, tuple(options), dict(files or {}), filename, note)
+        func.rule = Rule(code, name, severity, func, ex, needs, summary)
+        return func
+
+    return deco
+

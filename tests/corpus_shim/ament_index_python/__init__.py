@@ -1,0 +1,1 @@
+"""Test-only stand-in for ROS 2's ``ament_index_python``: see ``packages.py``."""

@@ -31,26 +31,11 @@ SHIM = HERE / "corpus_shim"
 ROBOTS = yaml.safe_load((CORPUS / "robots.yaml").read_text())["robots"]
 XACRO = Path(sys.executable).with_name("xacro")
 
-_DICT = "X005: the safe evaluator refuses the call dict(...) (xacro built-in; a ros2_control initial_positions dict)"
-_SPLIT = ("X005: the safe evaluator refuses str methods: ${xyz.split(' ')[0]} (franka_description/robots/common/"
-          "utils.xacro:84-86, reported at its use, utils.xacro:93)")
 _SUFFIX = ("a xacro file not named .xacro (rotors' .gazebo top file, built with args) is read as plain URDF by "
            "check/info/convert: robot '$(arg mav_name)', 0 links, while build expands it to 12 links")
 _ALL = ("build", "check", "info", "sdf", "mjcf")
 # robot id -> {case: reason}: what fails today. The refused builds fail every case (each needs the build).
 XFAIL = {
-    "ur5e_mocked": dict.fromkeys(_ALL, _DICT + " (ur_description/urdf/ros2_control_mock_hardware.xacro:11, "
-                                                   "reported at the call, ur_mocked.urdf.xacro:60)"),
-    "gen3_robotiq_2f_85": dict.fromkeys(_ALL, _DICT + " (kortex_description/robots/kortex_robot.xacro:29, "
-                                                          "reported at the call, gen3.xacro:58)"),
-    "panda": dict.fromkeys(_ALL, _SPLIT),
-    "fr3": dict.fromkeys(_ALL, _SPLIT),
-    "husky_pacs": dict.fromkeys(_ALL, "X005: the safe evaluator refuses str methods: ${name.upper()} in "
-                                      "husky_description/urdf/pacs.urdf.xacro:434, reported at its use :444 "
-                                      "(PACS accessory, HUSKY_PACS_ENABLED=true)"),
-    "husky_pacs_risers": dict.fromkeys(_ALL, "X005: the safe evaluator refuses ${name.upper()} (pacs.urdf.xacro:434); this "
-                                             "variant also needs levels.split(','), levels.pop(0).strip(), "
-                                             "python.isinstance, python.range, int(), str(), float() (pacs.urdf.xacro:250-492)"),
     "firefly": dict.fromkeys(("check", "info", "sdf", "mjcf"), _SUFFIX),
     "pioneer3at": {"mjcf": "convert --to mjcf exits 2: the URDF's <box size=\"0 0 0\"/> geometries (7, in "
                            "p2os_urdf/defs/pioneer3at_body.xacro) go to MuJoCo, which rejects a size-0 geom"},

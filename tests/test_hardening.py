@@ -397,3 +397,22 @@ def test_sigterm_during_a_staged_output_leaves_nothing(tmp_path):
     (stale / "x.xml").write_text("half")
     r = _run(["convert", "--to", "mjcf", str(BAD / "meshes/dense.urdf"), "-o", str(out / "x.xml")])
     assert r.exit_code == 0 and not stale.exists()
+
+
+def test_a_layout_reads_only_inside_its_package(tmp_path):
+    from myrabot_desc.errors import InputError
+    from myrabot_desc.sim.scene import load_layout
+
+    pkg = tmp_path / "pkg"
+    pkg.mkdir()
+    (pkg / "package.xml").write_text("<package><name>pkg</name></package>")
+    for target, why in [("/etc/passwd", "outside the allowed folders"), ("../outside.urdf", "outside the allowed"),
+                        ("fifo.urdf", "a FIFO, not a regular file")]:
+        (tmp_path / "outside.urdf").write_text('<robot name="o"><link name="a"/></robot>')
+        if target == "fifo.urdf" and not (pkg / "fifo.urdf").exists():
+            os.mkfifo(pkg / "fifo.urdf")
+        layout = pkg / "l.yaml"
+        layout.write_text(f"objects:\n  - model: x\n    file: {target}\n    pose: {{x: 0}}\n")
+        with pytest.raises(InputError) as e:
+            load_layout(layout)
+        assert why in str(e.value) and "l.yaml" in str(e.value), str(e.value)

@@ -81,6 +81,18 @@ def cap_memory(headroom: int = MEMORY_HEADROOM) -> None:
     if hard != resource.RLIM_INFINITY:
         cap = min(cap, hard)
     resource.setrlimit(resource.RLIMIT_AS, (cap, hard))
+    _state["cap"] = headroom
+
+
+def _recap() -> None:
+    """Before each run: the cap is what the worker maps now plus the headroom (a long-lived
+    worker's caches grow; the headroom is per run)."""
+    import resource
+
+    if not _state.get("cap"):
+        return
+    resource.setrlimit(resource.RLIMIT_AS, (resource.RLIM_INFINITY, resource.getrlimit(resource.RLIMIT_AS)[1]))
+    cap_memory(_state["cap"])
 
 
 def prepare_worker(memory_cap: bool = False):
@@ -135,6 +147,7 @@ def invoke(argv: list[str], time_limit: float = TIME_LIMIT, env: dict | None = N
     t0 = time.perf_counter()
     saved_env = {k: os.environ.get(k) for k in (env or {})}
     os.environ.update(env or {})
+    _recap()
     c0 = time.process_time()
     try:
         # The limit is CPU time (the machine may be shared: wall time measures the neighbours);

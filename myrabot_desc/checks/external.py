@@ -100,8 +100,8 @@ EXTERNAL_RULES: dict[str, ExternalRule] = {r.code: r for r in (
         "a trusted file.",
         Example(_ROBOT + '  <xacro:property name="x" value="${__import__(\'os\').getcwd()}"/>\n'
                 '  <link name="base_${x}"/>\n</robot>\n',
-                "refused expression ${__import__('os').getcwd()}: only math functions and xacro helpers may "
-                "be called (--unsafe-eval allows it for trusted files)",
+                "refused expression ${__import__('os').getcwd()}: name '__import__' is not allowed "
+                "(--unsafe-eval allows it for trusted files)",
                 _ROBOT + '  <xacro:property name="x" value="${0.1 * 2}"/>\n  <link name="base_${x}"/>\n</robot>\n',
                 filename="robot.urdf.xacro")),
     ExternalRule(

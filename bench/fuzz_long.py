@@ -35,7 +35,7 @@ _scratch = None
 
 def _init(scratch):
     global _seeds, _scratch
-    harness.prepare_worker()
+    harness.prepare_worker(memory_cap=True)
     _seeds = fuzzlib.seed_files()
     _scratch = Path(scratch)
 

@@ -26,6 +26,28 @@ def _check_target(target: Path, protect=()) -> None:
                          Loc(str(target)))
 
 
+def _special(p: Path) -> bool:
+    """A target to write into rather than rename over: a device or FIFO (/dev/null), anything
+    under /dev or /proc (/dev/stdout is a symlink to /proc/self/fd/1). (A symlink elsewhere is
+    resolved: its file is replaced atomically, the link stays.)"""
+    import stat
+
+    if str(p.absolute()).startswith(("/dev/", "/proc/")):
+        return True
+    try:
+        mode = os.stat(p).st_mode
+    except OSError:
+        return False
+    return not stat.S_ISREG(mode) and not stat.S_ISDIR(mode)
+
+
+def _through_link(p: Path) -> Path:
+    try:
+        return p.resolve() if p.is_symlink() else p
+    except (OSError, RuntimeError):
+        return p
+
+
 def _real(p) -> Path | None:
     try:
         return Path(p).resolve()
@@ -46,7 +68,11 @@ def write_outputs(items, protect=()) -> None:
     staged: list[tuple[str, Path]] = []
     created: list[Path] = []
     to_stdout = [data for path, data in items if str(path) == "-"]
-    files = [(Path(path), data) for path, data in items if str(path) != "-"]
+    files = [(_through_link(Path(path)), data) for path, data in items
+             if str(path) != "-" and not _special(Path(path))]
+    # /dev/null, /dev/stdout, a FIFO: written into, never renamed over (as root, a rename would
+    # replace /dev/null itself with a regular file)
+    direct = [(Path(path), data) for path, data in items if str(path) != "-" and _special(Path(path))]
     try:
         for target, _ in files:
             _check_target(target, protect)
@@ -84,6 +110,12 @@ def write_outputs(items, protect=()) -> None:
             except OSError:
                 break
         raise
+    for target, data in direct:
+        try:
+            with open(target, "ab") as fh:      # appended to what fd 1 already holds; no truncation
+                fh.write(data.encode("utf-8") if isinstance(data, str) else data)
+        except OSError as exc:
+            raise InputError(f"cannot write {target}: {exc.strerror}", Loc(str(target))) from None
     for data in to_stdout:
         if isinstance(data, bytes):
             sys.stdout.buffer.write(data)

@@ -37,9 +37,6 @@ _ALL = ("build", "check", "info", "sdf", "mjcf")
 # str.upper (Husky PACS), a xacro top file named .gazebo (rotors), non-<robot> roots, MJCF of a URDF with
 # zero-size boxes (pioneer3at).
 XFAIL = {
-    "husky_pacs_risers": dict.fromkeys(_ALL, "X005: the safe evaluator refuses list.pop, a mutating method: "
-                                             "${int(levels.pop(0).strip())} (husky_description/urdf/pacs.urdf.xacro:250, "
-                                             "reported at :253); xacro 2.x evaluates it"),
 }
 
 pytestmark = pytest.mark.corpus
@@ -213,8 +210,6 @@ REAL_ERRORS = {
     "pmb2": {"I004": 2},
     "tiago": {"I004": 2, "I005": 1},
     "tiago_gripper_hokuyo": {"I004": 2, "I005": 3},
-    # The base's inertia 0.0347 + 0.0458 < 0.0977 (multirotor_base.xacro): the triangle inequality fails.
-    "firefly": {"I005": 1},
 }
 # False alarms found on the corpus (fixed since: S006 on TurtleBot3's max_angle 6.28319 = 2*pi rounded,
 # T001 on the rotors .gazebo xacro read as plain URDF). A new one goes here as a strict xfail.

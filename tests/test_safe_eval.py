@@ -63,6 +63,7 @@ FORMS = {
     "tokenize": "${xacro.tokenize('a,b;c')}_${xacro.tokenize('a b', sep=' ')}",
     "dotify": "${xacro.dotify(dict(a=dict(b=3))).a['b']}",
     "starred": "${max(*[1, 9, 3])}_${dict(**dict(a=1))}",
+    "own_list_mutators": "${[levels.pop(0).strip(), levels][1]}_${python.sorted(levels)}_${[l.append(3), l][1]}",
 }
 
 
@@ -71,6 +72,8 @@ FORMS = {
 def test_every_form_real_files_use_builds_like_xacro(tmp_path, form):
     expr = FORMS[form]
     f = _model(tmp_path, '<xacro:property name="prefix" value="left_arm_"/>\n'
+                         '<xacro:property name="levels" value="${\'a, b,c\'.split(\',\')}"/>\n'
+                         '<xacro:property name="l" value="${[1, 2]}"/>\n'
                          f'<link name="{expr.replace("<", "&lt;").replace(chr(34), "&quot;")}"/>')
     ours = build_file(f).text
     assert ours == _xacro_cli(f), form
@@ -172,8 +175,10 @@ REFUSED = {
     "dunder_attr": "${(1).__class__}",
     "func_attr": "${xacro.load_yaml.__globals__}",
     "gen_frame": "${(x for x in []).gi_frame}",
-    "mutating_list": "${[].append(1)}",
-    "mutating_dict": "${dict(a=1).update(b=2)}",
+    "mutating_namespace": "${python.clear()}",
+    "doubling_list": "${[L.extend(L) for L in [[0]] for _ in python.range(40)]}",
+    "doubling_dict": "${[d.update(d) or d.update(dict(python.zip(python.range(len(d), 2 * len(d)), d))) "
+                     "for d in [dict(a=1)] for _ in python.range(40)]}",
     "open": "${open('/etc/passwd')}",
     "getattr": "${getattr(1, 'real')}",
     "lambda_dunder": "${(lambda: 1).__code__}",
@@ -198,8 +203,8 @@ def test_what_reaches_code_or_grows_without_bound_is_refused(tmp_path, case):
     t0 = time.perf_counter()
     with pytest.raises(InputError) as e:
         build_file(f)
-    assert time.perf_counter() - t0 < 8
+    assert time.perf_counter() - t0 < 60      # a bound, not a benchmark (the machine may be shared)
     msg = str(e.value)
     assert "m.urdf.xacro:2: error:" in msg, msg
-    if case not in ("dunder_name",):
+    if case not in ("dunder_name", "mutating_namespace"):
         assert "X005 refused expression" in msg, msg

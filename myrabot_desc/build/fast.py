@@ -301,10 +301,14 @@ _Element = _Attr = _Text = _Comment = _NodeList = None
 _clone_left: list = [float("inf"), lambda: None]   # elements clones may still make, what to do past it
 
 
+_block_growth: dict = {}     # id(block) -> elements its first insertion cloned (this build)
+
+
 def set_clone_limit(n, over) -> None:
     """Every element cloned (macro bodies, inserted blocks, at any nesting) counts against ``n``;
     past it ``over()`` is called (it raises)."""
     _clone_left[0], _clone_left[1] = n, over
+    _block_growth.clear()
 
 
 def install_clone():
@@ -399,11 +403,21 @@ def eval_all(node, macros, symbols):
                 else:
                     raise X.XacroException("Undefined block \"%s\"" % name)
 
+                # a block inserted before grows the tree by what it grew then: charge that up
+                # front, so that blocks doubling per level stop at half the limit's work
+                key = id(block)
+                grown = _block_growth.get(key)
+                if grown is not None and grown > _clone_left[0]:
+                    _clone_left[0] = -1
+                    _clone_left[1]()
+                before = _clone_left[0]
                 # cloning block allows to insert the same block multiple times
                 block = block.cloneNode(deep=True)
                 # recursively evaluate block
                 X.eval_all(block, macros, symbols)
                 X.replace_node(node, by=block, content_only=content_only)
+                if grown is None and before != float("inf"):
+                    _block_growth[key] = before - _clone_left[0]
 
             elif tag == "xacro:include":
                 X.process_include(node, macros, symbols, X.eval_all)

@@ -218,6 +218,20 @@ def outside_roots(uri: str, package_roots: dict[str, Path], base: Path) -> Path 
     return path if path is not None and not inside else None
 
 
+def unresolved_reason(uri: str, package_roots: dict[str, Path], base: Path) -> str | None:
+    """Why a URI that does not resolve does not (for messages): "outside the allowed folders",
+    "not a regular file", or None when it simply names no file."""
+    from myrabot_desc.safety import InputError, check_path
+
+    path, inside = _locate(uri, package_roots, base)
+    if path is not None and not inside:
+        try:
+            check_path(path, resource_roots(base, package_roots))
+        except InputError as exc:
+            return "outside the allowed folders" if "outside" in exc.message else exc.message.split(": ", 1)[-1]
+    return None
+
+
 def resolve_resource_uri(uri: str, package_roots: dict[str, Path], base: Path) -> Path | None:
     """Resolve a mesh/texture URI to a file inside :func:`resource_roots`, or None."""
     path, inside = _locate(uri, package_roots, base)

@@ -28,10 +28,11 @@ passed around (``sorted(..., key=python.pop)`` emptied the shared symbol table).
    build, without ``type``/``vars``, with our YAML loader, a bounded ``range`` and a ``tokenize``
    whose separators cannot form a regular expression; nothing one model does reaches the next.
 
-Why each allowed method is safe: all of ALLOWED_METHODS return a new value computed from the
-receiver and arguments and change nothing (no ``append``/``pop``/``update``/``clear``/``sort``);
-the ones whose result can be much larger than their input (``replace join center ljust rjust
-zfill expandtabs``) have their result size computed before they run (_precheck).
+Why each allowed method is safe: the str/bytes/tuple/frozenset/number ones return a new value
+computed from the receiver and arguments; the list/dict/set mutators (``append pop sort update``...)
+change only containers the build itself made (namespaces are per build and expose keys, never
+methods), and those that grow one are size-checked before they run, as are the str methods whose
+result can be much larger than their input (``replace join center ljust rjust zfill expandtabs``).
 """
 
 from __future__ import annotations
@@ -72,11 +73,19 @@ _SET_METHODS = frozenset({"union", "intersection", "difference", "symmetric_diff
                           "issuperset", "isdisjoint", "copy"})
 _NUM_ATTRS = frozenset({"real", "imag", "conjugate", "bit_length", "is_integer", "as_integer_ratio",
                         "numerator", "denominator"})
+# Methods that change a list/dict/set the build itself made (``levels.pop(0)``, real robots use
+# them). Every namespace is rebuilt for each build and xacro's namespaces expose keys only, so no
+# such object outlives its build; the ones that grow a container are size-checked first (_precheck).
+_LIST_MUTATORS = frozenset({"append", "extend", "insert", "pop", "remove", "reverse", "sort", "clear"})
+_DICT_MUTATORS = frozenset({"pop", "popitem", "setdefault", "update", "clear"})
+_SET_MUTATORS = frozenset({"add", "discard", "remove", "pop", "update", "clear"})
+_GROWERS = {"append": 1, "insert": 1, "add": 1, "setdefault": 1, "extend": None, "update": None}
 ALLOWED_METHODS = {
     str: _STR_METHODS, bytes: (_STR_METHODS - {"casefold", "format", "isdecimal", "isidentifier", "isnumeric",
                                                "isprintable"}) | {"decode", "hex"},
-    list: _SEQ_METHODS | {"copy"}, tuple: _SEQ_METHODS, range: _SEQ_METHODS | {"start", "stop", "step"},
-    dict: _DICT_METHODS, set: _SET_METHODS, frozenset: _SET_METHODS,
+    list: _SEQ_METHODS | {"copy"} | _LIST_MUTATORS, tuple: _SEQ_METHODS,
+    range: _SEQ_METHODS | {"start", "stop", "step"},
+    dict: _DICT_METHODS | _DICT_MUTATORS, set: _SET_METHODS | _SET_MUTATORS, frozenset: _SET_METHODS,
     int: _NUM_ATTRS, float: _NUM_ATTRS, bool: _NUM_ATTRS, complex: _NUM_ATTRS,
 }
 _GROWS = {"replace", "join", "center", "ljust", "rjust", "zfill", "expandtabs"}
@@ -84,7 +93,7 @@ _GROWS = {"replace", "join", "center", "ljust", "rjust", "zfill", "expandtabs"}
 MAX_POW_RESULT_BITS = 4096       # ints larger than this are refused
 MAX_SEQUENCE_LEN = 1_000_000     # 'a' * n or [0] * n, and any one result
 MAX_TOTAL_CHARS = 20_000_000     # characters all expressions of one build may produce
-MAX_WORK = 30_000_000            # loop steps + items allocated by all expressions of one build
+MAX_WORK = 10_000_000            # loop steps + items allocated by all expressions of one build
 MAX_EVAL_SECONDS = 3.0           # wall time all expressions of one build may take
 MAX_LAMBDA_DEPTH = 100           # lambdas calling lambdas (the C stack is not for hostile recursion)
 MAX_FORMAT_WIDTH = 1000          # '%1000d'
@@ -276,6 +285,14 @@ def _precheck(f, args, kwargs) -> None:
         if size > MAX_SEQUENCE_LEN:
             raise RefusedExpression(f"{name}() would build {size} characters, too large")
         return
+    if type(recv) in (list, dict, set) and name in _GROWERS:
+        extra = _GROWERS[name]
+        if extra is None:
+            extra = sum(len(a) if isinstance(a, _SIZED) else MAX_SEQUENCE_LEN + 1 for a in args) + len(kwargs)
+        if len(recv) + extra > MAX_SEQUENCE_LEN:
+            raise RefusedExpression(f"{name}() would grow a container past {MAX_SEQUENCE_LEN} items")
+        _b().spend(extra)
+        return
     if name in _BIG_CALLS and any(isinstance(a, int) and abs(a) > MAX_FACTORIAL_ARG for a in args):
         raise RefusedExpression(f"{name}() of a number over {MAX_FACTORIAL_ARG} is too large")
     if f is sum and (len(args) > 1 or "start" in kwargs):
@@ -335,8 +352,13 @@ def _md_call(f, *args, **kwargs):
             args = (_charged(args[0]),) + args[1:]
         elif kind == "key" and "key" in kwargs:
             kwargs["key"] = _charged(kwargs["key"])
-    elif getattr(f, "__name__", "") == "join" and args and not isinstance(args[0], (list, tuple)):
-        args = (list(args[0]),) + args[1:]
+    else:
+        fname = getattr(f, "__name__", "")
+        if fname in ("join", "extend", "update") and args and not isinstance(args[0], _SIZED) \
+                and type(getattr(f, "__self__", None)) in (str, bytes, list, dict, set):
+            args = (list(args[0]),) + args[1:]      # a generator: its steps counted, then its size checked
+        elif fname == "sort" and "key" in kwargs and type(getattr(f, "__self__", None)) is list:
+            kwargs["key"] = _charged(kwargs["key"])
     _precheck(f, args, kwargs)
     result = f(*args, **kwargs)
     if isinstance(result, _SIZED):

@@ -118,7 +118,7 @@ def loads(text: str, name: str):
         if node is None:
             return None
         if _too_big(node):
-            raise InputError(f"YAML aliases expand to over {MAX_NODES} items (an alias bomb)", Loc(name, 1))
+            raise InputError(f"YAML aliases expand to over {MAX_NODES} items (an alias bomb)", Loc(name))
         return loader.construct_document(node)
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None) or getattr(exc, "context_mark", None)

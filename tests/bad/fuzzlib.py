@@ -32,6 +32,13 @@ WEIRD_VALUES = ["nan", "inf", "-inf", "1e999", "1e300", "-1", "0", "", " ", "abc
                 "package://nope/x.stl", "package://myrabot_description/../../../etc/passwd", "file:///etc/passwd",
                 "../../../../../../etc/passwd", "/dev/zero", "x" * 5000, "ñ€\u202e", "1e-320", "-0",
                 "${__import__('os')}", "&amp;", "true", "continuous", "fixed", "floating", "planar", "revolute"]
+# issue 17: the sandbox's bounds and refusals, one hostile expression each
+WEIRD_VALUES += ["${b'a'*400000000}", "${'%(a)01000000000d' % dict(a=1)}", "${python.sorted(['pi'], key=python.pop)}",
+                 "${xacro.clear()}", "${(lambda f: f(f))(lambda f: f(f))}", "${[].append(1)}",
+                 "${len([s + s for s in ['x' * 900000 for _ in python.range(40)]])}", "${'ab'.split()[5]}",
+                 "${[c.upper() for c in 'abc']}", "${dict(a=1).get('a')}", "${xacro.load_yaml('/dev/zero')}"]
+# names for xacro:attribute / xacro:element: valid, with a space, markup, an injection, empty
+WEIRD_NAMES = ["ok_name", "a b", "a<b", 'x="1"><joint name="j" type="fixed"/><link name="q', "", "1abc", "ns:x"]
 WEIRD_TAGS = ["link", "joint", "xacro:macro", "xacro:include", "xacro:property", "xacro:insert_block", "gazebo",
               "plugin", "sensor", "inertial", "mass", "origin", "geometry", "mesh", "box", "limit", "mimic",
               "xacro:if", "xacro:unless", "xacro:call", "transmission", "material", "robot"]
@@ -87,7 +94,7 @@ def mutate_xml(data: bytes, rnd: random.Random, n: int) -> bytes:
         if not els:
             break
         el = rnd.choice(els)
-        op = rnd.randrange(12)
+        op = rnd.randrange(13)
         parent = el.getparent()
         if op == 0 and parent is not None:                       # delete an element
             parent.remove(el)
@@ -139,6 +146,14 @@ def mutate_xml(data: bytes, rnd: random.Random, n: int) -> bytes:
                 pass
         elif op == 11 and el.text and el.text.strip():           # corrupt text content
             el.text = rnd.choice(WEIRD_VALUES)
+        elif op == 12:                                           # a xacro:attribute / xacro:element child
+            kind = rnd.choice(["attribute", "element"])
+            child = etree.SubElement(el, "{http://www.ros.org/wiki/xacro}" + kind)
+            if kind == "attribute":
+                child.set("name", rnd.choice(WEIRD_NAMES))
+                child.set("value", rnd.choice(WEIRD_VALUES))
+            else:
+                child.set("{http://www.ros.org/wiki/xacro}name", rnd.choice(WEIRD_NAMES))
     out = etree.tostring(root, xml_declaration=True, encoding="utf-8")
     if rnd.random() < 0.05:
         out = mutate_bytes(out, rnd, 1)

@@ -6,7 +6,9 @@ worker process (forked, so the heavy imports are paid once) with:
 * a Python audit hook recording every ``open`` (path), ``socket.connect``, ``subprocess.Popen``,
   ``os.system``, ``os.exec*``, ``os.posix_spawn`` and ``os.fork`` -- C libraries that open files
   themselves (libxml2, MuJoCo, urdfdom) are not seen by it; the strace test covers those;
-* ``signal.alarm`` for the time limit (a hang inside C code is caught by the parent's timeout);
+* a CPU-time limit (``ITIMER_PROF``) and a wall-clock limit six times longer for runs that block
+  (a hang inside C code is caught by the parent's timeout);
+* in workers, an address-space cap (``cap_memory``): a bomb fails its run, not the machine;
 * click's CliRunner, so the exit code, stdout and stderr are exactly the CLI's.
 """
 
@@ -18,7 +20,8 @@ import signal
 import sys
 from pathlib import Path
 
-TIME_LIMIT = 5.0
+TIME_LIMIT = 5.0        # seconds of CPU a run may take
+WALL_FACTOR = 6         # ... and of wall time, this many times longer (a blocked run)
 COMMANDS = {
     "build": ["build", "{F}", "-o", "{OUT}/x.urdf"],
     "check": ["check", "{F}"],
@@ -60,8 +63,41 @@ def _alarm(signum, frame):
     raise Timeout()
 
 
-def prepare_worker():
-    """Import what the commands import (so module loading is not seen as file access), hook audits."""
+MEMORY_HEADROOM = 1 << 30     # bytes of address space a run may add to the worker's (RLIMIT_AS)
+
+
+def cap_memory(headroom: int = MEMORY_HEADROOM) -> None:
+    """Cap this process's address space at what it maps now plus ``headroom``: a bomb that gets
+    past our limits fails its run with MemoryError instead of taking the machine down."""
+    import resource
+
+    try:
+        with open("/proc/self/status") as f:
+            size = next(int(line.split()[1]) * 1024 for line in f if line.startswith("VmSize:"))
+    except (OSError, StopIteration):
+        return
+    soft, hard = resource.getrlimit(resource.RLIMIT_AS)
+    cap = size + headroom
+    if hard != resource.RLIM_INFINITY:
+        cap = min(cap, hard)
+    resource.setrlimit(resource.RLIMIT_AS, (cap, hard))
+    _state["cap"] = headroom
+
+
+def _recap() -> None:
+    """Before each run: the cap is what the worker maps now plus the headroom (a long-lived
+    worker's caches grow; the headroom is per run)."""
+    import resource
+
+    if not _state.get("cap"):
+        return
+    resource.setrlimit(resource.RLIMIT_AS, (resource.RLIM_INFINITY, resource.getrlimit(resource.RLIMIT_AS)[1]))
+    cap_memory(_state["cap"])
+
+
+def prepare_worker(memory_cap: bool = False):
+    """Import what the commands import (so module loading is not seen as file access), hook audits;
+    ``memory_cap``: in a worker process, cap its address space (cap_memory)."""
     import importlib
 
     os.environ.setdefault("MUJOCO_GL", "disable")   # as convert_mjcf does: no GL probing subprocess
@@ -86,7 +122,14 @@ def prepare_worker():
         pass
     sys.addaudithook(_hook)
     signal.signal(signal.SIGALRM, _alarm)
+    signal.signal(signal.SIGPROF, _alarm)
     os.environ.pop("MYRABOT_DESC_DEBUG", None)
+    if memory_cap:
+        cap_memory()
+
+
+def prepare_capped_worker():
+    prepare_worker(memory_cap=True)
 
 
 def invoke(argv: list[str], time_limit: float = TIME_LIMIT, env: dict | None = None) -> dict:
@@ -104,21 +147,34 @@ def invoke(argv: list[str], time_limit: float = TIME_LIMIT, env: dict | None = N
     t0 = time.perf_counter()
     saved_env = {k: os.environ.get(k) for k in (env or {})}
     os.environ.update(env or {})
+    _recap()
+    c0 = time.process_time()
     try:
-        signal.setitimer(signal.ITIMER_REAL, time_limit)
+        # The limit is CPU time (the machine may be shared: wall time measures the neighbours);
+        # a run blocked without using CPU (a FIFO) is caught by the wall-clock limit, 6x longer.
+        signal.setitimer(signal.ITIMER_PROF, time_limit)
+        signal.setitimer(signal.ITIMER_REAL, time_limit * WALL_FACTOR)
         _state["on"] = True
         try:
             res = runner.invoke(main, argv, catch_exceptions=True)
         finally:
             _state["on"] = False
             signal.setitimer(signal.ITIMER_REAL, 0)
+            signal.setitimer(signal.ITIMER_PROF, 0)
         code, out, err = res.exit_code, res.stdout, res.stderr
         if res.exception is not None and not isinstance(res.exception, SystemExit):
             crash = "".join(traceback.format_exception(res.exception))[-3000:]
     except Timeout:
         _state["on"] = False
-        code, out, err, crash = None, "", "", f"timeout after {time_limit} s"
+        code, out, err, crash = None, "", "", f"timeout after {time_limit} s of CPU (or {time_limit * WALL_FACTOR} s)"
     finally:
+        # build_cmd turns the cyclic GC off and freezes (a one-shot CLI): a worker runs many
+        # commands, so turn it back on and collect what the run left (else it piles up to the cap)
+        import gc
+
+        gc.unfreeze()
+        gc.enable()
+        gc.collect()
         for k, v in saved_env.items():
             if v is None:
                 os.environ.pop(k, None)
@@ -126,7 +182,7 @@ def invoke(argv: list[str], time_limit: float = TIME_LIMIT, env: dict | None = N
                 os.environ[k] = v
     return {"argv": argv, "code": code, "stdout": _clip(out), "stderr": _clip(err),
             "opens": sorted(set(_state["opens"])), "events": list(_state["events"]),
-            "seconds": time.perf_counter() - t0, "crash": crash}
+            "seconds": time.process_time() - c0, "wall": time.perf_counter() - t0, "crash": crash}
 
 
 def _clip(text: str, n: int = 3000) -> str:
@@ -179,6 +235,8 @@ def problems(run: dict, command: str, expect: str, case_dir: Path, out_dir: Path
         return errs
     if "Traceback" in text:
         errs.append("traceback in the output")
+    if "MemoryError" in text:         # the worker's memory cap fired: a bomb got past our limits
+        errs.append("ran out of memory (the worker's address-space cap)")
     if "internal error" in text:
         errs.append("internal error: " + next(ln for ln in text.splitlines() if "internal error" in ln)[:300])
     if run["seconds"] > time_limit:

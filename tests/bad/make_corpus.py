@@ -223,6 +223,13 @@ def make_meshes():
         ("unknown_package", "package://no_such_pkg/meshes/cube.stl", "defect", "package:// of an unknown package"),
         ("http_mesh", "http://127.0.0.1:9/cube.stl", "defect", "mesh over http (must not be fetched)"),
         ("dense", "package://bad_meshes/meshes/dense.stl", "warn", "5 000-triangle mesh (limit test)"),
+        # issue 17 (the files are made at test time: materialize())
+        ("fifo_mesh", "package://bad_meshes/meshes/fifo.stl", "defect", "mesh that is a FIFO (would block)"),
+        ("zero_mesh", "package://bad_meshes/meshes/zero.stl", "defect", "symlink to /dev/zero as a mesh"),
+        ("zip_bomb", "package://bad_meshes/meshes/bomb.zip", "defect", "zip inflating to 60 MB (mesh limit 50 MB)"),
+        ("threemf_bomb", "package://bad_meshes/meshes/bomb.3mf", "defect", "3MF inflating to 60 MB"),
+        ("obj_mtl_fifo", "package://bad_meshes/meshes/mtl_fifo.obj", "warn", "OBJ whose mtllib is a FIFO"),
+        ("abs_outside", "/etc/passwd", "defect", "an existing file outside the roots as a mesh"),
     ]:
         geom = f'<mesh filename="{mesh}"/>'
         add(f"meshes/{stem}.urdf", robot(base_collision=geom), "model", expect, f"base collision: {what}")
@@ -462,6 +469,8 @@ def make_tree():
                               '</joint>', "<child> without link= (found by the fuzzer: T002 crashed)")
     for stem, (body, what) in cases.items():
         add(f"tree/{stem}.urdf", urdf(body), "model", "defect", what)
+    for stem, what in GENERATED_TREES.items():
+        add(f"tree/{stem}.urdf", None, "model", "defect", what + " (made at test time)")
     # the diff-drive robot with a broken tree, so that sim drive gets past "no drive" (fuzzer finds)
     add("tree/drive_island.urdf", robot(extra='\n  <link name="island"/>'), "model", "defect",
         "diff-drive robot with a second root link (sim: KeyError before)")
@@ -481,7 +490,24 @@ def make_tree():
 # ---------------------------------------------------------------- xacro semantics
 def make_xacro():
     x = "xacro/"
+    blocks = '<xacro:property name="b0"><a/><a/></xacro:property>' + "".join(
+        f'<xacro:property name="b{i}"><xacro:insert_block name="b{i - 1}"/><xacro:insert_block name="b{i - 1}"/>'
+        "</xacro:property>" for i in range(1, 30)) + '<link name="l"><xacro:insert_block name="b29"/></link>'
     cases = {
+        "block_bomb": (blocks, "property blocks nested to 2^30 elements, no macro call"),
+        "attribute_space": ('<link name="a"><xacro:attribute name="a b" value="1"/></link>',
+                            "xacro:attribute name with a space"),
+        "attribute_inject": ('<link name="a"><xacro:attribute name=\'x="1"&gt;&lt;/link&gt;&lt;joint name="j" '
+                             'type="fixed"/&gt;&lt;link name="q\' value="1"/></link>',
+                             "xacro:attribute name injecting a <joint>"),
+        "element_lt": ('<xacro:element xacro:name="a&lt;b"/>', "xacro:element name with <"),
+        "big_attribute": ('<xacro:property name="s" value="${\'a\' * 900000}"/><link name="a"><visual name="'
+                          + "${s}" * 17 + '"/></link>', "a 15 MB attribute built by ${}"),
+        "yaml_tag_code": ("<xacro:property name=\"y\" value=\"${xacro.load_yaml('tag_code.yaml')}\"/>"
+                          '<link name="${y.a}"/>', "YAML unit tag holding Python code"),
+        "yaml_fifo": ("<xacro:property name=\"y\" value=\"${xacro.load_yaml('fifo.yaml')}\"/>"
+                      '<link name="${y}"/>', "load_yaml of a FIFO (made at test time)"),
+        "include_fifo": ('<xacro:include filename="fifo.xacro"/>', "include of a FIFO (made at test time)"),
         "undefined_property": ('<link name="${nope}"/>', "undefined property"),
         "undefined_macro": ('<xacro:nope parent="base_link"/>' + LINK, "call of an undefined macro"),
         "undefined_arg": ('<link name="$(arg nope)"/>', "undefined arg"),
@@ -549,6 +575,8 @@ def make_xacro():
     for stem, (body, what) in cases.items():
         expect = {"attribute_outside": "defect", "include_glob_none": "warn"}.get(stem, "reject")
         add(f"{x}{stem}.urdf.xacro", xacro(body), "model", expect, what)
+    add(f"{x}sibling_scan.urdf.xacro", xacro('<wheel parent="base_link"/>' + LINK), "model", "defect",
+        "an unexpanded call: the search for its macro meets the FIFO fifo.xacro next to it")
     add(x + "include_cycle_b.xacro", xacro('<xacro:include filename="include_cycle_a.urdf.xacro"/>'), "asset", "-",
         "half of an include cycle")
     # an include chain deeper than the 32 default
@@ -564,6 +592,8 @@ def make_xacro():
         f"{chr(98 + i)}: &{chr(98 + i)} [{', '.join(['*' + chr(97 + i)] * 10)}]\n" for i in range(9)), "asset", "-",
         "YAML billion laughs (aliases)")
     add(x + "ok.yaml", "a: 1\n", "asset", "-", "a small valid YAML")
+    add(x + "tag_code.yaml", "a: !degrees __import__('os').system('touch /tmp/myrabot_pwned')\n", "asset", "-",
+        "a unit tag holding code (xacro's own loader would run it)")
 
 
 # ---------------------------------------------------------------- ${} code injection (xacro's security cases)
@@ -632,6 +662,21 @@ def make_inject():
         "eval_pow": ("$(eval 9**9**9)", "$(eval) pow bomb"),
         "eval_repeat": ("$(eval 'a' * 10**10)", "$(eval) repetition bomb"),
         "eval_shift": ("$(eval 1 << 10**10)", "$(eval) shift bomb"),
+        # issue 17
+        "bytes_repeat": ("${b'a' * 400000000}", "bytes repetition"),
+        "percent_key": ("${'%(a)01000000000d' % dict(a=1)}", "%-format width behind a mapping key"),
+        "bytes_percent": ("${b'%01000000000d' % 1}", "bytes %-format width"),
+        "concat_loop": ("${len([s + s for s in ['x' * 900000 for _ in python.range(100)]])}",
+                        "string concatenation in a comprehension"),
+        "copy_loop": ("${len([list(python.range(100000)) for _ in python.range(1000)])}", "list copies in a loop"),
+        "join_bomb": ("${'ab'.join(['x' * 100000 for _ in python.range(100)])}", "str.join of large strings"),
+        "replace_bomb": ("${('a' * 10000).replace('', 'b' * 1000)}", "str.replace growing quadratically"),
+        "lambda_recursion": ("${(lambda f: f(f))(lambda f: f(f))}", "self-applied lambda (C stack)"),
+        "namespace_pop": ("${python.sorted(['pi', 'e'], key=python.pop)}", "a namespace's dict method as a key"),
+        "namespace_clear": ("${xacro.clear()}", "clearing xacro's namespace"),
+        "mutating_method": ("${[].append(1)}", "a list method that mutates"),
+        "loop_bomb": ("${python.sum(1 for a in python.range(10**6) for b in python.range(10**6))}",
+                      "nested loops (time budget)"),
     }
     pre = '<xacro:property name="fmt" value="{0.__globals__[os]}"/>\n'
     for stem, (expr, what) in cases.items():
@@ -764,14 +809,44 @@ SYMLINKS = {
     "paths/link_mesh.stl": "/etc/passwd",
     "materials/link_material.material": "/etc/passwd",
 }
+SYMLINKS["meshes/meshes/zero.stl"] = "/dev/zero"
 UNREADABLE = ["meshes/meshes/unreadable.stl"]
+FIFOS = ["xacro/fifo.yaml", "xacro/fifo.xacro", "meshes/meshes/fifo.stl", "meshes/meshes/fifo.mtl"]
+GENERATED_TREES = {"chain_2000": "a 2,000-link chain (cycle check was cubic; Pinocchio depth)",
+                   "star_2000": "a 2,000-link star (1,999 degrees of freedom: Pinocchio's data is cubic)"}
+TEST_TIME = set(SYMLINKS) | set(UNREADABLE) | set(FIFOS) | {f"tree/{t}.urdf" for t in GENERATED_TREES} | {
+    "meshes/meshes/bomb.zip", "meshes/meshes/bomb.3mf", "meshes/meshes/mtl_fifo.obj"}
+
+
+def _zip_bomb(path: Path, member: str, inflated: int) -> None:
+    """A zip whose one member inflates to ``inflated`` bytes of zeros (about 1/1000 on disk)."""
+    import zipfile
+
+    chunk = bytes(1 << 20)
+    with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED) as z:
+        with z.open(member, "w", force_zip64=True) as f:
+            for _ in range(inflated >> 20):
+                f.write(chunk)
+
+
+def _tree(kind: str, n: int) -> str:
+    inertial = ('<inertial><mass value="0.1"/><inertia ixx="1e-4" ixy="0" ixz="0" iyy="1e-4" iyz="0" '
+                'izz="1e-4"/></inertial>')
+    out = ['<?xml version="1.0"?>', f'<robot name="{kind}">', f'<link name="l0">{inertial}</link>']
+    for i in range(1, n):
+        parent = f"l{i - 1}" if kind == "chain" else "l0"
+        out.append(f'<link name="l{i}">{inertial}</link><joint name="j{i}" type="revolute"><parent link="{parent}"/>'
+                   f'<child link="l{i}"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/>'
+                   "</joint>")
+    return "\n".join(out + ["</robot>"]) + "\n"
 
 
 def materialize(dest: Path) -> Path:
-    """Copy the corpus to ``dest`` and add what git cannot hold: symlinks out of it, a chmod 000 file.
+    """Copy the corpus to ``dest`` and add what git cannot hold: symlinks out of it (one to /dev/zero),
+    a chmod 000 file, FIFOs, zip bombs and long generated trees.
 
     Running as root, the chmod 000 mesh is still readable (root ignores file modes); the case then
-    exercises a good mesh, and the test says so.
+    exercises a good mesh.
     """
     if dest.exists():
         shutil.rmtree(dest)
@@ -785,6 +860,17 @@ def materialize(dest: Path) -> Path:
         p = dest / rel
         p.write_bytes(stl_binary(cube_tris()))
         p.chmod(0)
+    for rel in FIFOS:
+        p = dest / rel
+        p.unlink(missing_ok=True)
+        os.mkfifo(p)
+    m = dest / "meshes/meshes"
+    _zip_bomb(m / "bomb.zip", "cube.stl", 60 << 20)
+    _zip_bomb(m / "bomb.3mf", "3D/3dmodel.model", 60 << 20)
+    (m / "mtl_fifo.obj").write_text("mtllib fifo.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+                                    "f 1 2 3\nf 1 2 4\nf 1 3 4\nf 2 3 4\n")
+    (dest / "tree/chain_2000.urdf").write_text(_tree("chain", 2000))
+    (dest / "tree/star_2000.urdf").write_text(_tree("star", 2000))
     return dest
 
 
@@ -804,8 +890,9 @@ def main() -> None:
     (HERE / "cases.json").write_text(json.dumps(CASES, indent=1) + "\n")
     lines = ["# tests/bad: hostile inputs", "",
              "Generated by `make_corpus.py` (run it after changing a case); `cases.json` is the machine-readable",
-             "manifest that tests/test_hardening.py reads. Symlinks out of the corpus and the chmod 000 mesh",
-             "are made at test time in a copy (`materialize()`), since git cannot hold them portably.", "",
+             "manifest that tests/test_hardening.py reads. Symlinks out of the corpus, the chmod 000 mesh, FIFOs,",
+             "zip bombs and the long generated trees are made at test time in a copy (`materialize()`), since git",
+             "cannot hold them portably (or should not hold megabytes of them).", "",
              f"{len(inputs)} inputs ({sum(c['targets'] == 'model' for c in inputs)} models for build, check, "
              "check --inertia, info, convert --to sdf/mjcf and sim drive; "
              f"{sum(c['targets'] == 'material' for c in inputs)} OGRE scripts for materials) and "

@@ -12,7 +12,6 @@ import click
 from myrabot_desc.cli_common import guarded, input_options
 
 MODEL_SUFFIXES = (".urdf", ".xacro")
-INCLUDE_RE = re.compile(r"""<(?:xacro:)?include\s[^>]*filename\s*=\s*["']([^"']+)["']""")
 
 
 # Never descended into by --recursive: VCS data, build trees, environments.
@@ -30,32 +29,21 @@ def expand_inputs(files: list[str], recursive: bool = False) -> list[str]:
         if not p.is_dir():
             out.append(f)
             continue
-        models = sorted(_model_files(p, recursive))
+        from myrabot_desc.safety import included_names, walk_models
+
+        # the walk checks every file against the folder (no symlink out, no FIFO or device) and is
+        # bounded; the include scan is linear (model files are untrusted)
+        models = sorted(walk_models(p, recursive, MODEL_SUFFIXES, SKIP_DIRS))
         included = set()
         for c in models:
             if c.name.endswith(".xacro"):
-                try:
-                    text = c.read_text(encoding="utf-8", errors="replace")
-                except OSError:
-                    continue
-                included |= {Path(m).name for m in INCLUDE_RE.findall(text)}
+                included |= included_names(c)
         picked = [str(c) for c in models if c.name not in included or c.name.endswith(".urdf")]
         if not picked:
             hint = "" if recursive else " (-r looks in its subfolders too)"
             raise click.UsageError(f"{f}: no .urdf or .xacro model files in this folder{hint}")
         out.extend(picked)
     return out
-
-
-def _model_files(folder: Path, recursive: bool):
-    if not recursive:
-        yield from (c for c in folder.iterdir() if c.is_file() and c.name.endswith(MODEL_SUFFIXES))
-        return
-    import os
-
-    for root, dirs, names in os.walk(folder):        # does not follow symlinked folders (no loops)
-        dirs[:] = sorted(d for d in dirs if d not in SKIP_DIRS and not d.startswith("."))
-        yield from (Path(root) / n for n in names if n.endswith(MODEL_SUFFIXES))
 
 
 class Task(NamedTuple):

@@ -155,7 +155,8 @@ def drive_joints_continuous(ctx):
                     sev, why = "warning", "a revolute wheel stops at its limits"
                 else:
                     sev, why = "error", f"a {j.type} joint cannot roll a wheel"
-                yield Finding(f"{spec.label}: {key} {name} is {j.type}: {why}", p.loc,
+                who = f"joint {name}" if key == name else f"{key} {name}"   # not "front_castor_joint front_castor_joint"
+                yield Finding(f"{spec.label}: {who} is {j.type}: {why}", p.loc,
                               {"plugin": p.name, "joint": name, "type": j.type}, severity=sev)
 
 

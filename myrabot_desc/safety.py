@@ -322,6 +322,11 @@ MAX_WALK_FILES = 20_000      # model files a folder walk lists
 MAX_WALK_DIRS = 50_000       # folders it visits
 
 
+# Folders a repository walk never enters (build trees, VCS, environments): check -r and its cache.
+SKIP_DIRS = {".git", ".hg", ".svn", "build", "install", "log", "devel", "node_modules", "__pycache__",
+             ".venv", "venv", ".tox"}
+
+
 def walk_models(folder, recursive: bool, suffixes=(".urdf", ".xacro"), skip_dirs=()) -> list[Path]:
     """Model files of ``folder`` (``recursive``: below it too; hidden and ``skip_dirs`` folders
     skipped), each one :func:`check_path`-ed against the folder: a symlink leaving it, a FIFO or

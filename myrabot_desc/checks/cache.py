@@ -34,7 +34,7 @@ def _tree_signature(root: str) -> str | None:
     """Hash of (relative path, size, mtime) of every file under ``root``; None when too big."""
     if root in _trees:
         return _trees[root]
-    from myrabot_desc.checks.cli import SKIP_DIRS
+    from myrabot_desc.safety import SKIP_DIRS
 
     h = hashlib.sha256()
     n = 0

@@ -15,8 +15,6 @@ MODEL_SUFFIXES = (".urdf", ".xacro")
 
 
 # Never descended into by --recursive: VCS data, build trees, environments.
-SKIP_DIRS = {".git", ".hg", ".svn", "build", "install", "log", "devel", "node_modules", "__pycache__",
-             ".venv", "venv", ".tox"}
 
 
 def expand_inputs(files: list[str], recursive: bool = False) -> list[str]:
@@ -29,7 +27,7 @@ def expand_inputs(files: list[str], recursive: bool = False) -> list[str]:
         if not p.is_dir():
             out.append(f)
             continue
-        from myrabot_desc.safety import included_names, walk_models
+        from myrabot_desc.safety import SKIP_DIRS, included_names, walk_models
 
         # the walk checks every file against the folder (no symlink out, no FIFO or device) and is
         # bounded; the include scan is linear (model files are untrusted)

@@ -15,6 +15,11 @@ WHEEL_URDF_RGB = (20, 170, 60)
 WHEEL_PLUGIN_RGB = (230, 0, 160)
 
 
+def node_name(link: str) -> str:
+    """A viser scene path segment for a link name (slashes would nest)."""
+    return link.replace("/", "_") or "_"
+
+
 def _rgb(rgba) -> tuple[int, int, int]:
     return tuple(int(round(max(0.0, min(1.0, c)) * 255)) for c in rgba[:3])
 
@@ -34,8 +39,6 @@ def size_of(viewer) -> float:
 
 
 def add_parts(viewer, sc) -> None:
-    from myrabot_desc.view.server import node_name
-
     T = viewer.scene.transforms(viewer.q)
     for link in viewer.robot.links:
         if link in T:
@@ -59,8 +62,6 @@ def add_overlays(viewer, sc) -> None:
     import numpy as np
 
     from myrabot_desc.view.facts import inertia_box
-    from myrabot_desc.view.server import node_name
-
     diag = size_of(viewer)
     viewer._diag = diag
     nodes = viewer._nodes
@@ -109,8 +110,6 @@ def _add_wheels(viewer, sc) -> None:
 
     from myrabot_desc.errors import InputError
     from myrabot_desc.sim.diffdrive import find_drive
-    from myrabot_desc.view.server import node_name
-
     try:
         drive = find_drive(viewer.robot, wheels="urdf")
     except (InputError, KeyError, ValueError):

@@ -32,11 +32,6 @@ TOGGLES = {            # name -> (label, default)
 MAX_FINDINGS = 100
 
 
-def node_name(link: str) -> str:
-    """A viser scene path segment for a link name (slashes would nest)."""
-    return link.replace("/", "_") or "_"
-
-
 class Viewer:
     """The server, the loaded model and the viewer's state (joint values, toggles, highlight).
 

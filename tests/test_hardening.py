@@ -109,7 +109,7 @@ def test_reject_messages_name_the_file_and_line(corpus, tmp_path):
         "xacro/infinite_recursion.urdf.xacro": r"infinite_recursion\.urdf\.xacro:3: error: macro calls nest deeper",
         "xacro/exponential_macros.urdf.xacro": r"exponential_macros\.urdf\.xacro:3: error: over 20000 macro calls",
         "xacro/include_cycle_a.urdf.xacro": r"include_cycle_b\.xacro:3: error: include cycle",
-        "xacro/yaml_laughs.urdf.xacro": r"yaml_laughs\.urdf\.xacro:3: error: laughs\.yaml:1: YAML aliases",
+        "xacro/yaml_laughs.urdf.xacro": r"yaml_laughs\.urdf\.xacro:3: error: laughs\.yaml(:\d+)?: YAML aliases",
         "inject/format_traversal.urdf.xacro": r"format_traversal\.urdf\.xacro:4: error: X005 refused expression",
         "inject/factorial.urdf.xacro": r"factorial\.urdf\.xacro:4: error: X005 .*factorial\(\) of a number",
         "inject/percent_bomb.urdf.xacro": r"percent_bomb\.urdf\.xacro:4: error: X005 .*width",

@@ -10,6 +10,8 @@ reads every mesh anyway, adds what its reader finds.
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from typing import NamedTuple
 
 # loader issues that no URDF reader would accept (urdfdom refuses the document): the text is not a
@@ -77,7 +79,10 @@ def mesh_problems(robot) -> list[Problem]:
             if getattr(g, "kind", None) != "mesh":
                 continue
             if g.path is None:
-                why = "cannot be found"
+                from myrabot_desc.build.packages import unresolved_reason
+
+                base = robot.source.parent if robot.source else Path.cwd()
+                why = unresolved_reason(g.filename, robot.package_roots, base) or "cannot be found"
             else:
                 if g.path not in checked:
                     try:

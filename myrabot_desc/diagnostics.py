@@ -32,3 +32,11 @@ class Diagnostic:
     def __str__(self) -> str:
         where = f"{self.loc}: " if self.loc else ""
         return f"{where}{self.severity}: {self.code} {self.message}"
+
+
+SEVERITY_ORDER = {"error": 0, "warning": 1, "info": 2}
+
+
+def sort_diagnostics(diags) -> list:
+    """Errors, warnings, info; then by code, location and message (the report order)."""
+    return sorted(diags, key=lambda d: (SEVERITY_ORDER.get(d.severity, 3), d.code, str(d.loc or ""), d.message))

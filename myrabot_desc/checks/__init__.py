@@ -10,10 +10,10 @@ Library use::
 from __future__ import annotations
 
 from myrabot_desc.checks.context import CheckOptions, Context
+from myrabot_desc.diagnostics import SEVERITY_ORDER, sort_diagnostics  # noqa: F401  (library API)
 
 __all__ = ["CheckOptions", "Context", "run_checks", "check_robot", "sort_diagnostics"]
 
-SEVERITY_ORDER = {"error": 0, "warning": 1, "info": 2}
 
 
 def check_robot(robot, options: CheckOptions | None = None, select=(), ignore=(), unused: bool = True):
@@ -51,11 +51,6 @@ def check_robot(robot, options: CheckOptions | None = None, select=(), ignore=()
     if unused:
         out += suppress.unused_diagnostics(seen, set(used))
     return sort_diagnostics(out), ctx
-
-
-def sort_diagnostics(diags) -> list:
-    """Errors, warnings, info; then by code, location and message (the report order)."""
-    return sorted(diags, key=lambda d: (SEVERITY_ORDER.get(d.severity, 3), d.code, str(d.loc or ""), d.message))
 
 
 def run_checks(robot, options: CheckOptions | None = None, select=(), ignore=()):

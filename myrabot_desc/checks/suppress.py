@@ -178,7 +178,7 @@ def unused_diagnostics(seen, used: set) -> list:
 def unused_findings(results) -> None:
     """After the whole run: X009 for every suppression no checked model used, added to the first
     result (in input order) whose model read that file."""
-    from myrabot_desc.checks import sort_diagnostics
+    from myrabot_desc.diagnostics import sort_diagnostics
 
     used = set()
     for r in results:

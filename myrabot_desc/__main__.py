@@ -1,4 +1,6 @@
-from myrabot_desc.cli import main
+import sys
+
+from myrabot_desc.entry import main
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -23,7 +23,6 @@ import os
 import re
 import sys
 import threading
-from dataclasses import dataclass, field
 from pathlib import Path
 
 from myrabot_desc.diagnostics import Diagnostic, Loc
@@ -35,18 +34,21 @@ XSRC_ATTR = "xacro:mdsrc"   # on xacro elements; xacro itself strips xacro:* att
 
 
 
-@dataclass
 class BuildResult:
-    text: str                           # the URDF document (pretty-printed, with banner)
-    locations: list                     # Loc | None per output element, in document order
-    diagnostics: list[Diagnostic]       # X-code warnings/errors
-    deps: list[str]                     # files read (input, includes, YAML)
-    source: Path
-    package_roots: dict[str, Path] = field(default_factory=dict)
-    root: object = None                 # the URDF parsed with lxml (the loader reads this; one parse)
+    """What a build gives back (a plain class: ``dataclasses`` costs ~10 ms of start-up)."""
+
+    def __init__(self, text: str, locations: list, diagnostics: list, deps: list, source: Path,
+                 package_roots: dict | None = None, root=None):
+        self.text = text                    # the URDF document (pretty-printed, with banner)
+        self.locations = locations          # Loc | None per output element, in document order
+        self.diagnostics = diagnostics      # X-code warnings/errors (Diagnostic)
+        self.deps = deps                    # files read (input, includes, YAML)
+        self.source = source
+        self.package_roots = {} if package_roots is None else package_roots
+        self.root = root                    # the URDF parsed with lxml (the loader reads this; one parse)
 
     @property
-    def errors(self) -> list[Diagnostic]:
+    def errors(self) -> list:
         return [d for d in self.diagnostics if d.severity == "error"]
 
 

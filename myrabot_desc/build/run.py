@@ -1,0 +1,103 @@
+"""What ``myrabot-desc build`` does, and its options (one table), without click.
+
+build/cli.py makes the click command from these; the console entry (entry.py) runs a plain
+``build ...`` command line straight from here, with parse_plain over the same tables, so a
+build does not pay for importing click (~25 ms, a third of a small robot's build).
+"""
+
+from __future__ import annotations
+
+import sys
+
+from myrabot_desc.cli_common import INPUT_OPTS, Opt, UsageProblem, echo, guarded, make_inputs, parse_plain
+from myrabot_desc.safety import LIMITS
+
+BUILD_OPTS = (
+    Opt(("-o", "--output"), "output", "value", "Write the URDF here ('-' for stdout). Default: stdout.",
+        "OUT.urdf", None),
+    Opt(("--deps",), "deps", "flag", "List the files the build reads (input, includes, YAML), one per line.",
+        None, None),
+    Opt(("--resolve-uris",), "resolve_uris", "flag", "Rewrite package:// URIs into absolute file:// paths.",
+        None, None),
+    Opt(("--allow-errors",), "allow_errors", "flag",
+        "Write the URDF even when the build reports errors (X002).", None, None),
+) + tuple(   # a --max-* flag for every limit of the table that has one
+    Opt((lim.flag,), lim.flag[2:].replace("-", "_"), "count", f"{lim.help[0].upper()}{lim.help[1:]} [{lim.default}].",
+        None, None) for lim in LIMITS if lim.flag)
+
+
+def fast_build(argv) -> int | None:
+    """Run ``build`` for a plain command line (see cli_common.parse_plain); None when the
+    command line needs click (help, errors, unusual forms): the caller hands it to click."""
+    values = parse_plain(argv, INPUT_OPTS + BUILD_OPTS)
+    if values is None:
+        return None
+    try:
+        inputs = make_inputs(values)
+    except UsageProblem:
+        return None
+    try:
+        run_build(inputs, **{o.dest: values[o.dest] for o in BUILD_OPTS})
+    except KeyboardInterrupt:     # as click's standalone mode says it
+        echo("")
+        echo("Aborted!")
+        return 1
+    return 0
+
+
+def run_build(inputs, output=None, deps=False, resolve_uris=False, allow_errors=False, **limit_flags) -> None:
+    """The build command itself (click's and the fast path's); exits 1 or 2 on errors."""
+    import gc
+
+    # One-shot command: the cyclic GC would only rescan the millions of DOM objects of a
+    # big expansion once build_file re-enables it (~0.4 s at 4,000 macro calls), and the
+    # interpreter's final collection at exit would free them one by one (another ~0.4 s):
+    # GC stays off, and what the build left is frozen out of that last collection.
+    gc.disable()
+    from myrabot_desc.build.driver import build_file
+    from myrabot_desc.output import write_output
+    from myrabot_desc.safety import Limits
+
+    with guarded():
+        limits = Limits(**{lim.field: limit_flags[lim.flag[2:].replace("-", "_")] for lim in LIMITS if lim.flag})
+        src = inputs.file
+        if src is None:
+            from myrabot_desc.model.loader import (
+                bundled_path,  # imports the model classes (~25 ms): only when needed
+            )
+
+            src = str(bundled_path())
+        result = build_file(src, inputs.mappings, packages=inputs.packages, package_paths=inputs.package_paths,
+                            legacy=inputs.legacy, unsafe_eval=inputs.unsafe_eval, no_env=inputs.no_env,
+                            allow_paths=inputs.allow_paths, limits=limits)
+        gc.freeze()
+        for d in result.diagnostics:
+            echo(str(d))
+        if deps:
+            write_output(output or "-", "\n".join(result.deps) + "\n", protect=result.deps)
+            return
+        if result.errors and not allow_errors:
+            echo(f"{len(result.errors)} error(s): nothing written (use --allow-errors to write anyway)")
+            sys.exit(1)
+        text = result.text
+        if resolve_uris:
+            text = _resolve_uris(result)
+        write_output(output or "-", text, protect=result.deps)   # never over its own input
+        if output and output != "-":
+            echo(f"wrote {output}")
+        if result.errors:
+            sys.exit(1)
+
+
+def _resolve_uris(result) -> str:
+    """package://pkg/x -> file:///abs/x for every resolvable URI (others stay)."""
+    import re
+
+    from myrabot_desc.build.packages import resolve_resource_uri
+
+    def sub(m):
+        uri = m.group(2)
+        p = resolve_resource_uri(uri, result.package_roots, result.source.parent)
+        return f'{m.group(1)}"file://{p}"' if p else m.group(0)
+
+    return re.sub(r'(filename=)"(package://[^"]+)"', sub, result.text)

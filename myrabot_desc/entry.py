@@ -1,0 +1,29 @@
+"""The console entry point (``myrabot-desc``).
+
+A plain ``build ...`` command line runs straight from build/run.py, parsed from the same option
+tables as the click command, without importing click (issue 13: ``build`` must start faster
+than the xacro CLI). Everything else, including ``--help`` and any command line the plain
+parser does not take (unusual forms, errors), goes to the click group in cli.py, which gives
+its usual output and exit codes.
+"""
+
+from __future__ import annotations
+
+import sys
+
+
+def main(argv=None) -> int:
+    args = sys.argv[1:] if argv is None else list(argv)
+    if args[:1] == ["build"]:
+        from myrabot_desc.build.run import fast_build
+
+        code = fast_build(args[1:])
+        if code is not None:
+            return code
+    from myrabot_desc.cli import main as cli
+
+    return cli(args=args)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -234,6 +234,7 @@ class _Build:
 
     # ------------------------------------------------------------ run
     def run(self) -> BuildResult:
+        _lazy_yaml()
         import xacro
 
         self.prescan(self.src, set())
@@ -473,6 +474,30 @@ def _defined_nearby(name: str, src: Path, roots) -> str | None:
             if name in text and name in scan_tag_attr(text, "macro", "name"):
                 return str(f)
     return None
+
+
+class _LazyModule(type(sys)):
+    """A placeholder for a module, imported on first use of any of its names.
+
+    (Not importlib.util.LazyLoader: on Python 3.11 the ``import`` statement itself reads the
+    module's ``__spec__``, which makes LazyLoader load it there and then.)"""
+
+    def __getattr__(self, name):
+        import importlib
+
+        if sys.modules.get(self.__name__) is self:
+            del sys.modules[self.__name__]
+        real = importlib.import_module(self.__name__)
+        self.__dict__.update(real.__dict__)     # later look-ups find the names directly
+        return getattr(real, name)
+
+
+def _lazy_yaml() -> None:
+    """Put a lazy PyYAML in sys.modules before xacro imports it (xacro.substitution_args imports
+    it at module top, ~15 ms): it loads on first use, which for a build is our own YAML loader
+    (yaml_load.py) when a file calls load_yaml; most robots never do."""
+    if "yaml" not in sys.modules and "xacro" not in sys.modules:
+        sys.modules["yaml"] = _LazyModule("yaml")
 
 
 def _copy_tree(root):
@@ -751,10 +776,11 @@ class _Hooks:
             setattr(mod, name, value)
         sa._eval_dict.clear()
         sa._eval_dict.update(self.saved_dict)
-        from myrabot_desc.build import yaml_load
-
         xacro._global_symbols = self.saved_globals
-        yaml_load.scrub_globals()
+        if "yaml.constructor" in sys.modules:   # PyYAML was loaded (not just its lazy placeholder)
+            from myrabot_desc.build import yaml_load
+
+            yaml_load.scrub_globals()
         sys.setrecursionlimit(self.saved_recursion)
         xacro_fast.uninstall_clone()
         xacro_fast.set_clone_limit(float("inf"), lambda: None)

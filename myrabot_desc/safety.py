@@ -109,10 +109,9 @@ def safe_parser():
                            huge_tree=False, remove_blank_text=False, collect_ids=False)
 
 
-def parse_xml_bytes(data: bytes, name: str):
-    """Parse XML bytes safely; refuse DTDs/entities; InputError with file:line on failure."""
-    from lxml import etree
-
+def check_xml_bytes(data: bytes, name: str) -> None:
+    """The checks before any XML parser sees the bytes: empty, a DTD or entity declaration
+    near the start, binary data. (The parsers refuse a DTD found later themselves.)"""
     if not data.strip():
         raise InputError("empty file", Loc(name))
     head = data[:4096].lstrip()
@@ -121,6 +120,13 @@ def parse_xml_bytes(data: bytes, name: str):
         raise InputError("DTDs and entity declarations are not allowed in model files", Loc(name, line))
     if head.startswith(b"\x00") or b"\x00" in data[:1024]:
         raise InputError("not an XML file (binary data)", Loc(name, 1))
+
+
+def parse_xml_bytes(data: bytes, name: str):
+    """Parse XML bytes safely; refuse DTDs/entities; InputError with file:line on failure."""
+    from lxml import etree
+
+    check_xml_bytes(data, name)
     try:
         root = etree.fromstring(data, parser=safe_parser())
     except etree.XMLSyntaxError as exc:

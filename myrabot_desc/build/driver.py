@@ -27,7 +27,7 @@ from pathlib import Path
 
 from myrabot_desc.diagnostics import Diagnostic, Loc
 from myrabot_desc.errors import InputError
-from myrabot_desc.safety import Limits, _short, display, parse_xml_bytes, safe_parser
+from myrabot_desc.safety import Limits, _short, display
 
 SRC_ATTR = "_mdsrc"
 XSRC_ATTR = "xacro:mdsrc"   # on xacro elements; xacro itself strips xacro:* attributes
@@ -38,18 +38,42 @@ class BuildResult:
     """What a build gives back (a plain class: ``dataclasses`` costs ~10 ms of start-up)."""
 
     def __init__(self, text: str, locations: list, diagnostics: list, deps: list, source: Path,
-                 package_roots: dict | None = None, root=None):
+                 package_roots: dict | None = None, src_name: str | None = None):
         self.text = text                    # the URDF document (pretty-printed, with banner)
         self.locations = locations          # Loc | None per output element, in document order
         self.diagnostics = diagnostics      # X-code warnings/errors (Diagnostic)
         self.deps = deps                    # files read (input, includes, YAML)
         self.source = source
         self.package_roots = {} if package_roots is None else package_roots
-        self.root = root                    # the URDF parsed with lxml (the loader reads this; one parse)
+        self._src_name = src_name or str(source)
+        self._root = None
+
+    @property
+    def root(self):
+        """The URDF parsed with lxml, safely, on first use (the loader reads it; ``build`` never
+        does, and so never imports lxml). InputError when lxml cannot read the output (e.g. an
+        attribute value over its 10 MB cap, built by ${}s)."""
+        if self._root is None:
+            self._root = _parse_output(self.text, self._src_name)
+        return self._root
 
     @property
     def errors(self) -> list:
         return [d for d in self.diagnostics if d.severity == "error"]
+
+
+def _parse_output(text: str, src_name: str):
+    from lxml import etree
+
+    from myrabot_desc.safety import safe_parser
+
+    try:
+        return etree.fromstring(text.encode("utf-8"), parser=safe_parser())
+    except etree.XMLSyntaxError as exc:
+        line = exc.position[0] if exc.position else "?"
+        why = re.sub(r",? line \d+, column \d+$", "", " ".join((exc.msg or str(exc)).split())).strip()
+        raise InputError(f"the expanded document is not well-formed XML (line {line} of the output: "
+                         f"{_short(why, 200)})", Loc(src_name)) from None
 
 
 _lock = threading.Lock()
@@ -113,7 +137,9 @@ class _Build:
         self.diagnostics: list[Diagnostic] = []
         self.macro_names: set[str] = set()
         self.macro_files: dict[str, str] = {}
-        self.trees: dict[Path, object] = {}   # path -> parsed lxml root (prescan cache)
+        # resolved path -> [bytes, minidom document not yet handed to xacro or None, element lines]
+        self.trees: dict[Path, list] = {}
+        self._real_roots: dict[Path, Path] = {}
         self.deps: list[str] = []
         self.body_sizes: dict[int, int] = {}   # macro body -> elements it holds
         self.expanded = 0                      # elements produced by macro calls so far
@@ -123,16 +149,42 @@ class _Build:
     # ------------------------------------------------------------ reading files
     def allowed(self, path: Path) -> bool:
         real = path.resolve()
-        roots = self.allow_roots + [p.resolve() for p in self.resolver.roots()]
-        return any(real.is_relative_to(r) for r in roots)
+        if any(real.is_relative_to(r) for r in self.allow_roots):
+            return True
+        resolved = self._real_roots     # a package root's real path, resolved once per build
+        for p in self.resolver.roots():
+            r = resolved.get(p)
+            if r is None:
+                r = resolved[p] = p.resolve()
+            if real.is_relative_to(r):
+                return True
+        return False
 
     def read_tree(self, path: Path, asked_at: Loc | None = None):
-        """Parse one file with lxml, safely; cached per resolved path."""
-        from lxml import etree
-
+        """The root element of one file, parsed safely (domread); cached per resolved path."""
         key = path.resolve()
-        if key in self.trees:
-            return self.trees[key]
+        entry = self.trees.get(key)
+        if entry is None:
+            data = self._read_bytes(path, asked_at)
+            from myrabot_desc.build import domread
+
+            entry = self.trees[key] = [data, *domread.parse(data, display(path))]
+        elif entry[1] is None:       # handed to xacro already (which changes it): parse again
+            from myrabot_desc.build import domread
+
+            entry[1:] = domread.parse(entry[0], display(path))
+        return entry[1].documentElement
+
+    def take_tree(self, path: Path, asked_at: Loc | None):
+        """(document, element lines) of one file for xacro, which changes it: a fresh parse
+        each time (the prescan's own parse is used once)."""
+        self.read_tree(path, asked_at)
+        entry = self.trees[path.resolve()]
+        doc, lines = entry[1], entry[2]
+        entry[1] = None
+        return doc, lines
+
+    def _read_bytes(self, path: Path, asked_at: Loc | None) -> bytes:
         from myrabot_desc.safety import read_checked
 
         try:
@@ -143,12 +195,9 @@ class _Build:
             raise InputError(f"{path} is {size} bytes, over the {self.limits.max_input_bytes}-byte limit "
                              "(see --max-input-bytes or MYRABOT_DESC_MAX_INPUT_BYTES)", asked_at)
         try:    # a regular file only (a FIFO would block), read no further than the limit
-            data = read_checked(path, None, self.limits.max_input_bytes)
+            return read_checked(path, None, self.limits.max_input_bytes)
         except InputError as exc:
             raise InputError(exc.message, asked_at or exc.loc, code=exc.code) from None
-        root = parse_xml_bytes(data, display(path))
-        self.trees[key] = root
-        return root
 
     # ------------------------------------------------------------ prescan
     def prescan(self, path: Path, seen: set, depth: int = 0) -> None:
@@ -163,10 +212,11 @@ class _Build:
             return  # reported properly when xacro reaches the include
         from myrabot_desc.build import legacy as lg
 
-        for name in lg.macro_names(root):
+        els = lg.elements(root)
+        for name in lg.macro_names(root, els):
             self.macro_names.add(name)
             self.macro_files.setdefault(name, display(path))
-        for spec, _line in lg.include_filenames(root):
+        for spec in lg.include_filenames(root, els):
             target = self._guess_include(spec, path)
             if target is not None:
                 self.prescan(target, seen, depth + 1)
@@ -192,21 +242,14 @@ class _Build:
 
     # ------------------------------------------------------------ annotate + hand to minidom
     def load_dom(self, path: Path, asked_at: Loc | None):
-        import xml.dom.minidom
-
-        from lxml import etree
-
         from myrabot_desc.build import legacy as lg
 
-        original = self.read_tree(path, asked_at)
-        # The prescan cache is shared; work on a copy so a file included twice is fresh.
-        root = _copy_tree(original)
-        # Comments and PIs around the root element belong to the document too (xacro keeps them).
-        before = "".join(etree.tostring(s, encoding="unicode") for s in
-                         reversed(list(original.itersiblings(preceding=True))))
-        after = "".join(etree.tostring(s, encoding="unicode") for s in original.itersiblings())
-        if (self.legacy == "on" or self.legacy == "auto" and self.robot) and lg.needs_upgrade(root, self.macro_names):
-            root, kinds = lg.upgrade(root, self.macro_names)
+        doc, lines = self.take_tree(path, asked_at)
+        root = doc.documentElement
+        els = lg.elements(root)      # document order, as ``lines``; the upgrade renames, never adds
+        if (self.legacy == "on" or self.legacy == "auto" and self.robot) and \
+                lg.needs_upgrade(root, self.macro_names, els):
+            kinds = lg.upgrade(root, self.macro_names, dict(zip(els, lines)), els)
             for kind, (count, line, names) in sorted(kinds.items()):
                 new = "xacro:" + kind.strip("<>") if kind.startswith("<") else "xacro:NAME"
                 if names:
@@ -215,22 +258,18 @@ class _Build:
                 self.diagnostics.append(Diagnostic(
                     "X001", "warning", f"legacy {kind} upgraded to <{new}>{times}; xacro 2.x would copy it "
                     "into the URDF unexpanded", Loc(display(path), line)))
+        # each element names its source line (xacro copies attributes through macro expansion)
         uri = lg.xacro_uri(root)
         fname = display(path)
-        for el in root.iter():
-            if not isinstance(el.tag, str):
-                continue
-            idx = len(self.locs)
-            self.locs.append(Loc(fname, el.sourceline))
-            if uri and el.tag.startswith("{" + uri + "}"):
-                el.set("{%s}mdsrc" % uri, str(idx))
+        locs = self.locs
+        for el, line in zip(els, lines):
+            idx = str(len(locs))
+            locs.append(Loc(fname, line))
+            if uri is not None and el.namespaceURI == uri:
+                el.setAttributeNS(uri, XSRC_ATTR, idx)
             else:
-                el.set(SRC_ATTR, str(idx))
-        text = before + etree.tostring(root, encoding="unicode", with_tail=False) + after
-        try:
-            return xml.dom.minidom.parseString(text)
-        except Exception as exc:  # pragma: no cover - lxml already validated
-            raise InputError(f"XML error: {exc}", Loc(fname)) from None
+                el.setAttribute(SRC_ATTR, idx)
+        return doc
 
     # ------------------------------------------------------------ run
     def run(self) -> BuildResult:
@@ -240,7 +279,8 @@ class _Build:
         self.prescan(self.src, set())
         # Any XML expands, as with xacro (SDF, SRDF, launch files...). Electric-era syntax and the
         # URDF findings (X002, X003) belong to robots: elsewhere <arg>/<include> are roslaunch's.
-        self.robot = self.read_tree(self.src).tag == "robot"
+        top = self.read_tree(self.src)
+        self.robot = top.tagName == "robot" and top.namespaceURI is None
         self.messages = sys.stderr
         with _Hooks(self):
             xacro.init_stacks(self.src_name)
@@ -277,9 +317,9 @@ class _Build:
                 "X007", "info", f"the build depends on the environment: {used}; pin them as xacro args or in the "
                 "CI job", Loc(display(self.src)), {"environment": {k: v for k, (v, _s) in sorted(self.env_used.items())}}))
         text, locations = self.render(doc)
-        root = self.check_unexpanded(text, locations)
+        self.check_unexpanded(doc, locations)
         return BuildResult(text=text, locations=locations, diagnostics=self.diagnostics, deps=self.deps,
-                           source=self.src, package_roots=dict(self.resolver.used), root=root)
+                           source=self.src, package_roots=dict(self.resolver.used), src_name=display(self.src))
 
     def _xacro_warnings(self, text: str) -> None:
         counts: dict[str, int] = {}
@@ -374,42 +414,50 @@ class _Build:
         locations = [self.locs[int(m)] if m and m.isdigit() and int(m) < n else None for m in marks]
         return text, locations
 
-    def check_unexpanded(self, text: str, locations: list):
+    def check_unexpanded(self, doc, locations: list) -> None:
         """X002: leftover macro calls / xacro keywords; X003: macro-only file (both for <robot>
         only: in other XML a plain <foo> or <include> is just that); X004: bad package://.
 
-        Returns the parsed root, which the loader reuses."""
-        from lxml import etree
-
-        try:
-            root = etree.fromstring(text.encode("utf-8"), parser=safe_parser())
-        except etree.XMLSyntaxError as exc:   # e.g. a 15 MB attribute value built by ${}s (lxml's 10 MB cap)
-            line = exc.position[0] if exc.position else "?"
-            why = re.sub(r",? line \d+, column \d+$", "", " ".join((exc.msg or str(exc)).split())).strip()
-            raise InputError(f"the expanded document is not well-formed XML (line {line} of the output: "
-                             f"{_short(why, 200)})", Loc(display(self.src))) from None
-        elements = [el for el in root.iter() if isinstance(el.tag, str)]
-        loc_of = dict(zip(map(id, elements), locations))
+        Read off the expanded document, element by element as the output lists them (the
+        ``locations``); "plain" means what a parser of the output sees: no prefix and no
+        default namespace in scope."""
+        root = doc.documentElement
+        walk = []      # (element, plain, parent is root, inside a plain <gazebo>), document order
+        stack = [(root, root.getAttribute("xmlns") != "", False, False)]
+        while stack:
+            el, in_ns, top, in_gazebo = stack.pop()
+            plain = not in_ns and ":" not in el.tagName
+            walk.append((el, plain, top, in_gazebo))
+            kids = []
+            for c in el.childNodes:
+                if c.nodeType == c.ELEMENT_NODE:
+                    ns = c.getAttribute("xmlns") != "" if c.hasAttribute("xmlns") else in_ns
+                    kids.append((c, ns, el is root, in_gazebo or (plain and el.tagName == "gazebo")))
+            kids.reverse()
+            stack.extend(kids)
+        loc_of = dict(zip((w[0] for w in walk), locations))
         found_links = False
-        for el in elements if self.robot else ():
-            tag = el.tag
-            if tag in ("link", "joint") and el.getparent() is root:
+        for el, plain, top, in_gazebo in walk if self.robot else ():
+            tag = el.tagName
+            if plain and top and tag in ("link", "joint"):
                 found_links = True
-            plain = not tag.startswith("{") and ":" not in tag
-            loc = loc_of.get(id(el))
-            if plain and tag in XACRO_WORDS and (el.get("name") or el.get("filename") or el.get("value")) \
-                    and not _inside(el, "gazebo"):
+            if not plain:
+                continue
+            loc = loc_of.get(el)
+            if tag in XACRO_WORDS and (el.getAttribute("name") or el.getAttribute("filename") or
+                                       el.getAttribute("value")) and not in_gazebo:
                 self.diagnostics.append(Diagnostic(
                     "X002", "error", f"<{tag}> was not expanded: xacro keywords need the xacro: prefix "
                     "(run with --legacy auto, the default)", loc))
-            elif plain and el.getparent() is root and tag not in ROBOT_CHILDREN:
+            elif top and tag not in ROBOT_CHILDREN:
                 where = self.macro_files.get(tag) or _defined_nearby(tag, self.src, self.resolver.roots())
                 if where:
                     self.diagnostics.append(Diagnostic(
                         "X002", "error", f"<{tag}> looks like a call of macro '{tag}' (defined in {where}), "
                         "but it was not expanded: the file defining it is not included, so everything it "
                         "would add is missing", loc, {"macro": tag, "defined_in": where}))
-                elif el.get("parent") is not None or el.find("origin") is not None:
+                elif el.hasAttribute("parent") or any(c.nodeType == c.ELEMENT_NODE and c.tagName == "origin"
+                                                      for c in el.childNodes):
                     self.diagnostics.append(Diagnostic(
                         "X002", "error", f"<{tag}> looks like a macro call (it has parent=/an <origin> block) "
                         "but no macro of that name is defined or included; it was left unexpanded", loc,
@@ -423,8 +471,8 @@ class _Build:
         from myrabot_desc.build.packages import split_package_uri
 
         seen = set()
-        for el in elements:
-            uri = el.get("filename")
+        for el, *_ in walk:
+            uri = el.getAttribute("filename")
             if not uri or not uri.startswith("package://"):
                 continue
             parts = split_package_uri(uri)
@@ -432,18 +480,9 @@ class _Build:
                 seen.add(parts[0])
                 self.diagnostics.append(Diagnostic(
                     "X004", "warning", f"package '{parts[0]}' of {uri} cannot be found (give -p "
-                    f"{parts[0]}=PATH or --package-path)", loc_of.get(id(el))))
-        return root
+                    f"{parts[0]}=PATH or --package-path)", loc_of.get(el)))
 
 
-
-def _inside(el, tag: str) -> bool:
-    p = el.getparent()
-    while p is not None:
-        if p.tag == tag:
-            return True
-        p = p.getparent()
-    return False
 
 
 MAX_NEARBY_FILES = 500
@@ -498,13 +537,6 @@ def _lazy_yaml() -> None:
     (yaml_load.py) when a file calls load_yaml; most robots never do."""
     if "yaml" not in sys.modules and "xacro" not in sys.modules:
         sys.modules["yaml"] = _LazyModule("yaml")
-
-
-def _copy_tree(root):
-    import copy
-
-    return copy.deepcopy(root)
-
 
 
 def _message_functions(print_location) -> dict:

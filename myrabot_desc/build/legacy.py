@@ -4,15 +4,16 @@ Old files use un-prefixed ``<macro>``, ``<property>``, ``<include>``,
 ``<insert_block>``, ``<arg>``, ``<if>``, ``<unless>`` and call macros by bare
 name (``<roomba/>``, ``<kinect parent="...">``), with or without an xacro
 namespace declaration. xacro 2.x copies all of that into its output silently
-(anchors.md §1.4). We rename those elements in the lxml tree; a bare call is an
-element whose name is a macro defined anywhere in the include tree.
+(anchors.md §1.4). We rename those elements in the minidom tree the build hands
+to xacro; a bare call is an element whose name is a macro defined anywhere in
+the include tree.
 """
 
 from __future__ import annotations
 
-from lxml import etree
-
 XACRO_NS = "http://www.ros.org/wiki/xacro"
+XMLNS_NS = "http://www.w3.org/2000/xmlns/"
+ELEMENT = 1
 
 # tag -> attribute that must be present for the element to be read as xacro
 # (guards against SDF's own <include>, which has no filename attribute, and roslaunch's
@@ -28,106 +29,91 @@ LEGACY_TAGS = {
 }
 
 
-def is_legacy_tag(el) -> bool:
-    """An un-prefixed element that old xacro read as one of its own.
-
-    As xacro 1.x did, an <include> with element children is not a xacro include."""
-    tag = el.tag
-    if tag not in LEGACY_TAGS or el.get(LEGACY_TAGS[tag]) is None:
-        return False
-    return not (tag == "include" and any(isinstance(c.tag, str) for c in el))
-
-
-def local_name(el) -> str:
-    tag = el.tag
-    return tag.rsplit("}", 1)[-1] if isinstance(tag, str) else ""
+def elements(root) -> list:
+    """``root`` and every element below it, in document order."""
+    out, stack = [], [root]
+    while stack:
+        el = stack.pop()
+        out.append(el)
+        kids = [c for c in el.childNodes if c.nodeType == ELEMENT]
+        kids.reverse()
+        stack.extend(kids)
+    return out
 
 
 def is_plain(el) -> bool:
     """An element without a namespace (no prefix, no default namespace)."""
-    return isinstance(el.tag, str) and not el.tag.startswith("{")
+    return el.namespaceURI is None
+
+
+def is_legacy_tag(el) -> bool:
+    """An un-prefixed element that old xacro read as one of its own.
+
+    As xacro 1.x did, an <include> with element children is not a xacro include."""
+    tag = el.tagName
+    if not is_plain(el) or tag not in LEGACY_TAGS or not el.hasAttribute(LEGACY_TAGS[tag]):
+        return False
+    return not (tag == "include" and any(c.nodeType == ELEMENT for c in el.childNodes))
 
 
 def xacro_uri(root) -> str | None:
-    """The namespace URI bound to the ``xacro`` prefix in this document, if any."""
-    return root.nsmap.get("xacro")
+    """The namespace URI bound to the ``xacro`` prefix on the root element, if any."""
+    return root.getAttribute("xmlns:xacro") or None
 
 
 def is_xacro(el, uri: str | None) -> bool:
-    return isinstance(el.tag, str) and uri is not None and el.tag.startswith("{" + uri + "}")
+    return uri is not None and el.namespaceURI == uri
 
 
-def macro_names(root) -> set[str]:
-    """Names of macros defined in this document, prefixed or not."""
-    uri = xacro_uri(root)
-    names = set()
-    for el in root.iter():
-        if not isinstance(el.tag, str):
-            continue
-        if (is_plain(el) and el.tag == "macro") or (is_xacro(el, uri) and local_name(el) == "macro"):
-            name = el.get("name")
-            if name:
-                names.add(name)
-    return names
-
-
-def include_filenames(root) -> list[tuple[str, int]]:
-    """(filename spec, line) of every include, prefixed or not."""
-    uri = xacro_uri(root)
+def _named(els, uri, word: str, attr: str) -> list[str]:
     out = []
-    for el in root.iter():
-        if not isinstance(el.tag, str):
-            continue
-        if (is_plain(el) and el.tag == "include") or (is_xacro(el, uri) and local_name(el) == "include"):
-            if el.get("filename"):
-                out.append((el.get("filename"), el.sourceline or 0))
+    for el in els:
+        if (el.namespaceURI is None and el.tagName == word) or (is_xacro(el, uri) and el.localName == word):
+            value = el.getAttribute(attr)
+            if value:
+                out.append(value)
     return out
 
 
-def needs_upgrade(root, known_macros: set[str]) -> bool:
-    for el in root.iter():
-        if is_plain(el) and (is_legacy_tag(el) or el.tag in known_macros):
-            return True
-    return False
+def macro_names(root, els=None) -> set[str]:
+    """Names of macros defined in this document, prefixed or not."""
+    return set(_named(els if els is not None else elements(root), xacro_uri(root), "macro", "name"))
 
 
-def upgrade(root, known_macros: set[str]):
-    """Rename legacy elements in place; return (new_root, {kind: (count, first_line, macro names)}).
+def include_filenames(root, els=None) -> list[str]:
+    """The filename spec of every include, prefixed or not."""
+    return _named(els if els is not None else elements(root), xacro_uri(root), "include", "filename")
 
-    ``new_root`` differs from ``root`` only when the xacro namespace had to be
-    declared (files from the Electric era often have none).
-    """
+
+def needs_upgrade(root, known_macros: set[str], els=None) -> bool:
+    return any(is_plain(el) and (is_legacy_tag(el) or el.tagName in known_macros)
+               for el in (els if els is not None else elements(root)))
+
+
+def upgrade(root, known_macros: set[str], line_of: dict, els=None):
+    """Rename legacy elements in place (declaring the xacro namespace on the root when the file
+    has none, as Electric-era files often do); return {kind: (count, first_line, macro names)}.
+    ``line_of``: element -> source line."""
     uri = xacro_uri(root)
     if uri is None:
-        root = _with_xacro_ns(root)
         uri = XACRO_NS
+        root.setAttributeNS(XMLNS_NS, "xmlns:xacro", uri)
     found: dict[str, list] = {}
-    for el in list(root.iter()):
+    for el in list(els if els is not None else elements(root)):
         if not is_plain(el):
             continue
-        tag = el.tag
+        tag = el.tagName
         if is_legacy_tag(el):
             kind = f"<{tag}>"
         elif tag in known_macros:
             kind = "bare macro call"
         else:
             continue
-        el.tag = "{%s}%s" % (uri, tag)
-        entry = found.setdefault(kind, [0, el.sourceline or 0, []])
+        el.tagName = el.nodeName = "xacro:" + tag
+        el.prefix = "xacro"
+        el.namespaceURI = uri
+        entry = found.setdefault(kind, [0, line_of.get(el) or 0, []])
         entry[0] += 1
         if kind == "bare macro call" and tag not in entry[2]:
             entry[2].append(tag)
-    return root, {k: tuple(v) for k, v in found.items()}
-
-
-def _with_xacro_ns(root):
-    """Copy of ``root`` whose nsmap binds ``xacro``; children moved, not copied."""
-    nsmap = dict(root.nsmap)
-    nsmap["xacro"] = XACRO_NS
-    new = etree.Element(root.tag, attrib=dict(root.attrib), nsmap=nsmap)
-    new.sourceline = root.sourceline
-    new.text = root.text
-    new.tail = root.tail
-    for child in list(root):
-        new.append(child)
-    return new
+    return {k: tuple(v) for k, v in found.items()}

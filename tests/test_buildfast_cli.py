@@ -1,0 +1,132 @@
+"""`build`'s click-free fast path (entry.py + build/run.py) behaves exactly like the click command.
+
+* parse_plain reads every plain command line into the same values as click's parser does;
+* the same argv gives the same exit code, stdout, stderr and written bytes on both paths, for
+  good and bad command lines (the bad ones fall back to click, which gives its own messages);
+* a plain build imports neither click, lxml, PyYAML (until a file calls load_yaml) nor
+  dataclasses/typing/inspect (issue 13: start-up is most of a small robot's build).
+"""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from myrabot_desc.build.cli import build_cmd
+from myrabot_desc.build.run import BUILD_OPTS, fast_build
+from myrabot_desc.cli_common import INPUT_OPTS, parse_plain
+
+HERE = Path(__file__).resolve().parent
+MATH = HERE / "fixtures" / "xacro" / "math_yaml.urdf.xacro"
+MACRO_ONLY = HERE / "fixtures" / "xacro" / "macro_only.urdf.xacro"
+LEGACY = HERE / "fixtures" / "legacy" / "old"
+LEGACY_TOP = LEGACY / "robot_pkg" / "urdf" / "robot.urdf.xacro"
+CORPUS = HERE / "corpus"
+D435 = CORPUS / "realsense2_description" / "urdf" / "test_d435_camera.urdf.xacro"
+
+PLAIN = [
+    [str(MATH)],
+    [str(MATH), "-o", "out.urdf"],
+    [str(MATH), "--output=out.urdf", "--legacy=on"],
+    ["-o", "-", str(MATH), "use_wheels:=false"],
+    [str(MATH), "--deps"],
+    ["--resolve-uris", str(D435), "--package-path", str(CORPUS), "-o", "-"],
+    ["-p", "a=b", "--package", "c=d=e", str(MATH), "--allow-path", "/tmp", "--no-env", "--unsafe-eval"],
+    ["--max-macro-calls", "1", str(MATH)],
+    ["--max-elements=5", "--max-input-bytes", "007", str(MATH)],
+    ["{LEG}", "--legacy", "off"],
+    ["{LEG}", "--legacy", "off", "--allow-errors", "-o", "out.urdf"],
+    ["{LEG}", "-o", "out.urdf"],
+    [str(LEGACY_TOP), "--package-path", str(LEGACY)],
+    [str(MACRO_ONLY), "-o", "out.urdf"],
+    ["no_such_file.xacro"],
+    [str(MATH), "-o", "."],
+    [str(MATH), "-o", ""],
+    ["", "-o", "out.urdf"],
+]
+NEEDS_CLICK = [
+    ["--help"],
+    ["-h"],
+    [str(MATH), "--help"],
+    ["-p", "no_equals_sign", str(MATH)],
+    [str(MATH), str(MACRO_ONLY)],
+    ["--legacy", "maybe", str(MATH)],
+    ["--max-elements", "0", str(MATH)],
+    ["--max-elements", "-3", str(MATH)],
+    ["--max-elements", "1e3", str(MATH)],
+    ["--bogus", str(MATH)],
+    [str(MATH), "-o"],
+    ["-oout.urdf", str(MATH)],
+    ["--deps=1", str(MATH)],
+    ["--", str(MATH)],
+    ["-", "-o", "out.urdf"],
+    [str(MATH), "-o", "--deps"],
+]
+
+
+@pytest.mark.parametrize("argv", PLAIN, ids=lambda a: " ".join(Path(x).name if "/" in x else x for x in a))
+def test_parse_plain_reads_what_click_reads(argv):
+    values = parse_plain(argv, INPUT_OPTS + BUILD_OPTS)
+    assert values is not None
+    ctx = build_cmd.make_context("build", list(argv))
+    assert values == ctx.params
+
+
+@pytest.mark.parametrize("argv", NEEDS_CLICK, ids=" ".join)
+def test_unusual_command_lines_go_to_click(argv):
+    assert fast_build(argv) is None
+
+
+# Electric-era syntax: upgraded by default (X001), left and reported (X002, exit 1) with --legacy off
+LEG_TEXT = '<robot name="r">\n<macro name="leg"><link name="leg"/></macro>\n<link name="base"/>\n<leg/>\n</robot>\n'
+
+
+def _run(path: str, argv, cwd: Path):
+    leg = cwd / "leg.urdf.xacro"
+    leg.write_text(LEG_TEXT)
+    argv = [str(leg) if a == "{LEG}" else a for a in argv]
+    code = f"import sys; from myrabot_desc.{path} import main; sys.exit(main())"
+    p = subprocess.run([sys.executable, "-c", code, "build", *argv], cwd=cwd, capture_output=True, timeout=120)
+    out = cwd / "out.urdf"
+    return p.returncode, p.stdout.replace(str(cwd).encode(), b"CWD"), p.stderr.replace(str(cwd).encode(), b"CWD"), \
+        out.read_bytes().replace(str(cwd).encode(), b"CWD") if out.is_file() else None
+
+
+@pytest.mark.parametrize("argv", PLAIN + NEEDS_CLICK, ids=lambda a: " ".join(Path(x).name if "/" in x else x for x in a))
+def test_same_result_on_both_paths(argv, tmp_path):
+    (tmp_path / "fast").mkdir()
+    (tmp_path / "click").mkdir()
+    fast = _run("entry", argv, tmp_path / "fast")            # the console script's entry
+    slow = _run("cli", argv, tmp_path / "click")             # the click group, always
+    assert fast == slow
+    assert b"Traceback" not in fast[2]
+
+
+def test_outcomes_are_the_expected_ones(tmp_path):
+    """Not only equal on both paths: right (so the parity above cannot hold by both failing)."""
+    rc, out, err, written = _run("entry", [str(MATH), "-o", "out.urdf"], tmp_path)
+    assert (rc, err) == (0, b"wrote out.urdf\n") and written.count(b"<link ") == 4
+    rc, out, err, _ = _run("entry", ["{LEG}", "--legacy", "off"], tmp_path)
+    assert rc == 1 and b"error: X002" in err and err.endswith(b"nothing written (use --allow-errors to write anyway)\n")
+    rc, out, err, _ = _run("entry", ["--max-macro-calls", "1", str(MATH)], tmp_path)
+    assert rc == 2 and b"over 1 macro calls" in err and out == b""
+    rc, out, err, _ = _run("entry", ["--legacy", "maybe", str(MATH)], tmp_path)
+    assert rc == 2 and b"Invalid value for '--legacy'" in err
+
+
+def test_a_plain_build_imports_no_click_lxml_yaml(tmp_path):
+    code = ("import sys; from myrabot_desc.entry import main; code = main(); "
+            "heavy = ['click', 'lxml', 'yaml.reader', 'dataclasses', 'typing', 'inspect']; "
+            "print([m for m in heavy if m in sys.modules], file=sys.stderr); sys.exit(code)")
+    argv = ["build", str(D435), "--package-path", str(CORPUS), "-o", str(tmp_path / "d435.urdf")]
+    p = subprocess.run([sys.executable, "-c", code, *argv], capture_output=True, text=True, timeout=120)
+    assert p.returncode == 0, p.stderr
+    assert p.stderr.splitlines()[-1] == "[]"
+    assert (tmp_path / "d435.urdf").read_text().count("<link ") == 3
+    # a file that calls load_yaml loads PyYAML (through our loader) and still builds
+    argv = ["build", str(MATH), "-o", str(tmp_path / "math.urdf")]
+    p = subprocess.run([sys.executable, "-c", code, *argv], capture_output=True, text=True, timeout=120)
+    assert p.returncode == 0 and p.stderr.splitlines()[-1] == "['yaml.reader']", p.stderr

@@ -22,7 +22,7 @@ from __future__ import annotations
 import os
 import re
 import sys
-import threading
+import _thread
 from pathlib import Path
 
 from myrabot_desc.diagnostics import Diagnostic, Loc
@@ -62,6 +62,10 @@ class BuildResult:
         return [d for d in self.diagnostics if d.severity == "error"]
 
 
+# libxml2 (lxml without huge_tree) refuses a text or attribute value over 10,000,000 bytes
+LXML_MAX_TEXT = 10_000_000
+
+
 def _parse_output(text: str, src_name: str):
     from lxml import etree
 
@@ -76,7 +80,7 @@ def _parse_output(text: str, src_name: str):
                          f"{_short(why, 200)})", Loc(src_name)) from None
 
 
-_lock = threading.Lock()
+_lock = _thread.allocate_lock()   # (not threading: its import costs ~1 ms of every build's start)
 
 # URDF (and common extension) vocabulary at <robot> level: anything else there
 # is either a macro call that went unexpanded or an unknown element.
@@ -274,7 +278,11 @@ class _Build:
     # ------------------------------------------------------------ run
     def run(self) -> BuildResult:
         _lazy_yaml()
+        _lazy_xacro_cli()
         import xacro
+
+        if "cli" not in vars(xacro):        # its placeholder: reachable as xacro.cli, like the module
+            xacro.cli = sys.modules["xacro.cli"]
 
         self.prescan(self.src, set())
         # Any XML expands, as with xacro (SDF, SRDF, launch files...). Electric-era syntax and the
@@ -287,13 +295,16 @@ class _Build:
             xacro.all_includes = []
             self.check_include(self.src, None)
             doc = self.load_dom(self.src, None)
-            import contextlib
             import io
 
             chatter = io.StringIO()  # xacro prints its own warnings; we report them as X008
             try:
-                with contextlib.redirect_stderr(chatter), contextlib.redirect_stdout(chatter):
+                saved = sys.stdout, sys.stderr
+                sys.stdout = sys.stderr = chatter
+                try:
                     xacro.process_doc(doc, mappings=dict(self.mappings), verbosity=1)
+                finally:
+                    sys.stdout, sys.stderr = saved
             except InputError:
                 raise
             except xacro.XacroException as exc:
@@ -318,8 +329,11 @@ class _Build:
                 "CI job", Loc(display(self.src)), {"environment": {k: v for k, (v, _s) in sorted(self.env_used.items())}}))
         text, locations = self.render(doc)
         self.check_unexpanded(doc, locations)
-        return BuildResult(text=text, locations=locations, diagnostics=self.diagnostics, deps=self.deps,
-                           source=self.src, package_roots=dict(self.resolver.used), src_name=display(self.src))
+        result = BuildResult(text=text, locations=locations, diagnostics=self.diagnostics, deps=self.deps,
+                             source=self.src, package_roots=dict(self.resolver.used), src_name=display(self.src))
+        if len(text) > LXML_MAX_TEXT:   # only such a document can hold a value past lxml's cap: refuse it here
+            result.root                 # (what check/convert would refuse) rather than write it
+        return result
 
     def _xacro_warnings(self, text: str) -> None:
         counts: dict[str, int] = {}
@@ -522,13 +536,36 @@ class _LazyModule(type(sys)):
     module's ``__spec__``, which makes LazyLoader load it there and then.)"""
 
     def __getattr__(self, name):
-        import importlib
-
+        if name == "__path__" and not self.__dict__.get("is_package", True):
+            raise AttributeError(name)      # the import system asks it of any module ``from`` imports
         if sys.modules.get(self.__name__) is self:
             del sys.modules[self.__name__]
-        real = importlib.import_module(self.__name__)
+        real = _real_module(self.__name__)
         self.__dict__.update(real.__dict__)     # later look-ups find the names directly
         return getattr(real, name)
+
+
+def _real_module(name: str):
+    import importlib
+
+    return importlib.import_module(name)
+
+
+def _lazy_xacro_cli() -> None:
+    """xacro imports its command-line module (optparse, textwrap, gettext: ~3 ms) for the
+    ``process_args`` of its own main(): a placeholder until anything else of it is used."""
+    if "xacro" in sys.modules or "xacro.cli" in sys.modules:
+        return
+    stub = _LazyModule("xacro.cli")
+    stub.is_package = False
+
+    def process_args(*args, **kwargs):
+        if sys.modules.get("xacro.cli") is stub:
+            del sys.modules["xacro.cli"]
+        return _real_module("xacro.cli").process_args(*args, **kwargs)
+
+    stub.process_args = process_args
+    sys.modules["xacro.cli"] = stub
 
 
 def _lazy_yaml() -> None:

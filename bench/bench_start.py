@@ -4,7 +4,9 @@
 
 Target (issue 8): --help within 60 ms of `python -c pass`; `build` imports nothing
 heavy; `check` imports trimesh only for --inertia and meshes. Heavy = trimesh,
-yourdfpy, pinocchio, mujoco, numpy, scipy, networkx.
+yourdfpy, pinocchio, mujoco, numpy, scipy, networkx. Issue 13: a plain `build FILE`
+(the console entry's click-free path) imports neither click, lxml nor PyYAML (a
+file calling load_yaml loads PyYAML).
 """
 
 from __future__ import annotations
@@ -19,13 +21,14 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _timing import BIN, ROOT, bench_env, best_of, fmt_s, save, table  # noqa: E402
 
 HEAVY = ("trimesh", "yourdfpy", "pinocchio", "mujoco", "numpy", "scipy", "networkx")
+START = ("click", "lxml", "yaml.reader")     # what a plain build no longer imports (issue 13)
 
 
 def imported_by(args: list[str]) -> list[str]:
-    code = ("import sys, json, contextlib, io\nfrom myrabot_desc.cli import main\n"
+    code = ("import sys, json, contextlib, io\nfrom myrabot_desc.entry import main\n"
             "with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):\n"
             f"    try:\n        main({args!r})\n    except SystemExit:\n        pass\n"
-            f"print(json.dumps([m for m in {HEAVY!r} if m in sys.modules]))")
+            f"print(json.dumps([m for m in {HEAVY + START!r} if m in sys.modules]))")
     p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=bench_env(), cwd=ROOT)
     if p.returncode != 0:
         raise SystemExit(f"import audit of {args} failed: {p.stderr[-400:]}")
@@ -57,7 +60,10 @@ def main(argv=None) -> int:
     subprocess.run([cli, "build", "-o", urdf], check=True, capture_output=True, env=bench_env())
     audit = {
         "--help": ["--help"],
-        "build FILE": ["build", small, "-o", "/dev/null"],
+        "build FILE": ["build", str(ROOT / "tests" / "corpus" / "realsense2_description" / "urdf" /
+                                   "test_d435_camera.urdf.xacro"), "--package-path", str(ROOT / "tests" / "corpus"),
+                       "-o", "/dev/null"],
+        "build FILE (load_yaml)": ["build", small, "-o", "/dev/null"],
         "build (bundled)": ["build", "-o", "/dev/null"],
         "check URDF": ["check", urdf],
         "check --inertia URDF": ["check", "--inertia", urdf],
@@ -67,8 +73,10 @@ def main(argv=None) -> int:
     imports = {k: imported_by(v) for k, v in audit.items()}
     print("heavy modules imported per command:")
     print(table([[k, ", ".join(v) or "none"] for k, v in imports.items()], ["command", "heavy imports"]))
-    ok = not imports["--help"] and not imports["build FILE"] and "trimesh" not in imports["check URDF"]
-    print(f"--help and build import nothing heavy, check without --inertia/--meshes no trimesh: {'yes' if ok else 'NO'}")
+    ok = not set(imports["--help"]) & set(HEAVY) and not imports["build FILE"] and \
+        "trimesh" not in imports["check URDF"]
+    print(f"--help imports nothing heavy, build FILE nothing heavy and no click/lxml/PyYAML, check without "
+          f"--inertia/--meshes no trimesh: {'yes' if ok else 'NO'}")
     save("start", {"times": r, "help_over_python_s": help_over, "n": a.repeat, "imports": imports,
                    "imports_ok": ok, "data_root": str(data_root())})
     return 0

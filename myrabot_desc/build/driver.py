@@ -2,8 +2,9 @@
 
 We drive the real ROS ``xacro`` library and hook it at a few points:
 
-* reading files: lxml with entities, DTDs and network off; size, include depth
-  and include-cycle limits; reads only under the input's folder, the resolved
+* reading files: expat straight into xacro's minidom, DTDs and entities refused
+  (domread.py; lxml gives the verdict on whatever expat stops at); size, include
+  depth and include-cycle limits; reads only under the input's folder, the resolved
   package roots and ``--allow-path`` folders; the legacy upgrade (legacy.py);
   each element gets a ``_mdsrc`` attribute naming its file:line (xacro copies
   attributes through macro expansion, so expanded elements keep the line of the
@@ -11,7 +12,11 @@ We drive the real ROS ``xacro`` library and hook it at a few points:
 * ``$(find)`` -> our package resolver (packages.py); ``$(env)``/``$(optenv)``
   refused under ``--no-env``; ``$(eval)`` and ``${}`` through the allow-list
   (safe_eval.py) unless ``--unsafe-eval``;
-* node replacement -> the linear-time splice of xacro_fast.py.
+* node replacement -> the linear-time splice of fast.py.
+
+Start-up counts (issue 13: ``build`` must beat the xacro CLI on small robots): nothing
+here imports lxml, click or dataclasses, and PyYAML and xacro's command-line module
+are placeholders until used (_LazyModule).
 
 After expansion the annotations are read off (document order) and removed, so
 the text we write is byte-identical to the xacro CLI's for the same input.

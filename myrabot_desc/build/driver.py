@@ -30,12 +30,11 @@ import sys
 import _thread
 from pathlib import Path
 
+from myrabot_desc.build.domread import SRC_ATTR, XSRC_ATTR
 from myrabot_desc.diagnostics import Diagnostic, Loc
 from myrabot_desc.errors import InputError
 from myrabot_desc.safety import Limits, _short, display
 
-SRC_ATTR = "_mdsrc"
-XSRC_ATTR = "xacro:mdsrc"   # on xacro elements; xacro itself strips xacro:* attributes
 
 
 
@@ -169,29 +168,30 @@ class _Build:
                 return True
         return False
 
-    def read_tree(self, path: Path, asked_at: Loc | None = None):
-        """The root element of one file, parsed safely (domread); cached per resolved path."""
+    def read_parsed(self, path: Path, asked_at: Loc | None = None):
+        """One file parsed safely (domread.Parsed, its elements annotated); cached per resolved path."""
+        from myrabot_desc.build import domread
+
         key = path.resolve()
         entry = self.trees.get(key)
         if entry is None:
             data = self._read_bytes(path, asked_at)
-            from myrabot_desc.build import domread
-
-            entry = self.trees[key] = [data, *domread.parse(data, display(path))]
+            fname = display(path)
+            entry = self.trees[key] = [data, domread.parse(data, fname, self.locs), fname]
         elif entry[1] is None:       # handed to xacro already (which changes it): parse again
-            from myrabot_desc.build import domread
+            entry[1] = domread.parse(entry[0], entry[2], self.locs)
+        return entry[1]
 
-            entry[1:] = domread.parse(entry[0], display(path))
-        return entry[1].documentElement
+    def read_tree(self, path: Path, asked_at: Loc | None = None):
+        """The root element of one file (see read_parsed)."""
+        return self.read_parsed(path, asked_at).doc.documentElement
 
-    def take_tree(self, path: Path, asked_at: Loc | None):
-        """(document, element lines) of one file for xacro, which changes it: a fresh parse
-        each time (the prescan's own parse is used once)."""
-        self.read_tree(path, asked_at)
-        entry = self.trees[path.resolve()]
-        doc, lines = entry[1], entry[2]
-        entry[1] = None
-        return doc, lines
+    def take_parsed(self, path: Path, asked_at: Loc | None):
+        """One file for xacro, which changes it: a fresh parse each time (the prescan's own
+        parse is used once)."""
+        parsed = self.read_parsed(path, asked_at)
+        self.trees[path.resolve()][1] = None
+        return parsed
 
     def _read_bytes(self, path: Path, asked_at: Loc | None) -> bytes:
         from myrabot_desc.safety import read_checked
@@ -216,16 +216,16 @@ class _Build:
             return
         seen.add(key)
         try:
-            root = self.read_tree(path)
+            parsed = self.read_parsed(path)
         except InputError:
             return  # reported properly when xacro reaches the include
         from myrabot_desc.build import legacy as lg
 
-        els = lg.elements(root)
-        for name in lg.macro_names(root, els):
+        root = parsed.doc.documentElement
+        for name in lg.macro_names(root, parsed.noted):
             self.macro_names.add(name)
             self.macro_files.setdefault(name, display(path))
-        for spec in lg.include_filenames(root, els):
+        for spec in lg.include_filenames(root, parsed.noted):
             target = self._guess_include(spec, path)
             if target is not None:
                 self.prescan(target, seen, depth + 1)
@@ -251,34 +251,40 @@ class _Build:
 
     # ------------------------------------------------------------ annotate + hand to minidom
     def load_dom(self, path: Path, asked_at: Loc | None):
+        """The file's document for xacro, its elements annotated with their source lines (by
+        domread while parsing), legacy syntax upgraded when that is asked for."""
         from myrabot_desc.build import legacy as lg
 
-        doc, lines = self.take_tree(path, asked_at)
-        root = doc.documentElement
-        els = lg.elements(root)      # document order, as ``lines``; the upgrade renames, never adds
+        parsed = self.take_parsed(path, asked_at)
+        doc = parsed.doc
         if (self.legacy == "on" or self.legacy == "auto" and self.robot) and \
-                lg.needs_upgrade(root, self.macro_names, els):
-            kinds = lg.upgrade(root, self.macro_names, dict(zip(els, lines)), els)
-            for kind, (count, line, names) in sorted(kinds.items()):
-                new = "xacro:" + kind.strip("<>") if kind.startswith("<") else "xacro:NAME"
-                if names:
-                    kind += " (" + ", ".join(f"<{n}>" for n in names[:4]) + (", ..." if len(names) > 4 else "") + ")"
-                times = f" ({count} times)" if count > 1 else ""
-                self.diagnostics.append(Diagnostic(
-                    "X001", "warning", f"legacy {kind} upgraded to <{new}>{times}; xacro 2.x would copy it "
-                    "into the URDF unexpanded", Loc(display(path), line)))
-        # each element names its source line (xacro copies attributes through macro expansion)
-        uri = lg.xacro_uri(root)
-        fname = display(path)
-        locs = self.locs
-        for el, line in zip(els, lines):
-            idx = str(len(locs))
-            locs.append(Loc(fname, line))
-            if uri is not None and el.namespaceURI == uri:
-                el.setAttributeNS(uri, XSRC_ATTR, idx)
-            else:
-                el.setAttribute(SRC_ATTR, idx)
+                (any(lg.is_legacy_tag(el) for el in parsed.plain_words) or parsed.plain_tags & self.macro_names):
+            self._upgrade(doc.documentElement, path)
         return doc
+
+    def _upgrade(self, root, path: Path) -> None:
+        from myrabot_desc.build import legacy as lg
+
+        els = lg.elements(root)
+        locs = self.locs
+        line_of = {el: locs[int(el.getAttribute(SRC_ATTR))].line for el in els if el.hasAttribute(SRC_ATTR)}
+        kinds = lg.upgrade(root, self.macro_names, line_of, els)
+        for kind, (count, line, names) in sorted(kinds.items()):
+            new = "xacro:" + kind.strip("<>") if kind.startswith("<") else "xacro:NAME"
+            if names:
+                kind += " (" + ", ".join(f"<{n}>" for n in names[:4]) + (", ..." if len(names) > 4 else "") + ")"
+            times = f" ({count} times)" if count > 1 else ""
+            self.diagnostics.append(Diagnostic(
+                "X001", "warning", f"legacy {kind} upgraded to <{new}>{times}; xacro 2.x would copy it "
+                "into the URDF unexpanded", Loc(display(path), line)))
+        # the renamed elements are xacro's now: their annotation moves to xacro:mdsrc, which
+        # xacro's attribute checks ignore
+        uri = lg.xacro_uri(root)
+        for el in els:
+            if el.namespaceURI == uri and el.hasAttribute(SRC_ATTR):
+                value = el.getAttribute(SRC_ATTR)
+                el.removeAttribute(SRC_ATTR)
+                el.setAttributeNS(uri, XSRC_ATTR, value)
 
     # ------------------------------------------------------------ run
     def run(self) -> BuildResult:

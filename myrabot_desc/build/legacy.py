@@ -85,11 +85,6 @@ def include_filenames(root, els=None) -> list[str]:
     return _named(els if els is not None else elements(root), xacro_uri(root), "include", "filename")
 
 
-def needs_upgrade(root, known_macros: set[str], els=None) -> bool:
-    return any(is_plain(el) and (is_legacy_tag(el) or el.tagName in known_macros)
-               for el in (els if els is not None else elements(root)))
-
-
 def upgrade(root, known_macros: set[str], line_of: dict, els=None):
     """Rename legacy elements in place (declaring the xacro namespace on the root when the file
     has none, as Electric-era files often do); return {kind: (count, first_line, macro names)}.

@@ -148,6 +148,7 @@ class _Build:
         # resolved path -> [bytes, minidom document not yet handed to xacro or None, element lines]
         self.trees: dict[Path, list] = {}
         self._real_roots: dict[Path, Path] = {}
+        self._keys: dict[Path, Path] = {}
         self.deps: list[str] = []
         self.body_sizes: dict[int, int] = {}   # macro body -> elements it holds
         self.expanded = 0                      # elements produced by macro calls so far
@@ -168,11 +169,19 @@ class _Build:
                 return True
         return False
 
+    def key(self, path: Path) -> Path:
+        """A file's resolved path, as the key of the parse cache and of the include-cycle check
+        (resolved once per build; allowed() resolves afresh each time it is asked)."""
+        k = self._keys.get(path)
+        if k is None:
+            k = self._keys[path] = path.resolve()
+        return k
+
     def read_parsed(self, path: Path, asked_at: Loc | None = None):
         """One file parsed safely (domread.Parsed, its elements annotated); cached per resolved path."""
         from myrabot_desc.build import domread
 
-        key = path.resolve()
+        key = self.key(path)
         entry = self.trees.get(key)
         if entry is None:
             data = self._read_bytes(path, asked_at)
@@ -190,7 +199,7 @@ class _Build:
         """One file for xacro, which changes it: a fresh parse each time (the prescan's own
         parse is used once)."""
         parsed = self.read_parsed(path, asked_at)
-        self.trees[path.resolve()][1] = None
+        self.trees[self.key(path)][1] = None
         return parsed
 
     def _read_bytes(self, path: Path, asked_at: Loc | None) -> bytes:
@@ -211,7 +220,7 @@ class _Build:
     # ------------------------------------------------------------ prescan
     def prescan(self, path: Path, seen: set, depth: int = 0) -> None:
         """Collect macro names over the include tree (needed to spot bare calls)."""
-        key = path.resolve()
+        key = self.key(path)
         if key in seen or depth > self.limits.max_include_depth:
             return
         seen.add(key)
@@ -363,8 +372,8 @@ class _Build:
         if not self.allowed(path):
             raise InputError(f"refusing to read {path}: outside the input's folder and the package roots "
                              "(use --allow-path DIR to allow it)", asked_at or self.last_loc, code="X006")
-        stack = [Path(f).resolve() for f in (xacro.filestack or [])[:-1] if f]
-        if path.resolve() in stack:
+        stack = [self.key(Path(f)) for f in (xacro.filestack or [])[:-1] if f]
+        if self.key(path) in stack:
             chain = " -> ".join(str(p) for p in stack + [path])
             raise InputError(f"include cycle: {chain}", asked_at or self.last_loc)
         if len(xacro.filestack or []) > self.limits.max_include_depth:

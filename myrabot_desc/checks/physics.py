@@ -44,30 +44,16 @@ def _collision_world(ctx):
 
 
 def wheels(ctx) -> list[str]:
-    """Joints that drive or carry wheels: named by a declared drive (model/drive.py: plugins,
-    ros_control velocity wheels), or continuous joints whose child is a collision cylinder about
-    the joint axis."""
-    got = getattr(ctx, "_wheel_joints", None)
-    if got is not None:
-        return got
+    """The wheel joints (model/drive.py's answer, the one convert and sim get)."""
     from myrabot_desc.model import drive as D
 
-    r = ctx.robot
-    out = []
-    for d in D.find(r):
-        out += [n for n in d.joints if n in r.joints and n not in out]
-    T = D.link_transforms(r)
-    for j in r.joints.values():
-        if j.type == "continuous" and j.name not in out:
-            w = D.wheel(r, j.name, T, read_meshes=False)    # a cylinder about the axle: no mesh needed
-            if w is not None and w.round and w.shape.geometry.kind == "cylinder":
-                out.append(j.name)
-    ctx._wheel_joints = out
-    return out
+    return D.wheel_joints(ctx.robot)
 
 
 def is_mobile(ctx) -> bool:
-    return bool(wheels(ctx))
+    from myrabot_desc.model import drive as D
+
+    return D.is_mobile(ctx.robot)
 
 
 def support(ctx):

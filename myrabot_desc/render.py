@@ -317,21 +317,18 @@ def parse_size(text: str) -> tuple[int, int]:
 def read_pose(path: str, scene) -> dict[str, float]:
     """Joint values from a YAML file: ``NAME: VALUE`` lines, optionally under ``joints:``.
 
-    The file is untrusted: read with a size limit and ``yaml.safe_load`` (no tags, no objects)."""
+    The file is untrusted: read by safety.read_checked (regular files, the input size limit) and
+    parsed by ``yaml.safe_load`` (no tags, no objects)."""
     import yaml
 
     from myrabot_desc.diagnostics import Loc
     from myrabot_desc.errors import InputError
+    from myrabot_desc.safety import limit, read_checked
     from myrabot_desc.view.scene import parse_joint_values
 
-    limit = 1_000_000
-    try:
-        with open(path, "rb") as fh:
-            raw = fh.read(limit + 1)
-    except OSError as exc:
-        raise InputError(f"cannot read {path}: {exc.strerror}") from None
-    if len(raw) > limit:
-        raise InputError(f"{path} is over the {limit}-byte limit for a pose file")
+    # the one bounded reader: a regular file only (a FIFO would block, a device never end), read
+    # up to the input limit as it grows (not trusted from stat)
+    raw = read_checked(path, None, limit("max_input_bytes"), what="pose file")
     try:
         doc = yaml.safe_load(raw.decode("utf-8", errors="replace"))
     except yaml.YAMLError as exc:

@@ -44,25 +44,30 @@ class Support(NamedTuple):
 
 
 def _mesh_reader(meshes):
-    """mesh geometry -> scaled vertices (numpy) or None, from ``meshes``: False (skip meshes),
-    True (read through model.shapes' bounded, cached loader) or a callable (check's cache)."""
+    """(mesh geometry, loc) -> scaled vertices (numpy) or None, from ``meshes``: False (skip
+    meshes), True (model.shapes.surface_points: the bounded mesh reader's vertices) or a callable
+    geometry -> loaded mesh (check's per-run cache). An unreadable mesh is left out (check's M
+    rules say why)."""
     import numpy as np
 
     if meshes is False or meshes is None:
-        return lambda g: None
-    get = meshes
+        return lambda g, loc: None
     if meshes is True:
-        from myrabot_desc.model.shapes import load_mesh
+        from myrabot_desc.model.shapes import surface_points
 
-        def get(g):
-            return load_mesh(g) if g.path is not None else None
+        def read(g, loc):
+            try:
+                return np.asarray(surface_points(g, loc=loc), dtype=float)
+            except Exception:        # InputError, or a reader's own failure on a malformed file
+                return None
+        return read
 
-    def read(g):
-        m = get(g)
+    def read_loaded(g, loc):
+        m = meshes(g)
         if m is None or isinstance(m, str):
             return None
         return np.asarray(getattr(m, "vertices", m), dtype=float)
-    return read
+    return read_loaded
 
 
 def lowest(robot, world, meshes=True):
@@ -84,7 +89,7 @@ def lowest(robot, world, meshes=True):
                 continue
             T = world[link.name] @ pose_matrix(it.origin)
             if g.kind == "mesh":
-                v = read(g)
+                v = read(g, it.loc) if g.path is not None else None
                 if v is None or not len(v):
                     continue
                 w = v @ T[:3, :3].T + T[:3, 3]

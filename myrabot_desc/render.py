@@ -317,24 +317,16 @@ def parse_size(text: str) -> tuple[int, int]:
 def read_pose(path: str, scene) -> dict[str, float]:
     """Joint values from a YAML file: ``NAME: VALUE`` lines, optionally under ``joints:``.
 
-    The file is untrusted: read by safety.read_checked (regular files, the input size limit) and
-    parsed by ``yaml.safe_load`` (no tags, no objects)."""
-    import yaml
-
+    The file is untrusted: read by the one YAML loader (build/yaml_load.py: safety.read_checked,
+    so regular files only and the input size limit; no tags but xacro's units, no alias bombs),
+    never by PyYAML's shared loaders, which a build's ``load_yaml`` may have extended."""
+    from myrabot_desc.build.yaml_load import load_path
     from myrabot_desc.diagnostics import Loc
     from myrabot_desc.errors import InputError
-    from myrabot_desc.safety import limit, read_checked
+    from myrabot_desc.safety import limit
     from myrabot_desc.view.scene import parse_joint_values
 
-    # the one bounded reader: a regular file only (a FIFO would block, a device never end), read
-    # up to the input limit as it grows (not trusted from stat)
-    raw = read_checked(path, None, limit("max_input_bytes"), what="pose file")
-    try:
-        doc = yaml.safe_load(raw.decode("utf-8", errors="replace"))
-    except yaml.YAMLError as exc:
-        mark = getattr(exc, "problem_mark", None)
-        problem = getattr(exc, "problem", None) or str(exc).splitlines()[0]
-        raise InputError(f"not valid YAML: {problem}", Loc(path, mark.line + 1 if mark else None)) from None
+    doc = load_path(path, limit("max_input_bytes"), name=str(path))
     if isinstance(doc, dict) and set(doc) == {"joints"}:
         doc = doc["joints"]
     if doc is None:

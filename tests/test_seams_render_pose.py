@@ -49,5 +49,25 @@ def test_pose_over_the_input_limit(tmp_path):
 def test_missing_pose_file(tmp_path):
     p, out = _render(tmp_path, tmp_path / "nope.yaml")
     assert p.returncode == 2
-    assert p.stderr.strip().splitlines() == [f"error: no such pose file: {tmp_path / 'nope.yaml'}"]
+    assert p.stderr.strip().splitlines() == [f"error: no such YAML file: {tmp_path / 'nope.yaml'}"]
     assert not out.exists()
+
+
+def test_pose_yaml_goes_through_the_one_yaml_loader(tmp_path):
+    """xacro's unit tags are numbers (as in a model's load_yaml), never code; other tags refused."""
+    from myrabot_desc.errors import InputError
+    from myrabot_desc.model.loader import load_robot
+    from myrabot_desc.render import read_pose
+    from myrabot_desc.view.scene import build_scene
+
+    scene = build_scene(load_robot(), collision=False)
+    good = tmp_path / "deg.yaml"
+    good.write_text("joints:\n  arti1: !degrees 45\n  base: 0.5\n")
+    q = read_pose(str(good), scene)
+    assert q["arti1"] == pytest.approx(0.785398163, abs=1e-9) and q["base"] == 0.5
+    bad = tmp_path / "code.yaml"
+    bad.write_text("arti1: !radians __import__('os').system('touch pwned')\n")
+    with pytest.raises(InputError) as e:
+        read_pose(str(bad), scene)
+    assert str(e.value).startswith(f"{bad}:1: error:")
+    assert not (tmp_path / "pwned").exists() and not os.path.exists("pwned")

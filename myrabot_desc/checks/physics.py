@@ -4,7 +4,6 @@ from __future__ import annotations
 
 from myrabot_desc.checks.examples import drive_example as _drive
 from myrabot_desc.checks.rule import Finding, rule
-from myrabot_desc.model import shapes as G
 
 _FINGER = """<link name="finger">{inertial}</link>
 <joint name="finger_joint" type="revolute">
@@ -178,11 +177,10 @@ def spawn_penetration(ctx):
     """
     if not ctx.tree_ok or not is_mobile(ctx):
         return
-    below = []
-    for link, it, T, mesh in _collision_world(ctx):
-        lp = G.lowest_points(it.geometry, T, mesh)
-        if lp is not None and lp[0] < -SPAWN_TOL:
-            below.append((lp[0], link.name))
+    from myrabot_desc.model.support import lowest
+
+    below = [(z, name) for z, _, name in lowest(ctx.robot, ctx.world, ctx.mesh if ctx.opts.load_meshes else False)
+             if z < -SPAWN_TOL]
     if below:
         below.sort()
         depth = -below[0][0]

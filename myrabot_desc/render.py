@@ -317,27 +317,16 @@ def parse_size(text: str) -> tuple[int, int]:
 def read_pose(path: str, scene) -> dict[str, float]:
     """Joint values from a YAML file: ``NAME: VALUE`` lines, optionally under ``joints:``.
 
-    The file is untrusted: read with a size limit and ``yaml.safe_load`` (no tags, no objects)."""
-    import yaml
-
+    The file is untrusted: read by the one YAML loader (build/yaml_load.py: safety.read_checked,
+    so regular files only and the input size limit; no tags but xacro's units, no alias bombs),
+    never by PyYAML's shared loaders, which a build's ``load_yaml`` may have extended."""
+    from myrabot_desc.build.yaml_load import load_path
     from myrabot_desc.diagnostics import Loc
     from myrabot_desc.errors import InputError
+    from myrabot_desc.safety import limit
     from myrabot_desc.view.scene import parse_joint_values
 
-    limit = 1_000_000
-    try:
-        with open(path, "rb") as fh:
-            raw = fh.read(limit + 1)
-    except OSError as exc:
-        raise InputError(f"cannot read {path}: {exc.strerror}") from None
-    if len(raw) > limit:
-        raise InputError(f"{path} is over the {limit}-byte limit for a pose file")
-    try:
-        doc = yaml.safe_load(raw.decode("utf-8", errors="replace"))
-    except yaml.YAMLError as exc:
-        mark = getattr(exc, "problem_mark", None)
-        problem = getattr(exc, "problem", None) or str(exc).splitlines()[0]
-        raise InputError(f"not valid YAML: {problem}", Loc(path, mark.line + 1 if mark else None)) from None
+    doc = load_path(path, limit("max_input_bytes"), name=str(path))
     if isinstance(doc, dict) and set(doc) == {"joints"}:
         doc = doc["joints"]
     if doc is None:

@@ -94,8 +94,10 @@ def test_support_polygon_and_margin():
 
     sup = Support(polygon=[(0.13, 0), (0, 0.13), (-0.13, 0), (0, -0.13)], ground_z=0.0, links=[], notes=[])
     assert margin(sup, (0, 0, 0.2)) == pytest.approx(0.13 / math.sqrt(2))
-    # a lateral 1 g pushes the loaded point 0.2 m outward: out of the diamond
-    assert margin(sup, (0, 0, 0.2), (0, 9.81)) == pytest.approx((0.13 - 0.2) / math.sqrt(2))
+    # a lateral 1 g pushes the loaded point 0.2 m outward, to (0, -0.2): 0.07 m beyond the diamond's
+    # corner (the distance to the polygon, model/support.py, not to an edge's line: 0.0495)
+    assert margin(sup, (0, 0, 0.2), (0, 9.81)) == pytest.approx(-0.07)
+    assert margin(sup, (0, 0, 0.2), (-9.81, -9.81)) == pytest.approx(-(0.2 * math.sqrt(2) - 0.13 / math.sqrt(2)))
 
 
 @given(st.lists(st.tuples(st.floats(0.0, 3.0), st.floats(-2.5, 2.5)), min_size=1, max_size=6),

@@ -2,11 +2,8 @@
 
 from __future__ import annotations
 
-import math
-
 from myrabot_desc.checks.examples import drive_example as _drive
 from myrabot_desc.checks.rule import Finding, rule
-from myrabot_desc.model import shapes as G
 
 _FINGER = """<link name="finger">{inertial}</link>
 <joint name="finger_joint" type="revolute">
@@ -18,7 +15,6 @@ _FINGER = """<link name="finger">{inertial}</link>
 _FINGER_MASS = ('\n  <inertial>\n    <mass value="0.02"/>\n'
                 '    <inertia ixx="6.7e-06" ixy="0" ixz="0" iyy="6.7e-06" iyz="0" izz="1.3e-06"/>\n  </inertial>\n')
 
-CONTACT_TOL = 0.003      # m: geometry this close to the lowest point touches the ground
 SPAWN_TOL = 0.002        # m: penetration Gazebo resolves without a visible jump
 
 
@@ -47,73 +43,32 @@ def _collision_world(ctx):
 
 
 def wheels(ctx) -> list[str]:
-    """Joints that drive or carry wheels: named by a declared drive (model/drive.py: plugins,
-    ros_control velocity wheels), or continuous joints whose child is a collision cylinder about
-    the joint axis."""
-    got = getattr(ctx, "_wheel_joints", None)
-    if got is not None:
-        return got
+    """The wheel joints (model/drive.py's answer, the one convert and sim get)."""
     from myrabot_desc.model import drive as D
 
-    r = ctx.robot
-    out = []
-    for d in D.find(r):
-        out += [n for n in d.joints if n in r.joints and n not in out]
-    T = D.link_transforms(r)
-    for j in r.joints.values():
-        if j.type == "continuous" and j.name not in out:
-            w = D.wheel(r, j.name, T, read_meshes=False)    # a cylinder about the axle: no mesh needed
-            if w is not None and w.round and w.shape.geometry.kind == "cylinder":
-                out.append(j.name)
-    ctx._wheel_joints = out
-    return out
+    return D.wheel_joints(ctx.robot)
 
 
 def is_mobile(ctx) -> bool:
-    return bool(wheels(ctx))
+    from myrabot_desc.model import drive as D
 
-
-def _signed_distance(hull, p) -> float:
-    """Distance from p to the polygon's boundary: positive inside, negative outside (2-D)."""
-    def seg_dist(a, b):
-        ax, ay, bx, by = *a, *b
-        dx, dy = bx - ax, by - ay
-        L = dx * dx + dy * dy
-        t = 0 if L == 0 else max(0, min(1, ((p[0] - ax) * dx + (p[1] - ay) * dy) / L))
-        return math.hypot(p[0] - ax - t * dx, p[1] - ay - t * dy)
-
-    if len(hull) == 1:
-        return -math.hypot(p[0] - hull[0][0], p[1] - hull[0][1])
-    edges = list(zip(hull, hull[1:] + hull[:1])) if len(hull) > 2 else [(hull[0], hull[1])]
-    d = min(seg_dist(a, b) for a, b in edges)
-    if len(hull) < 3:
-        return -d
-    inside = all((b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]) >= 0 for a, b in edges)
-    return d if inside else -d
+    return D.is_mobile(ctx.robot)
 
 
 def support(ctx):
-    """Ground contacts with the base on the ground at q = 0: (ground z, contacts, hull, com)."""
-    import numpy as np
-
-    from myrabot_desc.model.hull2d import convex_hull
+    """What the robot stands on at q = 0 (model/support.py: the same function sim and the viewer
+    use): (Support, centre of mass, mass), or None without collision geometry or mass."""
     from myrabot_desc.model.kinematics import center_of_mass
+    from myrabot_desc.model.support import ground_support
 
-    shapes = _collision_world(ctx)
-    low = []
-    for link, it, T, mesh in shapes:
-        lp = G.lowest_points(it.geometry, T, mesh, CONTACT_TOL)
-        if lp is not None:
-            low.append((lp[0], lp[1], link, it))
-    if not low:
-        return None
-    zmin = min(z for z, *_ in low)
-    contacts = [(link, pts) for z, pts, link, it in low if z <= zmin + CONTACT_TOL]
-    pts = [q[:2] for _, ps in contacts for q in ps if q[2] <= zmin + CONTACT_TOL]
+    got = ctx.__dict__.get("_support", False)
+    if got is not False:
+        return got
+    s = ground_support(ctx.robot, meshes=ctx.mesh if ctx.opts.load_meshes else False, world=ctx.world)
     mass, com = center_of_mass(ctx.robot)
-    if not mass > 0:
-        return None
-    return zmin, contacts, convex_hull(pts), np.asarray(com), mass
+    got = None if s is None or not mass > 0 else (s, com, mass)
+    ctx.__dict__["_support"] = got
+    return got
 
 
 @rule("P001", "static-support", "error",
@@ -137,9 +92,11 @@ def static_support(ctx):
     s = support(ctx)
     if s is None:
         return
-    zmin, contacts, hull, com, mass = s
-    d = _signed_distance(hull, com[:2]) if hull else -math.inf
-    names = sorted({link.name for link, _ in contacts})
+    from myrabot_desc.model.support import signed_distance
+
+    sup, com, mass = s
+    zmin, hull, names = sup.ground_z, sup.polygon, sup.links
+    d = signed_distance(hull, com[:2])
     if d >= 0.005 or (len(hull) >= 3 and d > 0):
         return
     data = {"com": com.tolist(), "contacts": names, "polygon": [list(p) for p in hull], "distance": d}
@@ -220,11 +177,10 @@ def spawn_penetration(ctx):
     """
     if not ctx.tree_ok or not is_mobile(ctx):
         return
-    below = []
-    for link, it, T, mesh in _collision_world(ctx):
-        lp = G.lowest_points(it.geometry, T, mesh)
-        if lp is not None and lp[0] < -SPAWN_TOL:
-            below.append((lp[0], link.name))
+    from myrabot_desc.model.support import lowest
+
+    below = [(z, name) for z, _, name in lowest(ctx.robot, ctx.world, ctx.mesh if ctx.opts.load_meshes else False)
+             if z < -SPAWN_TOL]
     if below:
         below.sort()
         depth = -below[0][0]
@@ -344,7 +300,7 @@ def mass_summary(ctx):
     ground = None
     if is_mobile(ctx):
         s = support(ctx)
-        ground = s[0] if s else None
+        ground = s[0].ground_z if s else None
     h = com[2] - (ground or 0.0)
     where = "above the ground contacts" if ground is not None else f"above {ctx.robot.root}'s origin"
     yield Finding(f"total mass {mass:.4g} kg; centre of mass ({com[0]:.3g} {com[1]:.3g} {com[2]:.3g}) m in "

@@ -6,6 +6,7 @@ from myrabot_desc.checks.examples import ELECTRIC_IMU, MODERN_IMU, drive_example
 from myrabot_desc.checks.rule import Finding, rule
 from myrabot_desc.model import drive as D
 from myrabot_desc.model.drive import GZ, ROS1, ROS2
+from myrabot_desc.model.plugins import published_topics
 
 # Parameters every old-style plugin is known to carry but that a given plugin ignores: a hint for G007.
 IGNORED_HINT = {
@@ -353,48 +354,6 @@ def material_resolves(ctx):
                                       "suggestion": guess})
 
 
-TOPIC_KEYS = ("topicName", "topic", "imageTopicName", "cameraInfoTopicName", "pointCloudTopicName",
-              "depthImageTopicName", "depthImageCameraInfoTopicName", "odometryTopic", "commandTopic",
-              "odom_topic", "tf_topic")
-# Plugins built on gazebo_ros's camera utilities: they advertise every topic on a node handle in
-# <robotNamespace>/<cameraName> (ROS 1 GazeboRosCameraUtils), so cameras with the same
-# imageTopicName but their own cameraName do not collide.
-CAMERA_LIBS = ("gazebo_ros_camera", "gazebo_ros_multicamera", "gazebo_ros_depth_camera", "gazebo_ros_openni_kinect",
-               "gazebo_ros_kinect", "gazebo_ros_prosilica", "gazebo_ros_triggered_camera",
-               "gazebo_ros_triggered_multicamera", "gazebo_ros_wideanglecamera")
-
-
-def _namespace(p) -> str:
-    """The plugin's ROS namespace: ROS 1 robotNamespace, or the ROS 2 <ros><namespace>."""
-    ns = p.params.get("robotNamespace")
-    if not ns:
-        from myrabot_desc.checks.urdf_syntax import local
-
-        ros = next((c for c in p.element if local(c.tag) == "ros"), None) if p.element is not None else None
-        inner = next((c for c in ros if local(c.tag) == "namespace"), None) if ros is not None else None
-        ns = (inner.text or "") if inner is not None else ""
-    return ns.strip().strip("/")
-
-
-def published_topics(p) -> list[tuple[str, str]]:
-    """[(full topic, parameter)] the plugin publishes, from the topic parameters it gives."""
-    ns = _namespace(p)
-    lib = p.library.lower()
-    camera = (p.params.get("cameraName") or "").strip().strip("/")
-    if not any(c in lib for c in CAMERA_LIBS) or "$" in camera:
-        camera = ""
-    out = []
-    for key in TOPIC_KEYS:
-        if key == "commandTopic":
-            continue                      # subscribers may share
-        t = p.params.get(key)
-        if not t or "$" in t:
-            continue
-        full = t if t.startswith("/") else "/" + "/".join(x for x in (ns, camera, t) if x)
-        out.append((full, key))
-    return out
-
-
 def _two_lasers(topic2: str) -> str:
     """Example snippet: two lasers on their own links, publishing `scan` and `topic2`."""
     out = []
@@ -432,7 +391,7 @@ def topic_unique(ctx):
     """
     seen: dict[str, list] = {}
     for p in ctx.robot.plugins():
-        for full, key in published_topics(p):
+        for full, key in published_topics(p):     # model/plugins.py: the names convert carries over
             seen.setdefault(full, []).append((p, key))
     for t, users in sorted(seen.items()):
         if len(users) > 1:

@@ -78,13 +78,10 @@ def _parse(text: str):
 
 
 def is_mobile(robot) -> bool:
-    """A drive plugin, or wheels: continuous joints whose child is called *wheel*/*caster*/*castor*."""
-    from myrabot_desc.convert.sensors import plugin_kind
+    """A wheeled base (a declared drive or wheel joints): model/drive.py's answer, the one check uses."""
+    from myrabot_desc.model import drive as D
 
-    if any(plugin_kind(p) in ("diff_drive", "skid_steer") for p in robot.plugins()):
-        return True
-    return any(j.type == "continuous" and any(w in j.child.lower() for w in ("wheel", "caster", "castor"))
-               for j in robot.joints.values())
+    return D.is_mobile(robot)
 
 
 class _Prep:
@@ -1029,13 +1026,13 @@ def _report_mjcf(robot, report, free, base):
     for t in robot.transmissions:
         report.set("transmission", t.name or "?", "translated",
                    "read for the joints' interfaces; MuJoCo actuators written from the joint limits")
-    from myrabot_desc.convert.sensors import plugin_kind
+    from myrabot_desc.model import drive as D
 
     for g in robot.gazebo:
         for key in g.properties:
             report.set("gazebo", f"{g.reference or 'model'}/{key}", "dropped", "Gazebo-only setting", g.loc)
         for p in g.plugins:
-            drive = plugin_kind(p) in ("diff_drive", "skid_steer")
+            drive = D.plugin_spec(p) is not None
             report.set("plugin", p.name or p.library or "?", "dropped",
                        "Gazebo drive plugin: its wheel joints get velocity actuators" if drive else
                        "Gazebo plugin: no MuJoCo equivalent", p.loc)

@@ -24,6 +24,7 @@ from myrabot_desc.convert.common import (
     to_floats,
     xml_text,
 )
+from myrabot_desc.model import plugins as P
 from myrabot_desc.model.transforms import transform
 
 SONAR_NOTE = ("gz-sim has no sonar sensor: this is a narrow gpu_lidar with the seed's rays; the old plugin "
@@ -39,48 +40,11 @@ class SensorOut:
     source: str = ""                # 'electric' | 'sdf' | 'controller'
 
 
-def plugin_kind(p) -> str:
-    """A short kind for a plugin/controller: 'openni_kinect', 'camera', 'laser', 'sonar', 'imu',
-    'diff_drive', 'skid_steer', 'joint_state', 'ros_control', 'gz', or 'unknown'."""
-    key = _plugin_key(p)
-    table = [
-        ("openni_kinect", ("gazebo_ros_openni_kinect", "gazebo_ros_kinect")),
-        ("depth_camera", ("gazebo_ros_depth_camera",)),
-        ("camera", ("gazebo_ros_camera", "gazebo_ros_prosilica", "gazebo_ros_multicamera")),
-        ("laser", ("gazebo_ros_laser", "gazebo_ros_gpu_laser", "gazebo_ros_ray_sensor", "gazebo_ros_block_laser",
-                   "gazebo_ros_head_hokuyo")),
-        ("sonar", ("gazebo_ros_sonar", "gazebo_ros_range", "hector_gazebo_ros_sonar")),
-        ("imu", ("gazebo_ros_imu", "gazebo_ros_imu_sensor", "hector_gazebo_ros_imu")),
-        ("diff_drive", ("gazebo_ros_roomba", "gazebo_ros_create", "gazebo_ros_diff_drive", "gazebo_ros_kobuki",
-                        "gazebo_ros_diffdrive", "diff_drive_controller", "gz-sim-diff-drive-system",
-                        "ignition-gazebo-diff-drive-system", "diffdrive")),
-        ("skid_steer", ("gazebo_ros_skid_steer_drive",)),
-        ("joint_state", ("gazebo_ros_joint_state_publisher", "gz-sim-joint-state-publisher-system",
-                         "ignition-gazebo-joint-state-publisher-system", "jointstatepublisher")),
-        ("ros_control", ("gazebo_ros_control", "gazebo_ros_controller_manager", "gazebo_ros2_control", "gz_ros2_control",
-                         "ign_ros2_control", "gz_ros2_control-system", "ign_ros2_control-system")),
-    ]
-    for kind, keys in table:
-        if key in keys:
-            return kind
-    if key.startswith(("gz-sim-", "ignition-gazebo-")) or (p.name or "").startswith(("gz::sim", "ignition::gazebo")):
-        return "gz"
-    return "unknown"
-
-
-def _plugin_key(p) -> str:
-    lib = (p.filename or "").rsplit("/", 1)[-1]
-    if lib.startswith("lib"):
-        lib = lib[3:]
-    for ext in (".so", ".dylib", ".dll"):
-        if lib.endswith(ext):
-            lib = lib[: -len(ext)]
-    if lib:
-        return lib.lower()
-    if p.dialect == "electric" and p.element is not None:
-        return local(p.element.tag).lower()
-    name = (p.name or "").rsplit("::", 1)[-1]
-    return name.lower()
+# what a plugin is and the topics it uses live with the model (check's G010 asks the same)
+plugin_kind = P.kind
+_plugin_key = P.key
+pparam = P.param
+ros_remap = P.remap
 
 
 # ---------------------------------------------------------------- small readers
@@ -91,43 +55,6 @@ def eparam(el, *names):
             t = (c.text or "").strip()
             return t if t else c.get("value")
     return None
-
-
-def pparam(p, *names):
-    for n in names:
-        v = p.params.get(n)
-        if v not in (None, ""):
-            return v.strip()
-    return None
-
-
-def ros_remap(p, *froms):
-    """ROS 2 ``<ros><remapping>~/out:=scan</remapping>`` target for one of ``froms``."""
-    if p.element is None:
-        return None
-    for r in p.element.iter():
-        if isinstance(r.tag, str) and local(r.tag) in ("remapping", "argument") and r.text and ":=" in r.text:
-            a, b = r.text.strip().split(":=", 1)
-            if a.strip() in froms:
-                return b.strip()
-    return None
-
-
-def ros_namespace(p):
-    if p.element is None:
-        return None
-    for r in p.element.iter():
-        if isinstance(r.tag, str) and local(r.tag) == "namespace" and r.text and r.text.strip() not in ("", "/"):
-            return r.text.strip()
-    return None
-
-
-def join_topic(ns, name):
-    if not name:
-        return None
-    if not ns or name.startswith("/"):
-        return name
-    return ns.rstrip("/") + "/" + name
 
 
 def noise_el(parent, stddev, attr=False):
@@ -185,7 +112,7 @@ def _electric_camera(sensor, notes):
                                                     pparam(ctrl, "cameraInfoTopicName")) if v)
                             + " (map them with ros_gz_bridge)")
         else:
-            topic = join_topic(cam_name, image_topic) if image_topic else cam_name
+            topic = P.resolve(image_topic, cam_name) or cam_name
             if kind == "openni_kinect" and not loaded:
                 comments.append(f"controller '{ctrl.name}' was written with filename= instead of plugin=, so "
                                 "Gazebo 1.0 never loaded it (no depth): converted as a plain camera on its "
@@ -333,45 +260,28 @@ def _sdf_sensor(sensor, notes, folded=()):
     topic = frame = None
     for p in sensor.plugins:
         kind = plugin_kind(p)
-        ns = ros_namespace(p) or pparam(p, "robotNamespace")
-        if kind in ("camera", "openni_kinect", "depth_camera"):
-            cam_name = pparam(p, "cameraName", "camera_name")
-            image = pparam(p, "imageTopicName", "image_topic_name") or ros_remap(p, "image_raw", "~/image_raw")
-            topic = topic or join_topic(ns, join_topic(cam_name, image or "image_raw"))
+        topic = topic or P.sensor_topic(p)
+        if kind in P.CAMERA_KINDS:
             frame = frame or pparam(p, "frameName", "frame_name")
-        elif kind in ("laser", "sonar", "imu"):
-            t = pparam(p, "topicName", "topic_name") or ros_remap(p, "~/out", "out")
-            topic = topic or join_topic(ns, t)
+        elif kind in P.RAY_KINDS:
             frame = frame or pparam(p, "frameName", "frame_name", "frameId")
             if kind == "imu":
                 frame = frame or pparam(p, "bodyName")
         comments.append(f"ROS plugin '{p.name}' ({p.library}) dropped: gz-sim sensors publish themselves; "
                         "its topic and frame are used here")
     for p in folded:             # a model-level IMU plugin measuring this sensor's link: one sensor, not two
-        ns = pparam(p, "robotNamespace")
-        topic = topic or join_topic(ns if ns != "/" else None, pparam(p, "topicName", "topic_name") or "imu")
+        topic = topic or P.sensor_topic(p, default="imu")
         frame = frame or pparam(p, "frameName", "frame_name") or _imu_body(p)
         rate = to_float(pparam(p, "updateRate", "update_rate"))
         if rate and s.find("update_rate") is None:
             sub(s, "update_rate", rate)
-        noise = to_float(pparam(p, "gaussianNoise"))
-        if noise and s.find("imu") is None:
-            imu = sub(s, "imu")
-            for group in ("angular_velocity", "linear_acceleration"):
-                g = sub(imu, group)
-                for axis in "xyz":
-                    noise_el(sub(g, axis), noise, attr=True)
+        noise = _imu_noise(s, p)
         comments.append(f"IMU plugin '{p.name}' ({p.library}) on this link folded into this sensor: its topic, "
                         "frame, rate" + (" and gaussianNoise (as the stddev)" if noise else "")
                         + " kept (gz-sim sensors publish themselves)")
     for p in sensor.plugins:     # a ROS IMU sensor plugin adds its own gaussianNoise to the readings
-        noise = to_float(pparam(p, "gaussianNoise", "gaussian_noise")) if plugin_kind(p) == "imu" else None
-        if noise and s.find("imu") is None:
-            imu = sub(s, "imu")
-            for group in ("angular_velocity", "linear_acceleration"):
-                g = sub(imu, group)
-                for axis in "xyz":
-                    noise_el(sub(g, axis), noise, attr=True)
+        noise = _imu_noise(s, p) if plugin_kind(p) == "imu" else None
+        if noise:
             comments.append(f"the plugin's gaussianNoise {num(noise)} is the stddev of every axis")
     if topic and s.find("topic") is None:
         sub(s, "topic", topic.lstrip("~/") if topic.startswith("~/") else topic)
@@ -385,6 +295,20 @@ def _sdf_sensor(sensor, notes, folded=()):
 
 
 # ---------------------------------------------------------------- controllers that are sensors
+def _imu_noise(s, p):
+    """The IMU plugin ``p``'s gaussianNoise as the stddev of every axis of sensor ``s`` (as the
+    plugins used it), unless ``s`` already has an ``<imu>`` block; returns the noise applied."""
+    noise = to_float(pparam(p, "gaussianNoise", "gaussian_noise"))
+    if not noise or s.find("imu") is not None:
+        return None
+    imu = sub(s, "imu")
+    for group in ("angular_velocity", "linear_acceleration"):
+        g = sub(imu, group)
+        for axis in "xyz":
+            noise_el(sub(g, axis), noise, attr=True)
+    return noise
+
+
 def _imu_body(p):
     return pparam(p, "bodyName", "body_name", "frameName", "frame_name") or p.reference
 
@@ -415,16 +339,9 @@ def imu_from_plugin(p, robot, notes) -> SensorOut | None:
         notes.warn(f"IMU plugin '{p.name}': body '{body}' is not a link; IMU not converted", p.loc)
         return None
     rate = to_float(pparam(p, "updateRate", "update_rate"))
-    topic = join_topic(pparam(p, "robotNamespace") if pparam(p, "robotNamespace") != "/" else None,
-                       pparam(p, "topicName", "topic_name") or "imu")
+    topic = P.sensor_topic(p, default="imu")
     s = _header(f"{p.name or 'imu'}", "imu", True, rate, None, topic, pparam(p, "frameName", "frame_name") or body)
-    noise = to_float(pparam(p, "gaussianNoise"))
-    if noise:
-        imu = sub(s, "imu")
-        for group in ("angular_velocity", "linear_acceleration"):
-            g = sub(imu, group)
-            for axis in "xyz":
-                noise_el(sub(g, axis), noise, attr=True)
+    _imu_noise(s, p)
     xyz = to_floats(pparam(p, "xyzOffsets", "xyzOffset")) or [0, 0, 0]
     # the plugin built a Quaternion from this vector: radians, even in the Electric dialect
     rpy = to_floats(pparam(p, "rpyOffsets", "rpyOffset")) or [0, 0, 0]

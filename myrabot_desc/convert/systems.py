@@ -23,10 +23,10 @@ from myrabot_desc.convert.sensors import (
     imu_sensor_on,
     plugin_kind,
     pparam,
-    ros_namespace,
     ros_remap,
 )
 from myrabot_desc.model import drive as D
+from myrabot_desc.model import plugins as P
 
 DIFF_DRIVE = ("gz-sim-diff-drive-system", "gz::sim::systems::DiffDrive")
 JOINT_STATES = ("gz-sim-joint-state-publisher-system", "gz::sim::systems::JointStatePublisher")
@@ -125,16 +125,13 @@ class Systems:
             if said is not None and abs(said - got) > 5e-4:
                 self.notes.warn(f"diff-drive '{p.name}': the plugin says {what} {num(said)} m but the URDF's "
                                 f"wheels give {num(got)} m; using the URDF", p.loc)
-        ns = pparam(p, "robotNamespace")
-        ns = None if ns in (None, "/") else ns.strip("/")
-        ns = ns or ros_namespace(p)
+        ns = P.namespace(p)
         # kobuki-style base plugins subscribe <base_prefix>/commands/velocity (base_prefix: mobile_base)
         vendor = "mobile_base/commands/velocity" if d.spec is D.VENDOR else None
         cmd = (pparam(p, "commandTopic", "command_topic", "topic") or ros_remap(p, "cmd_vel", "/cmd_vel") or vendor
                or "cmd_vel")
         odom = (pparam(p, "odometryTopic", "odometry_topic", "odom_topic") or ros_remap(p, "odom", "/odom") or "odom")
-        if ns and not cmd.startswith("/"):
-            cmd, odom = f"{ns}/{cmd}", (odom if odom.startswith("/") else f"{ns}/{odom}")
+        cmd, odom = P.resolve(cmd, ns), P.resolve(odom, ns)        # as the plugin's node resolved them
         el = self._drive_element(lefts, rights, sep, rad, cmd, odom,
                                  pparam(p, "odometryFrame", "odometry_frame", "frame_id") or "odom",
                                  pparam(p, "robotBaseFrame", "robot_base_frame", "child_frame_id") or (r.root or "base_link"),

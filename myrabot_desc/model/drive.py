@@ -48,6 +48,7 @@ from myrabot_desc.model.transforms import IDENTITY, compose, pose_T, rotate
 ALIGNED = 0.99          # |cos| between a cylinder's axis and the joint axis for "a wheel drawn as a cylinder"
 LATERAL = 0.9           # |y| of a wheel axis (root frame) for "turns across the direction of travel"
 POINTS_N = 720          # samples around a circle when a wheel is measured from its points
+LEVEL = 0.17            # |z| of a wheel axis (root frame, q = 0): a wheel rolls about a level axle (10°)
 
 
 class Spec(NamedTuple):
@@ -421,6 +422,33 @@ def main_drive(robot, left=(), right=(), guess: bool = False) -> Drive | None:
     if ds:
         return ds[0]
     return guess_drive(robot) if guess else None
+
+
+def wheel_joints(robot) -> list[str]:
+    """Joints that drive or carry wheels: those of every declared drive, then continuous joints
+    whose child's collision is a cylinder about a level joint axis (an undeclared wheel; a
+    rotor's cylinder spins about a vertical axis and is no wheel). Kept on ``robot.derived``."""
+    cache = getattr(robot, "derived", None)
+    if cache is not None and "drive.wheel_joints" in cache:
+        return list(cache["drive.wheel_joints"])
+    out: list[str] = []
+    for d in find(robot):
+        out += [n for n in d.joints if n in robot.joints and n not in out]
+    T = link_transforms(robot)
+    for j in robot.joints.values():
+        if j.type == "continuous" and j.name not in out:
+            w = wheel(robot, j.name, T, read_meshes=False)      # a cylinder about the axle: no mesh needed
+            if w is not None and w.round and w.shape.geometry.kind == "cylinder" and abs(w.axis[2]) < LEVEL:
+                out.append(j.name)
+    if cache is not None:
+        cache["drive.wheel_joints"] = tuple(out)
+    return out
+
+
+def is_mobile(robot) -> bool:
+    """A wheeled base: it declares a drive or has wheels (``wheel_joints``). check's P rules, the
+    MJCF writer's free base and the viewer ask this one question."""
+    return bool(wheel_joints(robot))
 
 
 # ------------------------------------------------------------------ geometry (pure Python)

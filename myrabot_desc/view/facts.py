@@ -5,8 +5,8 @@ model's other derived facts; nothing here depends on viser or MuJoCo.
 
 * :func:`inertia_box`: the uniform box with a link's mass and principal moments (what Gazebo's
   "view inertia" draws): a box far larger or smaller than the link's geometry is a wrong inertia.
-* :func:`support`: the ground contacts, their support polygon and the centre of mass projected on
-  the ground, at any joint configuration (check's P001 computes the same at zero).
+* :func:`support`: the ground contacts, their support polygon (model/support.py) and the centre of
+  mass projected on the ground, at any joint configuration (check's P001 asks the same at zero).
 """
 
 from __future__ import annotations
@@ -63,25 +63,17 @@ class Support(NamedTuple):
 
 def support(robot, q: dict | None = None, meshes: bool = True) -> Support | None:
     """Ground contacts at configuration ``q`` with the robot resting on its lowest collision
-    point; None when nothing has collision geometry or mass. Meshes are read through model.meshes."""
+    point (model/support.py, the function check and sim use); None when nothing has collision
+    geometry or mass. Meshes are read through model.meshes."""
     import numpy as np
 
-    from myrabot_desc.checks.context import CheckOptions, Context
-    from myrabot_desc.checks.physics import _signed_distance
-    from myrabot_desc.checks.physics import support as contact_support
-    from myrabot_desc.model.kinematics import center_of_mass, world_transforms
+    from myrabot_desc.model.kinematics import center_of_mass
+    from myrabot_desc.model.support import ground_support, signed_distance
 
-    ctx = Context(robot, CheckOptions(meshes=meshes))
-    ctx.__dict__["world"] = world_transforms(robot, q)      # the configuration asked, not zero
-    found = contact_support(ctx)
-    if found is None:
-        return None
-    zmin, contacts, hull, _com0, _ = found
+    found = ground_support(robot, q, meshes=meshes)
     mass, com = center_of_mass(robot, q)
-    by_link: dict = {}
-    for link, pts in contacts:
-        arr = np.asarray(pts, dtype=float).reshape(-1, 3)
-        by_link[link.name] = np.vstack([by_link[link.name], arr]) if link.name in by_link else arr
-    margin = _signed_distance(hull, (float(com[0]), float(com[1]))) if hull else float("-inf")
-    return Support(ground_z=float(zmin), contacts=by_link, polygon=[tuple(p) for p in hull],
-                   com=np.asarray(com), mass=float(mass), margin=float(margin))
+    if found is None or not mass > 0:
+        return None
+    by_link = {name: np.asarray(pts, dtype=float).reshape(-1, 3) for name, pts in found.contacts.items()}
+    return Support(ground_z=found.ground_z, contacts=by_link, polygon=[tuple(p) for p in found.polygon],
+                   com=np.asarray(com), mass=float(mass), margin=signed_distance(found.polygon, com[:2]))

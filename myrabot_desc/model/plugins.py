@@ -1,0 +1,150 @@
+"""What a Gazebo plugin is and which ROS topics it uses, worked out once: check's G010 (two
+publishers of one topic) and convert (the gz-sim sensors and systems that replace the plugins,
+carrying their topics over) both ask here.
+
+ROS name resolution, as the plugins do it: a relative name lives under the plugin's namespace
+(ROS 1 ``<robotNamespace>``, ROS 2 ``<ros><namespace>``), and for plugins built on gazebo_ros's
+camera utilities also under ``<cameraName>`` (ROS 1 GazeboRosCameraUtils advertises every topic
+on a node handle in ``<robotNamespace>/<cameraName>``); an absolute name (``/scan``) is itself.
+Pure Python (convert imports it without numpy).
+"""
+
+from __future__ import annotations
+
+CAMERA_KINDS = ("camera", "openni_kinect", "depth_camera")
+RAY_KINDS = ("laser", "sonar", "imu")
+_KINDS = (
+    ("openni_kinect", ("gazebo_ros_openni_kinect", "gazebo_ros_kinect")),
+    ("depth_camera", ("gazebo_ros_depth_camera",)),
+    ("camera", ("gazebo_ros_camera", "gazebo_ros_prosilica", "gazebo_ros_multicamera", "gazebo_ros_triggered_camera",
+                "gazebo_ros_triggered_multicamera", "gazebo_ros_wideanglecamera")),
+    ("laser", ("gazebo_ros_laser", "gazebo_ros_gpu_laser", "gazebo_ros_ray_sensor", "gazebo_ros_block_laser",
+               "gazebo_ros_head_hokuyo")),
+    ("sonar", ("gazebo_ros_sonar", "gazebo_ros_range", "hector_gazebo_ros_sonar")),
+    ("imu", ("gazebo_ros_imu", "gazebo_ros_imu_sensor", "hector_gazebo_ros_imu")),
+    ("diff_drive", ("gazebo_ros_roomba", "gazebo_ros_create", "gazebo_ros_diff_drive", "gazebo_ros_kobuki",
+                    "gazebo_ros_diffdrive", "diff_drive_controller", "gz-sim-diff-drive-system",
+                    "ignition-gazebo-diff-drive-system", "diffdrive")),
+    ("skid_steer", ("gazebo_ros_skid_steer_drive",)),
+    ("joint_state", ("gazebo_ros_joint_state_publisher", "gz-sim-joint-state-publisher-system",
+                     "ignition-gazebo-joint-state-publisher-system", "jointstatepublisher")),
+    ("ros_control", ("gazebo_ros_control", "gazebo_ros_controller_manager", "gazebo_ros2_control", "gz_ros2_control",
+                     "ign_ros2_control", "gz_ros2_control-system", "ign_ros2_control-system")),
+)
+# Parameters that name a topic the plugin uses (commandTopic is subscribed: subscribers may share)
+TOPIC_KEYS = ("topicName", "topic", "imageTopicName", "cameraInfoTopicName", "pointCloudTopicName",
+              "depthImageTopicName", "depthImageCameraInfoTopicName", "odometryTopic", "commandTopic",
+              "odom_topic", "tf_topic")
+SUBSCRIBED = ("commandTopic",)
+
+
+def _local(tag) -> str:
+    return tag.rsplit("}", 1)[-1] if isinstance(tag, str) else ""
+
+
+def key(p) -> str:
+    """The plugin's library without lib/.so (Electric controllers: the tag; gz systems: the name)."""
+    lib = (p.filename or "").rsplit("/", 1)[-1]
+    if lib.startswith("lib"):
+        lib = lib[3:]
+    for ext in (".so", ".dylib", ".dll"):
+        if lib.endswith(ext):
+            lib = lib[: -len(ext)]
+    if lib:
+        return lib.lower()
+    if p.dialect == "electric" and p.element is not None:
+        return _local(p.element.tag).lower()
+    return (p.name or "").rsplit("::", 1)[-1].lower()
+
+
+def kind(p) -> str:
+    """A short kind for a plugin/controller: 'openni_kinect', 'depth_camera', 'camera', 'laser', 'sonar',
+    'imu', 'diff_drive', 'skid_steer', 'joint_state', 'ros_control', 'gz', or 'unknown'."""
+    k = key(p)
+    for name, keys in _KINDS:
+        if k in keys:
+            return name
+    if k.startswith(("gz-sim-", "ignition-gazebo-")) or (p.name or "").startswith(("gz::sim", "ignition::gazebo")):
+        return "gz"
+    return "unknown"
+
+
+def param(p, *names) -> str | None:
+    """The first of ``names`` the plugin gives a non-empty value, stripped."""
+    for n in names:
+        v = p.params.get(n)
+        if v not in (None, "") and v.strip():
+            return v.strip()
+    return None
+
+
+def namespace(p) -> str:
+    """The plugin's ROS namespace ('' for none or '/'; an absolute one keeps its leading slash):
+    ROS 1 robotNamespace, else the ROS 2 ``<ros><namespace>``."""
+    ns = param(p, "robotNamespace")
+    if not ns and p.element is not None:
+        ros = next((c for c in p.element if _local(c.tag) == "ros"), None)
+        inner = next((c for c in ros if _local(c.tag) == "namespace"), None) if ros is not None else None
+        ns = (inner.text or "") if inner is not None else ""
+    return (ns or "").strip().rstrip("/")
+
+
+def remap(p, *froms) -> str | None:
+    """ROS 2 ``<ros><remapping>~/out:=scan</remapping>`` target for one of ``froms``."""
+    if p.element is None:
+        return None
+    for r in p.element.iter():
+        if isinstance(r.tag, str) and _local(r.tag) in ("remapping", "argument") and r.text and ":=" in r.text:
+            a, b = r.text.strip().split(":=", 1)
+            if a.strip() in froms:
+                return b.strip()
+    return None
+
+
+def camera_scope(p) -> str:
+    """``cameraName`` of a camera plugin (its topics live under it), else ''."""
+    if kind(p) not in CAMERA_KINDS:
+        return ""
+    return (param(p, "cameraName", "camera_name") or "").strip("/")
+
+
+def resolve(name: str | None, *scope: str | None) -> str | None:
+    """``name`` under the scope parts (outermost first, empty ones skipped); an absolute name or
+    scope part starts over. None when there is no name."""
+    if not name:
+        return None
+    out = ""
+    for part in (*scope, name):
+        if not part:
+            continue
+        out = part if part.startswith("/") or not out else out.rstrip("/") + "/" + part
+    return out
+
+
+def sensor_topic(p, default: str | None = None) -> str | None:
+    """The data topic of a ROS sensor plugin (camera image, scan, range, imu), as the model names
+    it: relative unless the model gave an absolute name. ``default`` when the plugin names none."""
+    k = kind(p)
+    ns = namespace(p)
+    if k in CAMERA_KINDS:
+        image = param(p, "imageTopicName", "image_topic_name") or remap(p, "image_raw", "~/image_raw")
+        return resolve(image or "image_raw", ns, camera_scope(p))
+    if k in RAY_KINDS:
+        return resolve(param(p, "topicName", "topic_name") or remap(p, "~/out", "out") or default, ns)
+    return None
+
+
+def published_topics(p) -> list[tuple[str, str]]:
+    """[(absolute topic, parameter)] the plugin publishes, from the topic parameters it gives
+    (names with an unexpanded ``$`` left out: they are not known)."""
+    ns, camera = namespace(p), camera_scope(p)
+    if "$" in camera:
+        camera = ""
+    out = []
+    for k in TOPIC_KEYS:
+        t = param(p, k)
+        if k in SUBSCRIBED or not t or "$" in t:
+            continue
+        full = resolve(t, ns, camera)
+        out.append((full if full.startswith("/") else "/" + full, k))
+    return out

@@ -1,0 +1,56 @@
+"""One answer to "is this a wheeled base?" (model/drive.py): check's P rules and the MJCF writer's
+free base ask the same function, on every corpus robot."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from myrabot_desc.checks.context import Context
+from myrabot_desc.checks.physics import is_mobile as check_mobile
+from myrabot_desc.convert.mjcf import is_mobile as mjcf_mobile
+from myrabot_desc.model import drive as D
+from myrabot_desc.model.loader import load_robot
+
+ROOT = Path(__file__).resolve().parents[1]
+CORPUS = ROOT / "tests" / "corpus"
+
+
+def _robots():
+    import yaml
+
+    return yaml.safe_load((CORPUS / "robots.yaml").read_text())["robots"]
+
+
+@pytest.mark.corpus
+@pytest.mark.parametrize("r", _robots(), ids=lambda r: r["id"])
+def test_mobile_is_the_manifest_kind(r):
+    """Wheeled bases (mobile, mobile_manipulator) and nothing else; the firefly's six rotors are
+    cylinders about continuous joints too, but vertical: no wheels (check used to call it mobile)."""
+    args = dict(a.split(":=") for a in r.get("args", "").split())
+    robot = load_robot(CORPUS / r["top"], mappings=args, package_paths=[CORPUS / r.get("package_path", ".")])
+    want = r["kind"] in ("mobile", "mobile_manipulator")
+    assert D.is_mobile(robot) is want
+    assert mjcf_mobile(robot) is want and check_mobile(Context(robot)) is want
+    if r["id"] == "firefly":
+        assert sum(j.type == "continuous" for j in robot.joints.values()) == 6 and D.wheel_joints(robot) == []
+
+
+def test_bundled_and_wander_bot_wheels():
+    assert D.wheel_joints(load_robot()) == ["left_wheel_joint", "right_wheel_joint"]
+    wander = load_robot(ROOT / "tests" / "fixtures" / "wander_bot" / "urdf" / "robot.xacro",
+                        package_paths=[ROOT / "tests" / "fixtures"])
+    assert D.is_mobile(wander) and len(D.wheel_joints(wander)) == 2
+
+
+def test_undeclared_wheel_needs_a_level_axle(tmp_path):
+    """No drive declared: a cylinder about a level continuous joint is a wheel, about a vertical
+    one (a rotor, a turntable) is not."""
+    body = ('<link name="b"/><link name="w"><collision><origin rpy="{rpy}"/><geometry><cylinder radius="0.05" '
+            'length="0.02"/></geometry></collision></link><joint name="j" type="continuous"><parent link="b"/>'
+            '<child link="w"/><axis xyz="{axis}"/></joint>')
+    for rpy, axis, want in (("1.5708 0 0", "0 1 0", True), ("0 0 0", "0 0 1", False)):
+        p = tmp_path / "r.urdf"
+        p.write_text(f'<robot name="r">{body.format(rpy=rpy, axis=axis)}</robot>')
+        assert D.is_mobile(load_robot(p)) is want

@@ -290,3 +290,533 @@ def lenient_dae(path: Path, notes):
     notes.warn(f"mesh {path.name}: pycollada rejects it ({reason}) and trimesh then sees no triangles; its "
                f"{len(mesh.faces)} triangles were read ignoring the broken part")
     return mesh
+
+
+# ------------------------------------------------------------------ the facts check needs
+# ``check --inertia`` needs of a mesh only its vertices (extremes, lowest points), its size, whether it
+# is a closed outward surface, and its volume, centroid and inertia. Building full trimesh scenes for
+# that (pycollada's DOM, per-vertex visuals, caches) took ~6 s and ~300 MB over the 69
+# example-robot-data robots; reading the triangles straight into numpy takes a fraction of both.
+# The facts are trimesh's, computed the way it computes them for ``load(process=True)`` (vertices
+# merged on 1e-8 m, and on normals and texture coordinates where the file gives them; each COLLADA
+# primitive merged on its own, then placed), so check reports the same findings whichever reader
+# ran. Files the lean readers do not fully understand go through trimesh.
+
+MERGE_DIGITS = 8            # trimesh's tol.merge (1e-8): vertices closer than this are one vertex
+NORMAL_DIGITS, UV_DIGITS = 2, 4
+_HASH_MULT = (0x9E3779B97F4A7C15, 0xC2B2AE3D27D4EB4F, 0x165667B19E3779F9, 0xD6E8FEB86659FD93)
+MASS_CHUNK = 200_000        # triangles per step of the volume integrals (bounds the temporary arrays)
+
+
+class _NotLean(Exception):
+    """The lean reader does not handle this file: trimesh reads it."""
+
+
+class MeshFacts:
+    """A mesh as check uses it, with trimesh's attribute names (vertices, bounds, extents, volume,
+    center_mass, moment_inertia, is_watertight, is_winding_consistent, is_volume) and ``n_faces``.
+    The faces themselves are not kept: every fact that needs them is computed at load."""
+
+    __slots__ = ("vertices", "n_faces", "volume", "center_mass", "moment_inertia", "is_watertight",
+                 "is_winding_consistent", "reader")
+
+    def __init__(self, vertices, faces, reader: str):
+        self.vertices = vertices
+        self.n_faces = len(faces)
+        self.reader = reader
+        self.is_watertight, self.is_winding_consistent = _watertight(faces)
+        closed = self.is_watertight and self.is_winding_consistent
+        self.volume, self.center_mass, self.moment_inertia = _mass_properties(vertices, faces, closed)
+
+    @classmethod
+    def from_trimesh(cls, mesh) -> "MeshFacts":
+        import numpy as np
+
+        self = cls.__new__(cls)
+        self.vertices = np.asarray(mesh.vertices, dtype=np.float64)
+        self.n_faces = len(mesh.faces)
+        self.reader = "trimesh"
+        self.is_watertight, self.is_winding_consistent = bool(mesh.is_watertight), bool(mesh.is_winding_consistent)
+        self.volume = float(mesh.volume)
+        self.center_mass = np.asarray(mesh.center_mass, dtype=np.float64)
+        self.moment_inertia = np.asarray(mesh.moment_inertia, dtype=np.float64)
+        return self
+
+    @property
+    def bounds(self):
+        import numpy as np
+
+        return np.array([self.vertices.min(axis=0), self.vertices.max(axis=0)])
+
+    @property
+    def extents(self):
+        lo, hi = self.bounds
+        return hi - lo
+
+    @property
+    def is_volume(self) -> bool:
+        import numpy as np
+
+        return bool(self.is_watertight and self.is_winding_consistent and np.isfinite(self.center_mass).all()
+                    and self.volume > 0.0)
+
+
+def facts(path: Path, scale=(1.0, 1.0, 1.0)) -> MeshFacts:
+    """The MeshFacts of one mesh file with a URDF ``scale`` applied (limits as ``load``), or MeshError
+    saying why not."""
+    import numpy as np
+
+    path = Path(path)
+    precheck(path)
+    max_bytes, max_tris = limits()
+    ext = path.suffix.lower()
+    S = np.diag([*map(float, scale), 1.0])
+    if ext in (".stl", ".dae"):
+        data = _read(path, max_bytes)
+        try:
+            parts = _stl_parts(data) if ext == ".stl" else _dae_parts(data)
+            del data
+            v, f = _concatenate(path, parts, max_tris)
+            v, f = _place(v, f, S)
+            return MeshFacts(v, f, ext.lstrip("."))
+        except _NotLean:
+            pass
+    m = load(path, process=True, textures=False)
+    if tuple(scale) != (1.0, 1.0, 1.0):
+        m.apply_transform(S)
+    return MeshFacts.from_trimesh(m)
+
+
+def _place(v, f, T):
+    """trimesh's apply_transform for what check keeps: the points moved (nothing for an identity
+    within 1e-8), the faces turned when the transform mirrors."""
+    import numpy as np
+
+    if T is None or np.abs(T - np.eye(4)).max() < 1e-8:
+        return v, f
+    v = np.dot(T, np.column_stack((v, np.ones(len(v)))).T).T[:, :3]
+    if np.abs(T[:3, :3] - np.eye(3)).max() > 1e-6 and np.linalg.det(T[:3, :3]) < 0:
+        f = np.ascontiguousarray(f[:, ::-1])
+    return np.ascontiguousarray(v), f
+
+
+def _concatenate(path: Path, parts, max_tris: int):
+    """(vertices, faces) of parts [(corners (3k, 3) float64, merge attributes or None, 4x4 pose or
+    None)]: each part merged on its own (trimesh's process), placed, then concatenated."""
+    import numpy as np
+
+    n = sum(len(c) // 3 for c, _a, _T in parts)
+    if n == 0:
+        raise MeshError(f"{path.name} holds no triangles")
+    if n > max_tris:
+        raise MeshError(f"{path.name} has {n} triangles, over the {max_tris} limit ({ENV_TRIANGLES})")
+    verts, faces, offset = [], [], 0
+    parts.reverse()
+    while parts:
+        corners, attrs, T = parts.pop()        # each part's corner arrays are freed once merged
+        if not np.isfinite(corners).all():
+            raise _NotLean("non-finite vertices")   # trimesh drops them with their faces
+        v, f = _merge(corners, attrs)
+        del corners, attrs
+        v, f = _place(v, f, T)
+        verts.append(v)
+        faces.append(f + offset)
+        offset += len(v)
+    v = verts[0] if len(verts) == 1 else np.concatenate(verts)
+    f = faces[0] if len(faces) == 1 else np.concatenate(faces)
+    return v, f
+
+
+def _merge(corners, attrs):
+    """(vertices, faces) of triangle corners with equal vertices merged as trimesh's merge_vertices:
+    equal when position (1e-8) and the given attributes (normals 1e-2, texture coordinates 1e-4)
+    round alike; each vertex keeps the value and the place of its first corner."""
+    import numpy as np
+
+    key = corners * (10 ** MERGE_DIGITS)
+    if attrs is not None:
+        key = np.column_stack([key, attrs])
+    key = np.ascontiguousarray(key.round().astype(np.int64))
+    # one 64-bit hash per row sorts far faster than the rows; a collision (rows that differ but hash
+    # alike) is caught below, and then the rows themselves are compared
+    h = np.zeros(len(key), dtype=np.uint64)
+    for j in range(key.shape[1]):
+        h ^= key[:, j].view(np.uint64) * np.uint64(_HASH_MULT[j % len(_HASH_MULT)])
+        h = (h << np.uint64(7)) | (h >> np.uint64(57))
+    _, first, inverse = np.unique(h, return_index=True, return_inverse=True)
+    del h
+    inverse = inverse.ravel()
+    if not (key[first[inverse]] == key).all():
+        rows = key.view(np.dtype((np.void, key.dtype.itemsize * key.shape[1]))).ravel()
+        _, first, inverse = np.unique(rows, return_index=True, return_inverse=True)
+        inverse = inverse.ravel()
+        del rows
+    del key
+    order = np.argsort(first, kind="stable")
+    rank = np.empty_like(order)
+    rank[order] = np.arange(len(order))
+    faces = rank[inverse.ravel()].reshape(-1, 3)
+    return corners[first[order]], faces
+
+
+def _watertight(faces) -> tuple[bool, bool]:
+    """(every edge shared by exactly two faces, every such pair of edges runs opposite ways): trimesh's
+    is_watertight and is_winding_consistent."""
+    import numpy as np
+
+    e = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2).astype(np.int64)
+    n = int(faces.max()) + 1
+    lo, hi = e.min(axis=1), e.max(axis=1)
+    key = lo * n + hi
+    order = np.argsort(key, kind="stable")
+    ks = key[order]
+    starts = np.flatnonzero(np.r_[True, ks[1:] != ks[:-1]])
+    counts = np.diff(np.r_[starts, len(ks)])
+    watertight = bool((counts == 2).all())
+    pairs = starts[counts == 2]
+    a, b = order[pairs], order[pairs + 1]
+    winding = bool((e[a, 1] == e[b, 0]).all())
+    return watertight, winding
+
+
+def _mass_properties(vertices, faces, inertia: bool = True):
+    """(volume, centroid, inertia about the centroid at density 1) of a closed triangle surface: the
+    divergence-theorem integrals of Eberly's "Polyhedral Mass Properties" (what trimesh uses). With
+    ``inertia`` False only the volume (centroid and inertia NaN): an open surface has neither."""
+    import numpy as np
+
+    integral = np.zeros(10)
+    vt = np.ascontiguousarray(vertices.T)
+    for k in range(0, len(faces), MASS_CHUNK):
+        fc = faces[k:k + MASS_CHUNK].T
+        # (coordinate, corner, triangle): each operand below is one contiguous row per coordinate
+        p0, p1, p2 = vt[:, fc[0]], vt[:, fc[1]], vt[:, fc[2]]
+        e1, e2 = p1 - p0, p2 - p0
+        d = np.empty_like(p0)
+        d[0] = e1[1] * e2[2] - e1[2] * e2[1]
+        d[1] = e1[2] * e2[0] - e1[0] * e2[2]
+        d[2] = e1[0] * e2[1] - e1[1] * e2[0]
+        del e1, e2
+        f1 = p0 + p1 + p2
+        integral[0] += np.dot(d[0], f1[0])
+        if not inertia:
+            continue
+        f2 = p0 * p0 + p1 * p1 + p0 * p1 + p2 * f1
+        f3 = p0 * p0 * p0 + p0 * p0 * p1 + p0 * p1 * p1 + p1 * p1 * p1 + p2 * f2
+        g0 = f2 + (p0 + f1) * p0
+        g1 = f2 + (p1 + f1) * p1
+        g2 = f2 + (p2 + f1) * p2
+        for i in range(3):
+            j = (i + 1) % 3
+            integral[1 + i] += np.dot(d[i], f2[i])
+            integral[4 + i] += np.dot(d[i], f3[i])
+            integral[7 + i] += np.dot(d[i], p0[j] * g0[i] + p1[j] * g1[i] + p2[j] * g2[i])
+    integral /= np.array([6, 24, 24, 24, 60, 60, 60, 120, 120, 120], dtype=np.float64)
+    volume = float(integral[0])
+    if not inertia:
+        return volume, np.full(3, np.nan), np.full((3, 3), np.nan)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        com = integral[1:4] / volume
+    x, y, z = com
+    I = np.zeros((3, 3))
+    I[0, 0] = integral[5] + integral[6] - volume * (y * y + z * z)
+    I[1, 1] = integral[4] + integral[6] - volume * (x * x + z * z)
+    I[2, 2] = integral[4] + integral[5] - volume * (x * x + y * y)
+    I[0, 1] = I[1, 0] = -(integral[7] - volume * x * y)
+    I[1, 2] = I[2, 1] = -(integral[8] - volume * y * z)
+    I[0, 2] = I[2, 0] = -(integral[9] - volume * x * z)
+    return volume, com, I
+
+
+def _fix_rigid(M):
+    """trimesh's scene graph repairs a transform whose rotation is within 1e-5 of orthonormal (float32
+    round-off in a COLLADA <matrix>) to the nearest rotation: the same here, so vertices agree."""
+    import numpy as np
+
+    R = M[:3, :3]
+    dev = np.abs(np.dot(R, R.T) - np.eye(3)).max()
+    if 1e-13 < dev < 1e-5:
+        U, _, V = np.linalg.svd(R)
+        out = np.eye(4)
+        out[:3, :3] = np.dot(U, V)
+        out[:3, 3] = M[:3, 3]
+        return out
+    return M
+
+
+def _stl_parts(data: bytes):
+    """A binary STL (size 84 + 50 n) as one part; anything else (ASCII) goes to trimesh."""
+    import numpy as np
+
+    if len(data) < 84:
+        raise _NotLean("short")
+    n = struct.unpack("<I", data[80:84])[0]
+    if len(data) != 84 + 50 * n:
+        raise _NotLean("not a binary STL")
+    rec = np.frombuffer(data, np.dtype([("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")]), count=n, offset=84)
+    return [(rec["v"].reshape(-1, 3).astype(np.float64), None, None)]
+
+
+_DAE_TRANSFORMS = ("matrix", "translate", "rotate", "scale")
+_DAE_SKIP = {"instance_camera", "instance_light", "instance_controller", "extra", "asset"}
+
+
+def _dae_parts(data: bytes):
+    """The triangles of a COLLADA file as trimesh reads them through pycollada: every <triangles>,
+    <polylist> and <polygons> (fanned) of every geometry instance in the scene, in scene order, with
+    the node transforms (float32, as pycollada) and the merge attributes (normals; texture coordinates
+    when the primitive's material is bound). Anything outside that subset raises _NotLean."""
+    import numpy as np
+    from lxml import etree
+
+    if b"<!DOCTYPE" in data[:65536] or b"<!ENTITY" in data[:65536]:
+        raise _NotLean("DTD")
+    parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False, huge_tree=True,
+                             remove_comments=True, remove_pis=True)
+    try:
+        root = etree.fromstring(data, parser)
+    except (etree.XMLSyntaxError, ValueError, RecursionError) as exc:
+        raise _NotLean(str(exc)) from None
+    if not isinstance(root.tag, str) or not root.tag.endswith("COLLADA"):
+        raise _NotLean("not COLLADA")
+    ns = root.tag[:-len("COLLADA")]
+
+    def tag(name):
+        return ns + name
+
+    ids = {}
+    for el in root.iter():
+        i = el.get("id")
+        if i is not None:
+            if i in ids:
+                raise _NotLean("duplicate id")
+            ids[i] = el
+
+    def ref(url):
+        if not url or not url.startswith("#") or url[1:] not in ids:
+            raise _NotLean(f"broken reference {url}")
+        return ids[url[1:]]
+
+    def floats32(text):
+        return np.fromstring(text or "", dtype=np.float32, sep=" ") if text and text.strip() else \
+            np.zeros(0, np.float32)
+
+    sources = {}
+
+    def source(el, want):
+        """(data (n, k) float32, k) of a <source>: pycollada's FloatSource (NaN read as 0)."""
+        key = id(el)
+        if key not in sources:
+            arr = el.find(tag("float_array"))
+            params = el.findall(f"{tag('technique_common')}/{tag('accessor')}/{tag('param')}")
+            if arr is None or not params:
+                raise _NotLean("source without float_array or accessor")
+            try:
+                d = floats32(arr.text)
+            except ValueError:
+                raise _NotLean("bad float_array") from None
+            d[np.isnan(d)] = 0
+            names = tuple(p.get("name") for p in params)
+            if names == ("U", "V"):
+                names = ("S", "T")
+            if names == ("S", "T", "P"):
+                if d.size % 3:
+                    raise _NotLean("bad texcoords")
+                d, names = d.reshape(-1, 3)[:, :2].ravel(), ("S", "T")
+            if d.size % len(names):
+                raise _NotLean("source size")
+            sources[key] = (d.reshape(-1, len(names)), names)
+        d, names = sources[key]
+        if names != want:
+            raise _NotLean(f"source components {names}")
+        return d
+
+    def prim_parts(prim, bound):
+        """(corners, attrs) of one primitive, or None when it has no triangles."""
+        kind = etree.QName(prim).localname
+        inputs = []             # (offset, semantic, source element) in pycollada's order
+        for inp in prim.findall(tag("input")):
+            try:
+                off = int(inp.get("offset"))
+            except (TypeError, ValueError):
+                raise _NotLean("input offset") from None
+            sem, src = inp.get("semantic"), ref(inp.get("source"))
+            if sem == "VERTEX":
+                if etree.QName(src).localname != "vertices":
+                    raise _NotLean("VERTEX not a <vertices>")
+                for vi in src.findall(tag("input")):
+                    s = vi.get("semantic")
+                    inputs.append((off, "VERTEX" if s == "POSITION" else s, ref(vi.get("source"))))
+            else:
+                inputs.append((off, sem, src))
+        sems = [s for _o, s, _e in inputs]
+        if "VERTEX" not in sems or any(s not in ("VERTEX", "NORMAL", "TEXCOORD") for s in sems):
+            raise _NotLean(f"inputs {sems}")
+        stride = max(o for o, _s, _e in inputs) + 1
+        ps = prim.findall(tag("p"))
+        if kind == "polygons":
+            if prim.find(tag("ph")) is not None:
+                raise _NotLean("polygons with holes")
+            chunks = [np.fromstring(p.text or "", dtype=np.int32, sep=" ") if (p.text or "").strip() else
+                      np.zeros(0, np.int32) for p in ps]
+            if any(c.size % stride for c in chunks):
+                raise _NotLean("polygon index count")
+            vcount = np.array([c.size // stride for c in chunks], dtype=np.int64)
+            idx = np.concatenate(chunks) if chunks else np.zeros(0, np.int32)
+        else:
+            if len(ps) > 1:
+                raise _NotLean("several <p>")
+            text = ps[0].text if ps else ""
+            idx = np.fromstring(text, dtype=np.int32, sep=" ") if (text or "").strip() else np.zeros(0, np.int32)
+            vcount = None
+            if kind == "polylist":
+                vc = prim.find(tag("vcount"))
+                if vc is None:
+                    raise _NotLean("polylist without vcount")
+                vcount = (np.fromstring(vc.text, dtype=np.int64, sep=" ") if (vc.text or "").strip() else
+                          np.zeros(0, np.int64))
+        if idx.size % stride:
+            raise _NotLean("index count")
+        idx = idx.reshape(-1, stride)
+        if vcount is not None:                       # fan each polygon: (c0, ci, ci+1)
+            if (vcount < 3).any() or vcount.sum() != len(idx):
+                raise _NotLean("vcount")
+            ends = np.cumsum(vcount)
+            starts = ends - vcount
+            keep = np.ones(len(idx), dtype=bool)
+            keep[ends - 1] = False
+            keep[ends - 2] = False
+            sel = np.flatnonzero(keep)
+            first = np.repeat(starts, vcount)[sel]
+            idx = np.stack([idx[first], idx[sel + 1], idx[sel + 2]], axis=1).reshape(-1, stride)
+        if len(idx) % 3:
+            raise _NotLean("triangle corners")
+        if len(idx) == 0:
+            return None
+
+        def first_of(sem, want):
+            for off, s, el in inputs:
+                if s == sem:
+                    d = source(el, want)
+                    i = idx[:, off]
+                    if i.min() < 0 or i.max() >= len(d):
+                        raise _NotLean("index out of range")
+                    return d[i]
+            return None
+
+        corners = first_of("VERTEX", ("X", "Y", "Z")).astype(np.float64)
+        attrs = []
+        normals = first_of("NORMAL", ("X", "Y", "Z"))
+        if normals is not None:
+            attrs.append(normals.astype(np.float64) * (10 ** NORMAL_DIGITS))
+        if prim.get("material") in bound and "TEXCOORD" in sems:
+            attrs.append(first_of("TEXCOORD", ("S", "T")).astype(np.float64) * (10 ** UV_DIGITS))
+        return corners, (np.column_stack(attrs) if attrs else None)
+
+    def node_matrix(node):
+        M = np.identity(4, dtype=np.float32)
+        for t in node:
+            name = etree.QName(t).localname if isinstance(t.tag, str) else ""
+            if name not in _DAE_TRANSFORMS:
+                continue
+            try:
+                f = floats32(t.text)
+            except ValueError:
+                raise _NotLean("transform") from None
+            T = np.identity(4, dtype=np.float32)
+            if name == "matrix" and f.size == 16:
+                T = f.reshape(4, 4)
+            elif name == "translate" and f.size == 3:
+                T[:3, 3] = f
+            elif name == "scale" and f.size == 3:
+                T[0, 0], T[1, 1], T[2, 2] = f
+            elif name == "rotate" and f.size == 4:
+                x, y, z = f[:3]
+                a = f[3] * np.pi / 180.0          # float32 throughout, as pycollada
+                c, s = np.cos(a), np.sin(a)
+                t1 = 1 - c
+                T = np.array([[t1 * x * x + c, t1 * x * y - s * z, t1 * x * z + s * y, 0],
+                              [t1 * x * y + s * z, t1 * y * y + c, t1 * y * z - s * x, 0],
+                              [t1 * x * z - s * y, t1 * y * z + s * x, t1 * z * z + c, 0],
+                              [0, 0, 0, 1]], dtype=np.float32)
+            else:
+                raise _NotLean(f"transform {name}")
+            M = np.dot(M, T)
+        return M
+
+    loaded = []
+
+    def materials_ok() -> set:
+        """The ids of the materials pycollada reads (an effect with a broken texture reference or a
+        malformed colour is dropped, and with it every geometry instance bound to it): pycollada
+        itself on the file's images, effects and materials alone, without the heavy geometry."""
+        if not loaded:
+            import copy
+            import io
+
+            try:
+                import collada
+                from collada import common as cc
+            except ImportError:
+                raise _NotLean("pycollada") from None
+            mini = etree.Element(root.tag, root.attrib, nsmap=root.nsmap)
+            for el in root:
+                if isinstance(el.tag, str) and etree.QName(el).localname in (
+                        "asset", "library_images", "library_effects", "library_materials"):
+                    mini.append(copy.deepcopy(el))
+            ignore = [cc.DaeError, cc.DaeIncompleteError, cc.DaeMalformedError, cc.DaeBrokenRefError,
+                      cc.DaeUnsupportedError]
+            try:
+                c = collada.Collada(io.BytesIO(etree.tostring(mini)), ignore=ignore)
+                loaded.append({m.id for m in c.materials})
+            except Exception as exc:    # pycollada's own errors: the full read would fail as well
+                raise _NotLean(f"materials: {exc}") from None
+        return loaded[0]
+
+    parts = []
+
+    def walk(node, parent, depth):
+        if depth > 256:
+            raise _NotLean("nodes nest too deeply")
+        M = None
+        for ch in node:
+            if not isinstance(ch.tag, str):
+                continue
+            name = etree.QName(ch).localname
+            if name in _DAE_TRANSFORMS or name in _DAE_SKIP:
+                continue
+            if M is None:
+                M = np.dot(parent, node_matrix(node))
+            if name == "node":
+                walk(ch, M, depth + 1)
+            elif name == "instance_geometry":
+                geom = ref(ch.get("url"))
+                mesh = geom.find(tag("mesh"))
+                if etree.QName(geom).localname != "geometry" or mesh is None:
+                    raise _NotLean("geometry without <mesh>")
+                bound = set()
+                targets = []
+                for im in ch.iter(tag("instance_material")):
+                    targets.append(ref(im.get("target")).get("id"))
+                    bound.add(im.get("symbol"))
+                if targets and not set(targets) <= materials_ok():
+                    continue        # pycollada drops an instance whose material it could not read
+                for prim in mesh:
+                    pname = etree.QName(prim).localname if isinstance(prim.tag, str) else ""
+                    if pname in ("triangles", "polylist", "polygons"):
+                        got = prim_parts(prim, bound)
+                        if got is not None:
+                            parts.append((got[0], got[1], _fix_rigid(M)))
+                    elif pname in ("tristrips", "trifans"):
+                        raise _NotLean(pname)
+            else:
+                raise _NotLean(f"scene element {name}")
+
+    scene = root.find(tag("scene"))
+    ivs = scene.find(tag("instance_visual_scene")) if scene is not None else None
+    if ivs is None:
+        raise _NotLean("no scene")
+    for node in ref(ivs.get("url")):
+        if isinstance(node.tag, str) and etree.QName(node).localname == "node":
+            walk(node, np.eye(4), 0)
+    return parts

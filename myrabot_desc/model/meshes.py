@@ -480,52 +480,44 @@ def _watertight(faces) -> tuple[bool, bool]:
 
 
 def _mass_properties(vertices, faces, inertia: bool = True):
-    """(volume, centroid, inertia about the centroid at density 1) of a closed triangle surface: the
-    divergence-theorem integrals of Eberly's "Polyhedral Mass Properties" (what trimesh uses). With
-    ``inertia`` False only the volume (centroid and inertia NaN): an open surface has neither."""
+    """(volume, centroid, inertia about the centroid at density 1) of a closed triangle surface.
+
+    The volume is trimesh's sum (Eberly, "Polyhedral Mass Properties": the x part of the divergence
+    theorem over the faces), so a closed surface wound both ways gets trimesh's number too (M004).
+    Centroid and second moments, asked only of a closed, consistently wound surface, sum the
+    tetrahedra (origin, a, b, c) of the faces: first moment det/24 (a + b + c), second moments
+    det/120 (aaᵀ + bbᵀ + ccᵀ + (a+b+c)(a+b+c)ᵀ), four 3×3 products per block of faces. Without
+    ``inertia`` the centroid and inertia are NaN (an open surface has neither)."""
     import numpy as np
 
-    integral = np.zeros(10)
-    vt = np.ascontiguousarray(vertices.T)
+    volume6 = 0.0
+    first = np.zeros(3)
+    second = np.zeros((3, 3))
     for k in range(0, len(faces), MASS_CHUNK):
-        fc = faces[k:k + MASS_CHUNK].T
-        # (coordinate, corner, triangle): each operand below is one contiguous row per coordinate
-        p0, p1, p2 = vt[:, fc[0]], vt[:, fc[1]], vt[:, fc[2]]
-        e1, e2 = p1 - p0, p2 - p0
-        d = np.empty_like(p0)
-        d[0] = e1[1] * e2[2] - e1[2] * e2[1]
-        d[1] = e1[2] * e2[0] - e1[0] * e2[2]
-        d[2] = e1[0] * e2[1] - e1[1] * e2[0]
-        del e1, e2
-        f1 = p0 + p1 + p2
-        integral[0] += np.dot(d[0], f1[0])
+        fc = faces[k:k + MASS_CHUNK]
+        a, b, c = vertices[fc[:, 0]], vertices[fc[:, 1]], vertices[fc[:, 2]]
+        e1, e2 = b - a, c - a
+        cross_x = e1[:, 1] * e2[:, 2] - e1[:, 2] * e2[:, 1]
+        volume6 += float(np.dot(cross_x, a[:, 0] + b[:, 0] + c[:, 0]))
         if not inertia:
             continue
-        f2 = p0 * p0 + p1 * p1 + p0 * p1 + p2 * f1
-        f3 = p0 * p0 * p0 + p0 * p0 * p1 + p0 * p1 * p1 + p1 * p1 * p1 + p2 * f2
-        g0 = f2 + (p0 + f1) * p0
-        g1 = f2 + (p1 + f1) * p1
-        g2 = f2 + (p2 + f1) * p2
-        for i in range(3):
-            j = (i + 1) % 3
-            integral[1 + i] += np.dot(d[i], f2[i])
-            integral[4 + i] += np.dot(d[i], f3[i])
-            integral[7 + i] += np.dot(d[i], p0[j] * g0[i] + p1[j] * g1[i] + p2[j] * g2[i])
-    integral /= np.array([6, 24, 24, 24, 60, 60, 60, 120, 120, 120], dtype=np.float64)
-    volume = float(integral[0])
+        del e1, e2
+        det = np.einsum("ij,ij->i", a, np.cross(b, c))
+        s = a + b + c
+        first += det @ s
+        for p in (a, b, c, s):
+            second += (p * det[:, None]).T @ p
+    volume = volume6 / 6.0
     if not inertia:
         return volume, np.full(3, np.nan), np.full((3, 3), np.nan)
+    first /= 24.0
+    second /= 120.0
     with np.errstate(divide="ignore", invalid="ignore"):
-        com = integral[1:4] / volume
-    x, y, z = com
-    I = np.zeros((3, 3))
-    I[0, 0] = integral[5] + integral[6] - volume * (y * y + z * z)
-    I[1, 1] = integral[4] + integral[6] - volume * (x * x + z * z)
-    I[2, 2] = integral[4] + integral[5] - volume * (x * x + y * y)
-    I[0, 1] = I[1, 0] = -(integral[7] - volume * x * y)
-    I[1, 2] = I[2, 1] = -(integral[8] - volume * y * z)
-    I[0, 2] = I[2, 0] = -(integral[9] - volume * x * z)
-    return volume, com, I
+        com = first / volume
+    # about the origin: tr(S) 1 - S; then to the centroid (parallel axes)
+    I = np.trace(second) * np.eye(3) - second
+    I -= volume * (float(com @ com) * np.eye(3) - np.outer(com, com))
+    return volume, com, (I + I.T) / 2
 
 
 def _fix_rigid(M):

@@ -371,10 +371,11 @@ def facts(path: Path, scale=(1.0, 1.0, 1.0)) -> MeshFacts:
     max_bytes, max_tris = limits()
     ext = path.suffix.lower()
     S = np.diag([*map(float, scale), 1.0])
-    if ext in (".stl", ".dae"):
+    readers = {".stl": _stl_parts, ".dae": _dae_parts, ".obj": _obj_parts}
+    if ext in readers:
         data = _read(path, max_bytes)
         try:
-            parts = _stl_parts(data) if ext == ".stl" else _dae_parts(data)
+            parts = readers[ext](data)
             del data
             v, f = _concatenate(path, parts, max_tris)
             v, f = _place(v, f, S)
@@ -405,7 +406,8 @@ def _concatenate(path: Path, parts, max_tris: int):
     None)]: each part merged on its own (trimesh's process), placed, then concatenated."""
     import numpy as np
 
-    n = sum(len(c) // 3 for c, _a, _T in parts)
+    parts = [p if len(p) == 4 else (*p, None) for p in parts]
+    n = sum(len(p[0]) // 3 for p in parts)
     if n == 0:
         raise MeshError(f"{path.name} holds no triangles")
     if n > max_tris:
@@ -413,10 +415,10 @@ def _concatenate(path: Path, parts, max_tris: int):
     verts, faces, offset = [], [], 0
     parts.reverse()
     while parts:
-        corners, attrs, T = parts.pop()        # each part's corner arrays are freed once merged
+        corners, attrs, T, rank = parts.pop()        # each part's corner arrays are freed once merged
         if not np.isfinite(corners).all():
             raise _NotLean("non-finite vertices")   # trimesh drops them with their faces
-        v, f = _merge(corners, attrs)
+        v, f = _merge(corners, attrs, rank)
         del corners, attrs
         v, f = _place(v, f, T)
         verts.append(v)
@@ -427,11 +429,18 @@ def _concatenate(path: Path, parts, max_tris: int):
     return v, f
 
 
-def _merge(corners, attrs):
+def _merge(corners, attrs, rank=None):
     """(vertices, faces) of triangle corners with equal vertices merged as trimesh's merge_vertices:
     equal when position (1e-8) and the given attributes (normals 1e-2, texture coordinates 1e-4)
-    round alike; each vertex keeps the value and the place of its first corner."""
+    round alike; each vertex keeps the value and the place of its first corner (first in ``rank``, a
+    permutation of the corners, when given)."""
     import numpy as np
+
+    if rank is not None:
+        v, f = _merge(corners[rank], None if attrs is None else attrs[rank])
+        inverse = np.empty(len(rank), dtype=np.int64)
+        inverse[rank] = f.ravel()
+        return v, inverse.reshape(-1, 3)
 
     key = corners * (10 ** MERGE_DIGITS)
     if attrs is not None:
@@ -812,3 +821,103 @@ def _dae_parts(data: bytes):
         if isinstance(node.tag, str) and etree.QName(node).localname == "node":
             walk(node, np.eye(4), 0)
     return parts
+
+
+def _obj_parts(data: bytes):
+    """A Wavefront OBJ as trimesh reads it without its .mtl (check opens no file but the mesh): one
+    part per ``usemtl`` material (trimesh's order: the last used first), triangles and quads, corners
+    merged on position and, where the faces give them, texture coordinates and normals, each vertex
+    taken from the corner trimesh keeps. The subset: v/vt/vn lines of fixed width, faces of 3 or 4
+    corners all written alike (v, v/vt, v//vn or v/vt/vn) with positive indices. Anything else
+    raises _NotLean."""
+    import numpy as np
+
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError:
+        raise _NotLean("not UTF-8") from None
+    rows = {"v": [], "vt": [], "vn": []}
+    groups: dict = {}
+    material = None
+    style = None
+    for line in text.replace("\\\r\n", "").replace("\\\n", "").splitlines():
+        head, _, rest = line.strip().partition(" ")
+        if head in rows:
+            rows[head].append(rest)
+        elif head == "f":
+            first = rest.split(None, 1)[0] if rest.strip() else ""
+            st = "//" in first, first.count("/")
+            if style is None:
+                style = st
+            elif st != style:
+                raise _NotLean("mixed face formats")
+            groups.setdefault(material, []).append(rest)
+        elif head == "usemtl":
+            material = rest.strip()
+        elif "usemtl" in line or head in ("vp", "curv", "surf", "cstype", "deg"):
+            raise _NotLean(head)
+    if not groups or not rows["v"]:
+        raise _NotLean("no faces")
+
+    def table(key, width):
+        vals = rows[key]
+        if not vals:
+            return None
+        arr = np.fromstring(" ".join(vals), dtype=np.float64, sep=" ")
+        per = len(vals[0].split())
+        if per < width or arr.size != per * len(vals) or (key == "v" and per != 3):
+            raise _NotLean(f"{key} rows")
+        return arr.reshape(len(vals), per)[:, :width]
+
+    v, vt, vn = table("v", 3), table("vt", 2), table("vn", 3)
+    has_vt = style[1] >= 1 and not style[0]
+    has_vn = style[0] or style[1] == 2
+    width = 1 + has_vt + has_vn
+    parts = []
+    for faces in reversed(list(groups.values())):
+        sizes = np.array([len(f.split()) for f in faces])
+        if ((sizes != 3) & (sizes != 4)).any():
+            raise _NotLean("face corners")
+        flat = np.fromstring(" ".join(faces).replace("/", " "), dtype=np.int64, sep=" ")
+        if flat.size != sizes.sum() * width or (flat <= 0).any():
+            raise _NotLean("face indices")
+        flat = flat.reshape(-1, width) - 1
+        # the triangles, then the quads' halves (0 1 2) and (2 3 0), as trimesh splits them
+        starts = np.concatenate([[0], np.cumsum(sizes)[:-1]])
+        tri, quad = starts[sizes == 3], starts[sizes == 4]
+        order = np.concatenate([np.stack([tri, tri + 1, tri + 2], 1).ravel(),
+                                np.stack([quad, quad + 1, quad + 2], 1).ravel(),
+                                np.stack([quad + 2, quad + 3, quad], 1).ravel()])
+        idx = flat[order]
+        for col, table_ in zip(range(width), [v] + ([vt] if has_vt else []) + ([vn] if has_vn else [])):
+            if table_ is None or idx[:, col].max() >= len(table_):
+                raise _NotLean("index out of range")
+        attrs = []
+        if has_vt:
+            attrs.append(vt[idx[:, 1]] * (10 ** UV_DIGITS))
+        if has_vn:
+            attrs.append(vn[idx[:, width - 1]] * (10 ** NORMAL_DIGITS))
+        rank = _obj_rank(idx)
+        parts.append((v[idx[:, 0]], np.column_stack(attrs) if attrs else None, None, rank))
+    return parts
+
+
+def _obj_rank(idx):
+    """The corners in the order of the vertices trimesh builds from OBJ index tuples (v[, vt][, vn]):
+    the distinct tuples ordered by their packed value (vn, then vt, then v), then by vertex index
+    with numpy's default sort, as trimesh's unmerge does; merging then keeps the first of each."""
+    import numpy as np
+
+    if idx.shape[1] == 1:
+        return np.argsort(idx[:, 0], kind="stable")
+    bits = 64 // idx.shape[1]
+    if idx.max() >= (1 << (bits - 1)) - 1:
+        raise _NotLean("indices too large to pack")
+    key = np.zeros(len(idx), dtype=np.uint64)
+    for k in range(idx.shape[1]):
+        key |= (idx[:, k] + (1 << (bits - 1))).astype(np.uint64) << np.uint64(k * bits)
+    _, first, inverse = np.unique(key, return_index=True, return_inverse=True)
+    order = idx[first, 0].argsort()
+    remap = np.empty(len(order), dtype=np.int64)
+    remap[order] = np.arange(len(order))
+    return np.argsort(remap[inverse.ravel()], kind="stable")

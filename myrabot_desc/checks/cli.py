@@ -195,14 +195,16 @@ def _balanced(ex, tasks: list):
 
 def _preload(tasks) -> None:
     """Import what every worker needs once, before forking: the workers share those pages
-    (about 110 MB of numpy, trimesh and their imports each would otherwise hold) and skip the
-    imports. gc.freeze() keeps the collector from touching (and so copying) them."""
+    (numpy, lxml, xacro and their imports, which each would otherwise hold) and skip the imports.
+    gc.freeze() keeps the collector from touching (and so copying) them."""
     import gc
     import importlib
 
     names = ["lxml.etree", "xacro", "numpy", "myrabot_desc.model.loader", "myrabot_desc.checks.registry"]
     if any(t.options.load_meshes for t in tasks):
-        names.append("trimesh")
+        # the lean mesh readers (STL, COLLADA, OBJ) need numpy and, for COLLADA materials, pycollada;
+        # trimesh (0.6 s, ~60 MB) is imported only by a worker meeting a format they do not read
+        names += ["myrabot_desc.model.meshes", "collada"]
     for name in names:
         try:
             importlib.import_module(name)

@@ -529,6 +529,25 @@ def _mass_properties(vertices, faces, inertia: bool = True):
     return volume, com, (I + I.T) / 2
 
 
+def _stl_ascii_parts(data: bytes):
+    """An ASCII STL with one solid, as trimesh reads it: the numbers after each ``vertex``, three by
+    three (several solids, which trimesh keeps apart, go to trimesh)."""
+    import numpy as np
+
+    try:
+        text = data.decode("utf-8").lower()
+    except UnicodeDecodeError:
+        raise _NotLean("not text") from None
+    start, end = text.find("solid"), text.find("endsolid")
+    if start < 0 or end < start or text.count("endsolid") != 1:
+        raise _NotLean("not one solid")
+    pieces = text[start:end].split("vertex")[1:]
+    corners = np.fromstring(" ".join(p[:p.find("\n")] for p in pieces), dtype=np.float64, sep=" ")
+    if len(corners) < 3 or len(corners) % 9:
+        raise _NotLean("vertex count")
+    return [(corners.reshape(-1, 3), None, None)]
+
+
 def _fix_rigid(M):
     """trimesh's scene graph repairs a transform whose rotation is within 1e-5 of orthonormal (float32
     round-off in a COLLADA <matrix>) to the nearest rotation: the same here, so vertices agree."""
@@ -546,14 +565,15 @@ def _fix_rigid(M):
 
 
 def _stl_parts(data: bytes):
-    """A binary STL (size 84 + 50 n) as one part; anything else (ASCII) goes to trimesh."""
+    """A binary STL (size 84 + 50 n; trimesh's test too, whatever the header says) as one part, else
+    an ASCII one."""
     import numpy as np
 
     if len(data) < 84:
         raise _NotLean("short")
     n = struct.unpack("<I", data[80:84])[0]
     if len(data) != 84 + 50 * n:
-        raise _NotLean("not a binary STL")
+        return _stl_ascii_parts(data)
     rec = np.frombuffer(data, np.dtype([("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")]), count=n, offset=84)
     return [(rec["v"].reshape(-1, 3).astype(np.float64), None, None)]
 
@@ -827,9 +847,9 @@ def _obj_parts(data: bytes):
     """A Wavefront OBJ as trimesh reads it without its .mtl (check opens no file but the mesh): one
     part per ``usemtl`` material (trimesh's order: the last used first), triangles and quads, corners
     merged on position and, where the faces give them, texture coordinates and normals, each vertex
-    taken from the corner trimesh keeps. The subset: v/vt/vn lines of fixed width, faces of 3 or 4
-    corners all written alike (v, v/vt, v//vn or v/vt/vn) with positive indices. Anything else
-    raises _NotLean."""
+    taken from the corner trimesh keeps. The subset: v/vt/vn lines of fixed width, faces all written
+    alike (v, v/vt, v//vn or v/vt/vn) with positive indices, polygons fanned. Anything else raises
+    _NotLean."""
     import numpy as np
 
     try:
@@ -850,7 +870,7 @@ def _obj_parts(data: bytes):
             if style is None:
                 style = st
             elif st != style:
-                raise _NotLean("mixed face formats")
+                style = "mixed"
             groups.setdefault(material, []).append(rest)
         elif head == "usemtl":
             material = rest.strip()
@@ -865,29 +885,46 @@ def _obj_parts(data: bytes):
             return None
         arr = np.fromstring(" ".join(vals), dtype=np.float64, sep=" ")
         per = len(vals[0].split())
-        if per < width or arr.size != per * len(vals) or (key == "v" and per != 3):
+        if per < width or arr.size != per * len(vals):       # v x y z [w | r g b]: x y z
             raise _NotLean(f"{key} rows")
         return arr.reshape(len(vals), per)[:, :width]
 
     v, vt, vn = table("v", 3), table("vt", 2), table("vn", 3)
-    has_vt = style[1] >= 1 and not style[0]
-    has_vn = style[0] or style[1] == 2
-    width = 1 + has_vt + has_vn
     parts = []
     for faces in reversed(list(groups.values())):
         sizes = np.array([len(f.split()) for f in faces])
-        if ((sizes != 3) & (sizes != 4)).any():
-            raise _NotLean("face corners")
-        flat = np.fromstring(" ".join(faces).replace("/", " "), dtype=np.int64, sep=" ")
+        if (sizes < 3).any() or (sizes.min() == sizes.max() > 4):
+            raise _NotLean("face corners")     # (trimesh's reading of all-n-gon groups is not ours)
+        if style != "mixed":
+            has_vt = style[1] >= 1 and not style[0]
+            has_vn = style[0] or style[1] == 2
+            width = 1 + has_vt + has_vn
+            flat = np.fromstring(" ".join(faces).replace("/", " "), dtype=np.int64, sep=" ")
+        else:
+            # corners written differently: a group keeps texture coordinates (normals) only when
+            # every one of its corners gives them, as trimesh's per-corner reading does
+            tok = [t.split("/") for f in faces for t in f.split()]
+            if any(len(t) > 3 or not t[0] for t in tok):
+                raise _NotLean("face tokens")
+            has_vt = all(len(t) > 1 and t[1] for t in tok)
+            has_vn = all(len(t) > 2 and t[2] for t in tok)
+            keep = [0] + ([1] if has_vt else []) + ([2] if has_vn else [])
+            width = len(keep)
+            try:
+                flat = np.array([int(t[k]) for t in tok for k in keep], dtype=np.int64)
+            except ValueError:
+                raise _NotLean("face indices") from None
         if flat.size != sizes.sum() * width or (flat <= 0).any():
             raise _NotLean("face indices")
         flat = flat.reshape(-1, width) - 1
         # the triangles, then the quads' halves (0 1 2) and (2 3 0), as trimesh splits them
         starts = np.concatenate([[0], np.cumsum(sizes)[:-1]])
         tri, quad = starts[sizes == 3], starts[sizes == 4]
+        fans = [np.stack([s0, s0 + i + 1, s0 + i + 2], 1).ravel()          # larger polygons: fans
+                for n in np.unique(sizes[sizes > 4]) for s0 in [starts[sizes == n]] for i in range(n - 2)]
         order = np.concatenate([np.stack([tri, tri + 1, tri + 2], 1).ravel(),
                                 np.stack([quad, quad + 1, quad + 2], 1).ravel(),
-                                np.stack([quad + 2, quad + 3, quad], 1).ravel()])
+                                np.stack([quad + 2, quad + 3, quad], 1).ravel()] + fans)
         idx = flat[order]
         for col, table_ in zip(range(width), [v] + ([vt] if has_vt else []) + ([vn] if has_vn else [])):
             if table_ is None or idx[:, col].max() >= len(table_):

@@ -34,6 +34,15 @@ FILES = [
     "romeo_description/meshes/V1/collision/LHand.dae",
     "panda_description/meshes/visual/link7.dae",
     "anymal_b_simple_description/meshes/foot/anymal_foot.dae",
+    # OBJ: usemtl parts with v/vt/vn (laikago trunk), vertex colours (laikago hip), polygons of up to
+    # 38 corners (alex wrist), v//vn and v/vt/vn corners in one file (alex palm), plain v/f (solo cube)
+    "laikago_description/meshes/trunk.obj",
+    "laikago_description/meshes/hip.obj",
+    "alex_description/meshes/wristmesh.updated.obj",
+    "alex_description/meshes/SakePalmLink.obj",
+    "solo_description/meshes/cube.obj",
+    # ASCII STL
+    "simple_humanoid_description/meshes/box.stl",
 ]
 
 
@@ -146,3 +155,20 @@ def test_principal_moments_match_numpy():
     ev = principal(ine)
     np.testing.assert_allclose(ev, np.linalg.eigvalsh(ine.tensor()), rtol=1e-12, atol=1e-20)
     assert ev[0] == pytest.approx(-2.463e-08, rel=1e-3)    # I004's example: not positive definite
+
+
+def test_what_the_lean_readers_do_not_read_goes_through_trimesh(tmp_path):
+    """Two solids in one ASCII STL (trimesh keeps them apart) and a PLY: trimesh's facts."""
+    two = tmp_path / "two.stl"
+    two.write_text(tetrahedron_stl(0.1) + tetrahedron_stl(0.1).replace("solid tetrahedron", "solid second"))
+    f = M.facts(two)
+    assert f.reader == "trimesh" and f.n_faces == 8
+    _same(f, _trimesh_facts(two))
+    import trimesh
+
+    ply = tmp_path / "t.ply"
+    trimesh.load(str(ROBOTS / "ur_description/meshes/ur5/collision/base.stl")).export(str(ply))
+    g = M.facts(ply)
+    assert g.reader == "trimesh" and g.is_volume
+    assert g.volume == pytest.approx(M.facts(ROBOTS / "ur_description/meshes/ur5/collision/base.stl").volume,
+                                     rel=1e-9)

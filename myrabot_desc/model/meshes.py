@@ -852,32 +852,31 @@ def _obj_parts(data: bytes):
     _NotLean."""
     import numpy as np
 
+    import re
+
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError:
         raise _NotLean("not UTF-8") from None
-    rows = {"v": [], "vt": [], "vn": []}
+    text = text.replace("\r\n", "\n").replace("\\\n", "")
+    lines = text.split("\n")
+    # trimesh reads lines that start with "v ", "vt ", "vn ", "f " and "usemtl" (no indent)
+    rows = {k: [ln[len(k) + 1:] for ln in lines if ln.startswith(k + " ")] for k in ("v", "vt", "vn")}
     groups: dict = {}
-    material = None
-    style = None
-    for line in text.replace("\\\r\n", "").replace("\\\n", "").splitlines():
-        head, _, rest = line.strip().partition(" ")
-        if head in rows:
-            rows[head].append(rest)
-        elif head == "f":
-            first = rest.split(None, 1)[0] if rest.strip() else ""
-            st = "//" in first, first.count("/")
-            if style is None:
-                style = st
-            elif st != style:
-                style = "mixed"
-            groups.setdefault(material, []).append(rest)
-        elif head == "usemtl":
-            material = rest.strip()
-        elif "usemtl" in line or head in ("vp", "curv", "surf", "cstype", "deg"):
-            raise _NotLean(head)
-    if not groups or not rows["v"]:
+    if "usemtl" not in text:
+        groups[None] = [ln[2:] for ln in lines if ln.startswith("f ")]
+    else:
+        if text.count("usemtl") != ("\n" + text).count("\nusemtl"):
+            raise _NotLean("usemtl inside a line")
+        material = None
+        for ln in lines:
+            if ln.startswith("f "):
+                groups.setdefault(material, []).append(ln[2:])
+            elif ln.startswith("usemtl"):
+                material = ln[6:].strip()
+    if not any(groups.values()) or not rows["v"]:
         raise _NotLean("no faces")
+    groups = {k: g for k, g in groups.items() if g}
 
     def table(key, width):
         vals = rows[key]
@@ -892,14 +891,17 @@ def _obj_parts(data: bytes):
     v, vt, vn = table("v", 3), table("vt", 2), table("vn", 3)
     parts = []
     for faces in reversed(list(groups.values())):
-        sizes = np.array([len(f.split()) for f in faces])
+        joined = " ".join(faces)
+        ntok, slashes, double = len(joined.split()), joined.count("/"), joined.count("//")
+        sizes = (np.full(len(faces), 3) if ntok == 3 * len(faces) else np.array([len(f.split()) for f in faces]))
         if (sizes < 3).any() or (sizes.min() == sizes.max() > 4):
             raise _NotLean("face corners")     # (trimesh's reading of all-n-gon groups is not ours)
-        if style != "mixed":
-            has_vt = style[1] >= 1 and not style[0]
-            has_vn = style[0] or style[1] == 2
+        style = {(0, 0): (False, False), (ntok, 0): (True, False), (2 * ntok, ntok): (False, True),
+                 (2 * ntok, 0): (True, True)}.get((slashes, double))
+        if style is not None:                  # every corner written alike: v, v/vt, v//vn or v/vt/vn
+            has_vt, has_vn = style
             width = 1 + has_vt + has_vn
-            flat = np.fromstring(" ".join(faces).replace("/", " "), dtype=np.int64, sep=" ")
+            flat = np.fromstring(joined.replace("/", " "), dtype=np.int64, sep=" ")
         else:
             # corners written differently: a group keeps texture coordinates (normals) only when
             # every one of its corners gives them, as trimesh's per-corner reading does

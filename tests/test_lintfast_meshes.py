@@ -172,3 +172,19 @@ def test_what_the_lean_readers_do_not_read_goes_through_trimesh(tmp_path):
     assert g.reader == "trimesh" and g.is_volume
     assert g.volume == pytest.approx(M.facts(ROBOTS / "ur_description/meshes/ur5/collision/base.stl").volume,
                                      rel=1e-9)
+
+
+def test_malformed_numbers_fall_back_to_trimesh(tmp_path):
+    """A vertex line numpy cannot read to its end: the lean reader steps aside, trimesh decides."""
+    bad = tmp_path / "bad.obj"
+    bad.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1x\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
+    try:
+        ref = _trimesh_facts(bad)
+    except M.MeshError as exc:
+        with pytest.raises(M.MeshError) as got:
+            M.facts(bad)
+        assert str(got.value) == str(exc)
+        return
+    f = M.facts(bad)
+    assert f.reader == "trimesh"
+    _same(f, ref)

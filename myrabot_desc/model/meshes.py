@@ -542,7 +542,7 @@ def _stl_ascii_parts(data: bytes):
     if start < 0 or end < start or text.count("endsolid") != 1:
         raise _NotLean("not one solid")
     pieces = text[start:end].split("vertex")[1:]
-    corners = np.fromstring(" ".join(p[:p.find("\n")] for p in pieces), dtype=np.float64, sep=" ")
+    corners = _numbers(" ".join(p[:p.find("\n")] for p in pieces), np.float64)
     if len(corners) < 3 or len(corners) % 9:
         raise _NotLean("vertex count")
     return [(corners.reshape(-1, 3), None, None)]
@@ -562,6 +562,23 @@ def _fix_rigid(M):
         out[:3, 3] = M[:3, 3]
         return out
     return M
+
+
+def _numbers(text, dtype):
+    """The whitespace-separated numbers of a text (numpy's C parser); _NotLean when some of it is not
+    a number (numpy would stop there with a warning and return what it read)."""
+    import warnings
+
+    import numpy as np
+
+    if not text or not text.strip():
+        return np.zeros(0, dtype)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        try:
+            return np.fromstring(text, dtype=dtype, sep=" ")
+        except (ValueError, DeprecationWarning):
+            raise _NotLean("not a list of numbers") from None
 
 
 def _stl_parts(data: bytes):
@@ -619,8 +636,7 @@ def _dae_parts(data: bytes):
         return ids[url[1:]]
 
     def floats32(text):
-        return np.fromstring(text or "", dtype=np.float32, sep=" ") if text and text.strip() else \
-            np.zeros(0, np.float32)
+        return _numbers(text, np.float32)
 
     sources = {}
 
@@ -678,8 +694,7 @@ def _dae_parts(data: bytes):
         if kind == "polygons":
             if prim.find(tag("ph")) is not None:
                 raise _NotLean("polygons with holes")
-            chunks = [np.fromstring(p.text or "", dtype=np.int32, sep=" ") if (p.text or "").strip() else
-                      np.zeros(0, np.int32) for p in ps]
+            chunks = [_numbers(p.text, np.int32) for p in ps]
             if any(c.size % stride for c in chunks):
                 raise _NotLean("polygon index count")
             vcount = np.array([c.size // stride for c in chunks], dtype=np.int64)
@@ -688,14 +703,13 @@ def _dae_parts(data: bytes):
             if len(ps) > 1:
                 raise _NotLean("several <p>")
             text = ps[0].text if ps else ""
-            idx = np.fromstring(text, dtype=np.int32, sep=" ") if (text or "").strip() else np.zeros(0, np.int32)
+            idx = _numbers(text, np.int32)
             vcount = None
             if kind == "polylist":
                 vc = prim.find(tag("vcount"))
                 if vc is None:
                     raise _NotLean("polylist without vcount")
-                vcount = (np.fromstring(vc.text, dtype=np.int64, sep=" ") if (vc.text or "").strip() else
-                          np.zeros(0, np.int64))
+                vcount = _numbers(vc.text, np.int64)
         if idx.size % stride:
             raise _NotLean("index count")
         idx = idx.reshape(-1, stride)
@@ -882,7 +896,7 @@ def _obj_parts(data: bytes):
         vals = rows[key]
         if not vals:
             return None
-        arr = np.fromstring(" ".join(vals), dtype=np.float64, sep=" ")
+        arr = _numbers(" ".join(vals), np.float64)
         per = len(vals[0].split())
         if per < width or arr.size != per * len(vals):       # v x y z [w | r g b]: x y z
             raise _NotLean(f"{key} rows")
@@ -901,7 +915,7 @@ def _obj_parts(data: bytes):
         if style is not None:                  # every corner written alike: v, v/vt, v//vn or v/vt/vn
             has_vt, has_vn = style
             width = 1 + has_vt + has_vn
-            flat = np.fromstring(joined.replace("/", " "), dtype=np.int64, sep=" ")
+            flat = _numbers(joined.replace("/", " "), np.int64)
         else:
             # corners written differently: a group keeps texture coordinates (normals) only when
             # every one of its corners gives them, as trimesh's per-corner reading does

@@ -61,6 +61,7 @@ def describe(g) -> str:
 _MESHES: dict = {}          # (path, mtime, scale) -> mesh: robots in one run share mesh files
 _MAX_CACHED = 512
 _MAX_CACHED_BYTES = 32_000_000   # mesh memory kept across robots (a -j N check has N such caches)
+_CACHED = [0]                    # bytes held by _MESHES
 
 
 def load_mesh(g):
@@ -76,9 +77,9 @@ def load_mesh(g):
     if key not in _MESHES:
         m = _load_mesh(g)
         _MESHES[key] = m
-        while len(_MESHES) > _MAX_CACHED or (len(_MESHES) > 1 and sum(map(_nbytes, _MESHES.values()))
-                                              > _MAX_CACHED_BYTES):
-            _MESHES.pop(next(iter(_MESHES)))
+        _CACHED[0] += _nbytes(m)
+        while len(_MESHES) > _MAX_CACHED or (len(_MESHES) > 1 and _CACHED[0] > _MAX_CACHED_BYTES):
+            _CACHED[0] -= _nbytes(_MESHES.pop(next(iter(_MESHES))))
         return m
     return _MESHES[key]
 

@@ -188,3 +188,18 @@ def test_malformed_numbers_fall_back_to_trimesh(tmp_path):
     f = M.facts(bad)
     assert f.reader == "trimesh"
     _same(f, ref)
+
+
+@pytest.mark.parametrize("faces", [
+    [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]],                 # closed, outward
+    [[0, 2, 1], [0, 1, 3], [0, 3, 2]],                            # open
+    [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 3, 2]],                 # closed, one face turned
+    [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3], [0, 1, 4], [1, 0, 4]],   # an edge of four faces
+    [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3], [0, 0, 1]],      # a degenerate face
+])
+def test_watertight_and_winding_as_trimesh(faces):
+    import trimesh
+
+    f = np.array(faces)
+    mesh = trimesh.Trimesh(np.random.default_rng(1).random((5, 3)), f, process=False)
+    assert M._watertight(f) == (mesh.is_watertight, mesh.is_winding_consistent)

@@ -318,7 +318,7 @@ class MeshFacts:
     The faces themselves are not kept: every fact that needs them is computed at load."""
 
     __slots__ = ("vertices", "n_faces", "volume", "center_mass", "moment_inertia", "is_watertight",
-                 "is_winding_consistent", "reader")
+                 "is_winding_consistent", "reader", "_bounds")
 
     def __init__(self, vertices, faces, reader: str):
         self.vertices = vertices
@@ -346,7 +346,10 @@ class MeshFacts:
     def bounds(self):
         import numpy as np
 
-        return np.array([self.vertices.min(axis=0), self.vertices.max(axis=0)])
+        b = getattr(self, "_bounds", None)
+        if b is None:
+            b = self._bounds = np.array([self.vertices.min(axis=0), self.vertices.max(axis=0)])
+        return b.copy()
 
     @property
     def extents(self):
@@ -470,22 +473,28 @@ def _merge(corners, attrs, rank=None):
 
 def _watertight(faces) -> tuple[bool, bool]:
     """(every edge shared by exactly two faces, every such pair of edges runs opposite ways): trimesh's
-    is_watertight and is_winding_consistent."""
+    is_watertight and is_winding_consistent, from two sorts of edge keys."""
     import numpy as np
 
     e = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2).astype(np.int64)
     n = int(faces.max()) + 1
     lo, hi = e.min(axis=1), e.max(axis=1)
-    key = lo * n + hi
-    order = np.argsort(key, kind="stable")
-    ks = key[order]
-    starts = np.flatnonzero(np.r_[True, ks[1:] != ks[:-1]])
-    counts = np.diff(np.r_[starts, len(ks)])
+    und = np.sort(lo * n + hi)
+    starts = np.flatnonzero(np.r_[True, und[1:] != und[:-1]])
+    counts = np.diff(np.r_[starts, len(und)])
     watertight = bool((counts == 2).all())
-    pairs = starts[counts == 2]
-    a, b = order[pairs], order[pairs + 1]
-    winding = bool((e[a, 1] == e[b, 0]).all())
-    return watertight, winding
+    # a pair runs the same way when its directed key repeats (an edge from a vertex to itself, which
+    # trimesh counts as opposite, excepted)
+    directed = np.sort(e[:, 0] * n + e[:, 1])
+    again = directed[1:][directed[1:] == directed[:-1]]
+    u, v = again // n, again % n
+    again = again[u != v]
+    if len(again):
+        u, v = again // n, again % n
+        key = np.minimum(u, v) * n + np.maximum(u, v)
+        pair = (np.searchsorted(und, key, "right") - np.searchsorted(und, key, "left")) == 2
+        return watertight, not bool(pair.any())
+    return watertight, True
 
 
 def _mass_properties(vertices, faces, inertia: bool = True):

@@ -115,7 +115,7 @@ class Context:
         return ("visual", vis) if vis else ("collision", cols)
 
     def mesh(self, geom):
-        """trimesh.Trimesh for a Mesh geometry (scaled), or None / an error string; cached."""
+        """The MeshFacts of a Mesh geometry (scaled; model/meshes.py), or None / an error string; cached."""
         from myrabot_desc.model import shapes as geometry
 
         key = (str(geom.path), tuple(geom.scale))

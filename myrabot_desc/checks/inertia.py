@@ -106,10 +106,11 @@ def mass_positive(ctx):
                           i.loc or link.loc, {"link": link.name}, severity="warning")
 
 
-def principal(i):
-    import numpy as np
+def principal(i) -> list[float]:
+    """Principal moments, ascending: pure Python (model.inertia), so a plain check never imports numpy."""
+    from myrabot_desc.model.inertia import principal_moments
 
-    return np.linalg.eigvalsh(i.tensor())
+    return principal_moments(i)
 
 
 @rule("I004", "inertia-positive-definite", "error",
@@ -129,16 +130,16 @@ def positive_definite(ctx):
         if i is None or i.mass <= 0:
             continue
         ev = principal(i)
-        scale = max(abs(ev).max(), 1e-300)
-        if ev.min() < -1e-9 * scale and -ev.min() > ZERO_MOMENT:
+        scale = max(max(abs(e) for e in ev), 1e-300)
+        if min(ev) < -1e-9 * scale and -min(ev) > ZERO_MOMENT:
             yield Finding(f"link {link.name}: inertia not positive definite, principal moments "
                           + "/".join(f"{e:.4g}" for e in ev), i.loc or link.loc,
-                          {"link": link.name, "principal": ev.tolist()})
-        elif ev.min() <= max(1e-12 * scale, ZERO_MOMENT) and triangle_gap(i) is None:
+                          {"link": link.name, "principal": list(ev)})
+        elif min(ev) <= max(1e-12 * scale, ZERO_MOMENT) and triangle_gap(i) is None:
             if ctx.moving(link.name):         # (0, 0, c) is no rod: I005 reports it
                 yield Finding(f"link {link.name} ({i.mass:g} kg) has a zero principal moment of inertia "
                               f"({'/'.join(f'{e:.3g}' for e in ev)}): a point mass or a rod", i.loc or link.loc,
-                              {"link": link.name, "principal": ev.tolist()}, severity="warning")
+                              {"link": link.name, "principal": list(ev)}, severity="warning")
 
 
 @rule("I005", "inertia-triangle", "error",

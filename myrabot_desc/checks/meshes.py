@@ -133,7 +133,7 @@ def mesh_watertight(ctx):
         seen.add(g.filename)
         if not m.is_watertight:
             yield Finding(f"collision mesh {g.filename} of {link.name} is not watertight "
-                          f"({len(m.faces)} faces): its volume and inertia are undefined", it.loc or link.loc,
+                          f"({m.n_faces} faces): its volume and inertia are undefined", it.loc or link.loc,
                           {"filename": g.filename, "link": link.name})
 
 

@@ -119,7 +119,7 @@ class _Prep:
             try:
                 mesh = meshio.load(key, process=False)
             except meshio.MeshError as exc:  # unreadable: leave the geometry out, say which file and why
-                mesh = _lenient_dae(key, self.notes) if ext == ".dae" and "holds no triangles" in str(exc) else None
+                mesh = meshio.lenient_dae(key, self.notes) if ext == ".dae" and "holds no triangles" in str(exc) else None
                 if mesh is None:
                     self.notes.warn(f"mesh {src}: {exc}; geometry left out")
                     self.why[key] = str(exc)
@@ -156,90 +156,6 @@ class _Prep:
                 _write_msh(dest, mesh)
             else:
                 mesh.export(str(dest), file_type="stl")
-
-
-def _lenient_dae(path: Path, notes):
-    """A COLLADA file trimesh reads as empty because pycollada rejects part of it (a malformed
-    colour such as ``0.0 0.0 0.01.0`` drops the geometry's scene node): read the geometries with
-    pycollada ignoring the broken parts, and place them by the visual scene's node transforms
-    read from the XML. None when that finds no triangle either."""
-    import numpy as np
-    import trimesh
-
-    from myrabot_desc.safety import parse_xml_bytes
-
-    try:
-        import collada
-        from collada.common import DaeBrokenRefError, DaeMalformedError, DaeUnsupportedError
-
-        try:
-            collada.Collada(str(path))
-            reason = "a broken part"
-        except Exception as exc:  # the strict read's reason, for the message
-            reason = " ".join(str(exc).split())[:160]
-        c = collada.Collada(str(path), ignore=[DaeMalformedError, DaeUnsupportedError, DaeBrokenRefError])
-        by_id = {}
-        for g in c.geometries:
-            tris = []
-            for prim in g.primitives:
-                ts = prim if isinstance(prim, collada.triangleset.TriangleSet) else \
-                    (prim.triangleset() if hasattr(prim, "triangleset") else None)
-                if ts is not None and len(ts.vertex_index):
-                    tris.append(np.asarray(ts.vertex)[np.asarray(ts.vertex_index)].reshape(-1, 3))
-            if tris:
-                by_id[g.id] = np.concatenate(tris)
-        root = parse_xml_bytes(path.read_bytes(), str(path))
-    except Exception:
-        return None
-
-    def local(el):
-        return el.tag.rsplit("}", 1)[-1] if isinstance(el.tag, str) else ""
-
-    def node_T(node):
-        T = np.eye(4)
-        for t in node:
-            vals = [float(x) for x in (t.text or "").split()] if local(t) in ("matrix", "translate", "rotate",
-                                                                              "scale") else None
-            M = np.eye(4)
-            if local(t) == "matrix" and len(vals) == 16:
-                M = np.array(vals).reshape(4, 4)
-            elif local(t) == "translate" and len(vals) == 3:
-                M[:3, 3] = vals
-            elif local(t) == "scale" and len(vals) == 3:
-                M = np.diag(vals + [1.0])
-            elif local(t) == "rotate" and len(vals) == 4:
-                a = np.asarray(vals[:3]) / (np.linalg.norm(vals[:3]) or 1.0)
-                th = np.radians(vals[3])
-                K = np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
-                M[:3, :3] = np.eye(3) + np.sin(th) * K + (1 - np.cos(th)) * K @ K
-            T = T @ M
-        return T
-
-    parts = []
-
-    def walk(node, T):
-        T = T @ node_T(node)
-        for ch in node:
-            if local(ch) == "instance_geometry":
-                v = by_id.get((ch.get("url") or "").lstrip("#"))
-                if v is not None:
-                    parts.append(v @ T[:3, :3].T + T[:3, 3])
-            elif local(ch) == "node":
-                walk(ch, T)
-
-    for scene in (el for el in root.iter() if local(el) == "visual_scene"):
-        for node in scene:
-            if local(node) == "node":
-                walk(node, np.eye(4))
-    if not parts:
-        parts = list(by_id.values())
-    if not parts:
-        return None
-    v = np.concatenate(parts)
-    mesh = trimesh.Trimesh(vertices=v, faces=np.arange(len(v)).reshape(-1, 3), process=False)
-    notes.warn(f"mesh {path.name}: pycollada rejects it ({reason}) and trimesh then sees no triangles; its "
-               f"{len(mesh.faces)} triangles were read ignoring the broken part")
-    return mesh
 
 
 def _write_msh(dest: Path, mesh) -> None:

@@ -60,6 +60,11 @@ def eigh3(A) -> tuple[list[float], list[list[float]]]:
     return [a[i][i] for i in order], [[V[k][i] for i in order] for k in range(3)]
 
 
+def principal_moments(ine) -> list[float]:
+    """The principal moments of a model.Inertial, ascending (what check's I004/I005 judge)."""
+    return eigh3(tensor(ine))[0]
+
+
 def from_eigen(w, V) -> Mat3:
     """V diag(w) V^T, symmetrised."""
     M = matmul3([[V[i][j] * w[j] for j in range(3)] for i in range(3)], transpose3(V))

@@ -61,10 +61,13 @@ def describe(g) -> str:
 _MESHES: dict = {}          # (path, mtime, scale) -> mesh: robots in one run share mesh files
 _MAX_CACHED = 512
 _MAX_CACHED_BYTES = 32_000_000   # mesh memory kept across robots (a -j N check has N such caches)
+_CACHED = [0]                    # bytes held by _MESHES
 
 
 def load_mesh(g):
-    """Load a mesh file as one trimesh.Trimesh with the URDF scale applied; str on failure (cached)."""
+    """The MeshFacts (model/meshes.py: vertices, bounds, volume, inertia, watertightness; trimesh's
+    attribute names) of a mesh file with the URDF scale applied; str on failure. Cached per file,
+    scale and limits: robots in one run share mesh files, links share them within a robot."""
     try:
         from myrabot_desc.model import meshes as meshio
 
@@ -74,39 +77,34 @@ def load_mesh(g):
     if key not in _MESHES:
         m = _load_mesh(g)
         _MESHES[key] = m
-        while len(_MESHES) > _MAX_CACHED or (len(_MESHES) > 1 and sum(map(_nbytes, _MESHES.values()))
-                                              > _MAX_CACHED_BYTES):
-            _MESHES.pop(next(iter(_MESHES)))
+        _CACHED[0] += _nbytes(m)
+        while len(_MESHES) > _MAX_CACHED or (len(_MESHES) > 1 and _CACHED[0] > _MAX_CACHED_BYTES):
+            _CACHED[0] -= _nbytes(_MESHES.pop(next(iter(_MESHES))))
         return m
     return _MESHES[key]
 
 
 def _nbytes(m) -> int:
-    """Memory of a cached mesh: its arrays and what trimesh cached on it (edges, triangles: ~6x)."""
+    """Memory of a cached mesh: its vertex array (the facts keep nothing else of size)."""
     if isinstance(m, str) or m is None:
         return 0
-    cached = getattr(getattr(m, "_cache", None), "cache", {})
-    return m.vertices.nbytes + m.faces.nbytes + sum(getattr(v, "nbytes", 0) for v in cached.values())
+    return m.vertices.nbytes
 
 
 def _load_mesh(g):
     from myrabot_desc.model import meshes as meshio
 
     try:  # size and triangle limits, one-line reasons (meshio.py)
-        m = meshio.load(g.path, process=True, textures=False)   # check needs geometry only
+        return meshio.facts(g.path, tuple(g.scale))   # check needs geometry only
     except meshio.MeshError as exc:
         return str(exc)
-    if tuple(g.scale) != (1.0, 1.0, 1.0):
-        import numpy as np
-
-        m.apply_transform(np.diag([*g.scale, 1.0]))
-    return m
 
 
 def shape_props(g, mesh=None):
     """(volume, com(3,), unit inertia (3,3) per kg about com) in the geometry frame, or None.
 
-    For a mesh, ``mesh`` is the loaded trimesh; only a watertight, outward mesh gives props.
+    For a mesh, ``mesh`` is its MeshFacts (``load_mesh``) or a trimesh; only a watertight, outward
+    mesh gives props.
     """
     import numpy as np
 

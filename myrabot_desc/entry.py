@@ -9,10 +9,15 @@ its usual output and exit codes.
 
 from __future__ import annotations
 
+import os
 import sys
 
 
 def main(argv=None) -> int:
+    # Our numpy work is on small arrays: one BLAS thread is as fast, and OpenBLAS starting a
+    # thread pool per core costs ~50 ms of every command that imports numpy (check, convert,
+    # sim), more in each `check -j N` worker. The user's own setting wins.
+    os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     args = sys.argv[1:] if argv is None else list(argv)
     if args[:1] == ["build"]:
         from myrabot_desc.build.run import fast_build

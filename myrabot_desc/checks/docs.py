@@ -45,8 +45,9 @@ def render() -> str:
            "numbers that matter and the xacro `file:line` it comes from. Select or ignore codes or prefixes",
            "with `--select I,G001` / `--ignore I008`; `--strict` makes warnings fail.", "",
            "Without `--inertia`, mesh files are not opened (only their existence is checked) and inertias are",
-           "compared with primitive geometry only; `--inertia` loads collision meshes with trimesh and compares",
-           "watertight ones too; `--meshes` also opens visual meshes for M002/M004. Severities: **error** (exit 1), **warning**,",
+           "compared with primitive geometry only; `--inertia` loads collision meshes (STL, COLLADA and OBJ with",
+           "our own readers, which give trimesh's vertices, volume and inertia; other formats through trimesh)",
+           "and compares watertight ones too; `--meshes` also opens visual meshes for M002/M004. Severities: **error** (exit 1), **warning**,",
            "**info**. Some rules raise or lower the severity of one finding; their text says when.", ""]
     out += ["Each rule below shows an example that `check` reports (tests run every one of them) and its",
             "fix. An example that is not a whole file is a snippet placed in this minimal robot:", "",

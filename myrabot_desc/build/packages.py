@@ -182,7 +182,9 @@ def resource_roots(base: Path, package_roots: dict[str, Path]) -> list[Path]:
     folder above the model, for the common urdf/ + meshes/ layout), the packages its URIs
     name, and the bundled package. A model from a stranger cannot make us read /etc/passwd
     or ~/.ssh through ``file://``, an absolute path, ``../..`` or a symlink."""
-    return list(_base_roots(Path(base).resolve())) + [Path(r).resolve() for r in package_roots.values()]
+    from myrabot_desc.safety import real_root
+
+    return list(_base_roots(real_root(base))) + [real_root(r) for r in package_roots.values()]
 
 
 @functools.lru_cache(maxsize=256)
@@ -240,12 +242,14 @@ def resolve_resource_uri(uri: str, package_roots: dict[str, Path], base: Path) -
 
 def _resolve_any(uri: str, package_roots: dict[str, Path], base: Path) -> Path | None:
     """Resolve a mesh/texture URI to a file. Never leaves the package root it names."""
+    from myrabot_desc.safety import real_root
+
     uri = uri.strip()
     if uri.startswith("package://"):
         parts = split_package_uri(uri)
         if not parts or parts[0] not in package_roots:
             return None
-        root = package_roots[parts[0]].resolve()
+        root = real_root(package_roots[parts[0]])
         path = (root / unquote(parts[1])).resolve()
         if not path.is_relative_to(root):
             return None
@@ -255,7 +259,7 @@ def _resolve_any(uri: str, package_roots: dict[str, Path], base: Path) -> Path |
         parts = split_package_uri("package://" + uri[len("model://"):])
         if not parts or parts[0] not in package_roots:
             return None
-        root = package_roots[parts[0]].resolve()
+        root = real_root(package_roots[parts[0]])
         path = (root / parts[1]).resolve()
         if not path.is_relative_to(root):
             return None

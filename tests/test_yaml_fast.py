@@ -20,7 +20,7 @@ def _both(text):
     out = []
     for loader in (yaml_load.Loader, yaml_load._fast_loader()):
         try:
-            out.append(("ok", yaml_load._load(loader(text), "f.yaml")))
+            out.append(("ok", yaml_load._load(loader(text), text, "f.yaml")))
         except InputError as e:
             out.append(("error", str(e)))
     return out

@@ -146,18 +146,18 @@ def loads(text: str, name: str):
     fast = _fast_loader()
     if fast is not None:
         try:
-            return _load(fast(text), name)
+            return _load(fast(text), text, name)
         except InputError:
             pass        # PyYAML's pure-Python reader words the error (the same on every machine)
-    return _load(Loader(text), name)
+    return _load(Loader(text), text, name)
 
 
-def _load(loader, name: str):
+def _load(loader, text: str, name: str):
     try:
         node = loader.get_single_node()
         if node is None:
             return None
-        if _too_big(node):
+        if "&" in text and _too_big(node):   # no anchor ("&name"), no alias: nothing can repeat
             raise InputError(f"YAML aliases expand to over {MAX_NODES} items (an alias bomb)", Loc(name))
         return loader.construct_document(node)
     except yaml.YAMLError as exc:

@@ -166,8 +166,8 @@ def build_scene(robot, collision: bool = True) -> Scene:
         key = str(g.path)
         if key not in cache:
             try:
-                m = meshes.load(g.path)
-                cache[key] = (np.asarray(m.vertices, dtype=np.float32), np.asarray(m.faces, dtype=np.uint32))
+                v, f = meshes.triangles(g.path)
+                cache[key] = (np.asarray(v, dtype=np.float32), np.asarray(f, dtype=np.uint32))
             except meshes.MeshError as exc:
                 problems.append(f"{loc}: warning: mesh {exc} (left out)" if loc else f"warning: mesh {exc}")
                 cache[key] = None

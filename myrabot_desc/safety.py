@@ -219,7 +219,11 @@ def real_root(folder) -> Path:
     process: every mesh and texture a run checks asks for the same few roots (69 robots:
     ~12,000 resolves, 1.5 s). The files themselves are still resolved on every check; what a
     folder resolves to is the user's file system, which no model file can change."""
+    import os
+
     key = str(folder)
+    if not os.path.isabs(key):      # relative to the working folder, which may change (library use)
+        key = (os.getcwd(), key)
     real = _ROOTS.get(key)
     if real is None:
         real = Path(folder).resolve()

@@ -135,11 +135,13 @@ def what_document(tag: str) -> str:
 # ---------------------------------------------------------------- reading
 class _Reader:
     def __init__(self, root, src: Path, locations):
+        from myrabot_desc.model.parts import SourceLines
+
         self.src = src
         self.issues: list[Diagnostic] = []
-        self.loc_of: dict[int, Loc] = {}
-        elements = [el for el in root.iter() if isinstance(el.tag, str)]
+        elements = [el for el in root.iter() if isinstance(el.tag, str)] if locations is not None else ()
         if locations is not None and len(locations) == len(elements):
+            self.loc_of: dict[int, Loc] | SourceLines = {}
             last = None
             parent_loc: dict[int, Loc] = {}
             for el, loc in zip(elements, locations):
@@ -151,12 +153,17 @@ class _Reader:
                 last = loc or last
             self._keep = elements  # keep proxies alive so id() stays valid
         else:
-            for el in elements:
-                self.loc_of[id(el)] = Loc(str(src), el.sourceline)
-            self._keep = elements
+            # one file: an element's location is its line, read when asked (a map of every element
+            # held 2 x 260,000 objects for a 20,000-link star, and the garbage collector rescanned them)
+            self.loc_of = SourceLines(str(src), root)
+            self._keep = []
 
     def loc(self, el) -> Loc | None:
-        return self.loc_of.get(id(el)) if el is not None else None
+        if el is None:
+            return None
+        if type(self.loc_of) is dict:
+            return self.loc_of.get(id(el))
+        return Loc(self.loc_of.file, el.sourceline)
 
     def issue(self, el, message: str, code: str = "T010") -> None:
         self.issues.append(Diagnostic(code, "error", message, self.loc(el)))

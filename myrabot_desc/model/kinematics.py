@@ -13,7 +13,7 @@ import numpy as np
 from myrabot_desc.model.parts import Joint, Pose, Robot
 
 
-def _pose_rows(pose) -> list:
+def pose_rows(pose) -> list:
     """pose_matrix(pose) as nested lists of the same floats (many of them become one array at once)."""
     r, p, y = pose.rpy
     cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
@@ -22,6 +22,22 @@ def _pose_rows(pose) -> list:
             [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr, yy],
             [-sp, cp * sr, cp * cr, z],
             [0.0, 0.0, 0.0, 1.0]]
+
+
+def pose_stack(poses) -> np.ndarray:
+    """pose_matrix of every pose as one (n, 4, 4) array (the same floats), built from one flat list:
+    a list per row and pose would be 100,000 objects for the garbage collector to rescan."""
+    flat: list[float] = []
+    add = flat.extend
+    for pose in poses:
+        r, p, y = pose.rpy
+        cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
+        x, yy, z = pose.xyz
+        add((cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr, x,
+             sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr, yy,
+             -sp, cp * sr, cp * cr, z,
+             0.0, 0.0, 0.0, 1.0))
+    return np.array(flat, dtype=float).reshape(-1, 4, 4)
 
 
 def rpy_matrix(rpy) -> np.ndarray:
@@ -33,7 +49,7 @@ def rpy_matrix(rpy) -> np.ndarray:
 
 
 def pose_matrix(pose: Pose) -> np.ndarray:
-    return np.array(_pose_rows(pose), dtype=float)
+    return np.array(pose_rows(pose), dtype=float)
 
 
 def _norms(axes) -> list[float]:
@@ -61,15 +77,15 @@ def _axis_angle_rows(axis, n: float, angle: float) -> list:
             [z * x * C - y * s, z * y * C + x * s, c + z * z * C]]
 
 
-def _motion_rows(joint: Joint, n: float, q: float) -> list:
-    """joint_motion(joint, q) as nested lists; ``n`` is the norm of the joint's axis."""
+def _motion_flat(joint: Joint, n: float, q: float) -> tuple:
+    """joint_motion(joint, q) as 16 floats, row by row; ``n`` is the norm of the joint's axis."""
     if joint.type in ("revolute", "continuous"):
-        R = _axis_angle_rows([float(v) for v in joint.axis], n, q)
-        return [[*R[0], 0.0], [*R[1], 0.0], [*R[2], 0.0], [0.0, 0.0, 0.0, 1.0]]
-    t = [0.0, 0.0, 0.0]
+        (a, b, c), (d, e, f), (g, h, i) = _axis_angle_rows([float(v) for v in joint.axis], n, q)
+        return (a, b, c, 0.0, d, e, f, 0.0, g, h, i, 0.0, 0.0, 0.0, 0.0, 1.0)
+    t = (0.0, 0.0, 0.0)
     if joint.type == "prismatic" and n:
         t = [float(v) / n * q for v in joint.axis]
-    return [[1.0, 0.0, 0.0, t[0]], [0.0, 1.0, 0.0, t[1]], [0.0, 0.0, 1.0, t[2]], [0.0, 0.0, 0.0, 1.0]]
+    return (1.0, 0.0, 0.0, t[0], 0.0, 1.0, 0.0, t[1], 0.0, 0.0, 1.0, t[2], 0.0, 0.0, 0.0, 1.0)
 
 
 _MOVING = ("revolute", "continuous", "prismatic")
@@ -78,7 +94,7 @@ _MOVING = ("revolute", "continuous", "prismatic")
 def joint_motion(joint: Joint, q: float) -> np.ndarray:
     """Transform of the joint's own motion by position q (revolute/continuous/prismatic)."""
     n = _norms([joint.axis])[0] if joint.type in _MOVING else 0.0
-    return np.array(_motion_rows(joint, n, q), dtype=float)
+    return np.array(_motion_flat(joint, n, q), dtype=float).reshape(4, 4)
 
 
 def world_transforms(robot: Robot, q: dict[str, float] | None = None, root_pose: np.ndarray | None = None
@@ -127,8 +143,11 @@ def world_transforms(robot: Robot, q: dict[str, float] | None = None, root_pose:
         moving = [j for j in joints if j.type in _MOVING]
         norm = dict(zip(map(id, moving), _norms([j.axis for j in moving])))
         parents = np.array([out[j.parent] for j in joints], dtype=float)
-        P = np.array([_pose_rows(j.origin) for j in joints], dtype=float)
-        M = np.array([_motion_rows(j, norm.get(id(j), 0.0), q.get(j.name, 0.0)) for j in joints], dtype=float)
+        P = pose_stack(j.origin for j in joints)
+        flat: list[float] = []
+        for j in joints:
+            flat.extend(_motion_flat(j, norm.get(id(j), 0.0), q.get(j.name, 0.0)))
+        M = np.array(flat, dtype=float).reshape(-1, 4, 4)
         T = parents @ P @ M
         level = []
         for k, j in enumerate(joints):
@@ -150,12 +169,12 @@ def center_of_mass(robot: Robot, q: dict[str, float] | None = None) -> tuple[flo
              if link.inertial is not None and name in T and link.inertial.mass > 0]
     total, acc = 0.0, [0.0, 0.0, 0.0]
     if links:   # the products stacked (same bits as one per link); the sums in link order, as before
-        W = np.array([T[link.name] for link in links], dtype=float) @ \
-            np.array([_pose_rows(link.inertial.origin) for link in links], dtype=float)
-        for link, p in zip(links, W[:, :3, 3].tolist()):
+        W = np.array([T[link.name] for link in links], dtype=float) @ pose_stack(link.inertial.origin for link in links)
+        ps = W[:, :3, 3].ravel().tolist()
+        for k, link in enumerate(links):
             m = link.inertial.mass
             total += m
-            acc = [acc[0] + m * p[0], acc[1] + m * p[1], acc[2] + m * p[2]]
+            acc = [acc[0] + m * ps[3 * k], acc[1] + m * ps[3 * k + 1], acc[2] + m * ps[3 * k + 2]]
     acc = np.array(acc)
     return total, (acc / total if total > 0 else np.full(3, np.nan))
 

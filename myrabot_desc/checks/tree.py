@@ -89,14 +89,21 @@ def no_cycle(ctx):
     joint per link and close the loop in the simulator's own format.
     """
     r = ctx.robot
-    raw = [j for j in r.root_element.findall("joint")]
-    children = Counter(j.find("child").get("link") for j in raw
-                       if j.find("child") is not None and j.find("child").get("link") is not None)
-    for link, n in sorted(children.items()):
-        if n > 1:
-            js = [j.get("name") for j in raw if j.find("child") is not None and j.find("child").get("link") == link]
-            yield Finding(f"link {link} is the child of {n} joints ({', '.join(js)}): a link has one parent",
-                          ctx.loc_of(raw[[j.get('name') for j in raw].index(js[1])]), {"link": link, "joints": js})
+    raw = r.root_element.findall("joint")
+    by_child: dict[str, list] = {}       # child link -> its joints' names, in document order (one pass)
+    first_named: dict = {}               # joint name -> its first element
+    for j in raw:
+        name = j.get("name")
+        first_named.setdefault(name, j)
+        c = next(j.iterchildren("child"), None)          # = j.find("child"), without parsing a path
+        link = c.get("link") if c is not None else None
+        if link is not None:
+            by_child.setdefault(link, []).append(name)
+    for link, js in sorted(by_child.items()):
+        if len(js) > 1:
+            names = ", ".join(n if n is not None else "(unnamed)" for n in js)
+            yield Finding(f"link {link} is the child of {len(js)} joints ({names}): a link has one parent",
+                          ctx.loc_of(first_named[js[1]]), {"link": link, "joints": js})
     # cycles: each link walked once (model/tree.py; the walk per link was cubic in a chain's length)
     from myrabot_desc.model.tree import cycles
 

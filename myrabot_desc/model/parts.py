@@ -273,6 +273,13 @@ class Robot:
             return self.element_locs.get(id(el))
         return self.element_locs.loc(el)
 
+    def source_files(self) -> list[str]:
+        """The files the model's elements came from (the input and, for xacro, its includes), in
+        order of first use; one file for a URDF read from one file, without visiting its elements."""
+        if type(self.element_locs) is dict:
+            return list(dict.fromkeys(loc.file for loc in self.element_locs.values() if loc is not None))
+        return [self.element_locs.file]
+
     # -------------------------------------------------------- tree helpers
     def child_joints(self, link: str) -> list[Joint]:
         from myrabot_desc.model.tree import maps   # one map for the robot: a star of 20,000 links stays linear

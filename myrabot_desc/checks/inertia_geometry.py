@@ -40,6 +40,8 @@ DENSITY_RANGE = (100.0, 23000.0)    # kg/m³: below balsa-and-foam structures, a
 class Solid:
     """A link's geometry as a uniform solid at the declared mass (link frame), or why not."""
 
+    __slots__ = ("link", "source", "items", "props", "why_not", "marker", "desc")   # 20,000 of them in a star
+
     def __init__(self, ctx, link):
         from myrabot_desc.model.kinematics import pose_matrix
         self.link = link
@@ -165,8 +167,9 @@ def inertia_vs_geometry(ctx):
                 f"{s.desc} of {i.mass:g} kg gives {'/'.join(fmt(v) for v in cd)} "
                 f"(ratio {'/'.join(_ratio(r) for r in ratios)}); fix: {line}",
                 i.loc or s.link.loc,
-                {"link": name, "declared": dd, "computed": cd, "ratios": ratios,
-                 "geometry": s.source, "fix": line, "computed_tensor": comp, "computed_com": com},
+                # tuples: the report writes them as lists; the collector stops scanning them (8 lists x 20,000 links)
+                {"link": name, "declared": tuple(dd), "computed": tuple(cd), "ratios": tuple(ratios),
+                 "geometry": s.source, "fix": line, "computed_tensor": tuple(map(tuple, comp)), "computed_com": tuple(com)},
                 severity=s.severity)
 
 

@@ -189,16 +189,15 @@ class _Reader:
         raw = el.get(attr) if el is not None else None
         if raw is None:
             return default
-        parts = raw.split()
         try:
-            vals = tuple(float(p) for p in parts)
+            vals = tuple(map(float, raw.split()))
         except ValueError:
             self.issue(el, f"<{el.tag} {attr}=\"{raw}\">: expected {n} numbers")
             return default
-        if len(vals) != n or not all(math.isfinite(v) for v in vals):
+        if len(vals) != n or not all(map(math.isfinite, vals)):
             self.issue(el, f"<{el.tag} {attr}=\"{raw}\">: expected {n} finite numbers")
             return default
-        if any(abs(v) > MAX_MAGNITUDE for v in vals):
+        if max(map(abs, vals)) > MAX_MAGNITUDE:
             self.issue(el, f"<{el.tag} {attr}=\"{raw}\">: out of range (more than {MAX_MAGNITUDE:g} in magnitude)")
             return default
         return vals
@@ -207,7 +206,7 @@ class _Reader:
         """The <origin> of ``el``; ``kids``: _kids(el) when the caller has it."""
         o = (kids if kids is not None else _kids(el)).get("origin") if el is not None else None
         if o is None:
-            return Pose()
+            return _NO_ORIGIN
         return Pose(self.vec(o, "xyz"), self.vec(o, "rpy"))
 
     def geometry(self, kids: dict, robot_src_dir: Path, package_roots, resolve):
@@ -259,6 +258,9 @@ class _Reader:
         t = ik.get("inertia")
         vals = {k: (self.num(t, k, 0.0) if t is not None else 0.0) for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
         return Inertial(mass, self.pose(i, ik), loc=self.loc(i), **vals)
+
+
+_NO_ORIGIN = Pose()    # one shared (immutable) identity for every element without <origin>
 
 
 def _kids(el) -> dict:

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-from collections import Counter
 
 from myrabot_desc.checks.rule import Finding, rule
 
@@ -90,15 +89,20 @@ def no_cycle(ctx):
     """
     r = ctx.robot
     raw = r.root_element.findall("joint")
-    by_child: dict[str, list] = {}       # child link -> its joints' names, in document order (one pass)
+    first_child: dict = {}               # child link -> the name of its first joint
+    by_child: dict[str, list] = {}       # child link -> its joints' names, in document order, when more than one
     first_named: dict = {}               # joint name -> its first element
     for j in raw:
         name = j.get("name")
         first_named.setdefault(name, j)
         c = next(j.iterchildren("child"), None)          # = j.find("child"), without parsing a path
         link = c.get("link") if c is not None else None
-        if link is not None:
-            by_child.setdefault(link, []).append(name)
+        if link is None:
+            continue
+        if link in first_child:
+            by_child.setdefault(link, [first_child[link]]).append(name)
+        else:
+            first_child[link] = name
     for link, js in sorted(by_child.items()):
         if len(js) > 1:
             names = ", ".join(n if n is not None else "(unnamed)" for n in js)
@@ -150,13 +154,20 @@ def unique_names(ctx):
     """
     root = ctx.robot.root_element
     for tag in ("link", "joint", "material"):
-        els = [e for e in root.findall(tag) if e.get("name") is not None]
-        counts = Counter(e.get("name") for e in els)
-        for name, n in sorted(counts.items()):
-            if n > 1:
-                dup = [e for e in els if e.get("name") == name][1]
-                yield Finding(f"{n} top-level <{tag}> elements are named '{name}'", ctx.loc_of(dup),
-                              {"kind": tag, "name": name, "count": n})
+        first: dict = {}                     # name -> its first element
+        dups: dict[str, list] = {}           # name -> its elements, in document order, when more than one
+        for e in root.iterchildren(tag):
+            name = e.get("name")
+            if name is None:
+                continue
+            if name in first:
+                dups.setdefault(name, [first[name]]).append(e)
+            else:
+                first[name] = e
+        for name, els in sorted(dups.items()):
+            if len(els) > 1:
+                yield Finding(f"{len(els)} top-level <{tag}> elements are named '{name}'", ctx.loc_of(els[1]),
+                              {"kind": tag, "name": name, "count": len(els)})
 
 
 def _is_limited(j) -> bool:

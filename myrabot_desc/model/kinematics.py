@@ -107,13 +107,29 @@ def world_transforms(robot: Robot, q: dict[str, float] | None = None, root_pose:
     The walk runs on names; the products are then taken one tree level at a time as stacked
     4x4 products (the same per-matrix kernel, so the same bits as one product per joint, but
     without a numpy call per joint: a 20,000-link star is two calls).
+
+    The zero configuration (no ``q``, no ``root_pose``) is computed once per robot (check asks
+    for it from several rules); its arrays are read-only, each call gets its own dict.
     """
+    if not q and root_pose is None:
+        key = (id(robot.joints), len(robot.joints), id(robot.links), len(robot.links))
+        cached = robot.derived.get("world_transforms")
+        if cached is None or cached[0] != key:
+            cached = (key, _world_transforms(robot, {}, None, frozen=True))
+            robot.derived["world_transforms"] = cached
+        return dict(cached[1])
+    return _world_transforms(robot, q, root_pose)
+
+
+def _world_transforms(robot: Robot, q, root_pose, frozen: bool = False) -> dict[str, np.ndarray]:
     q = dict(q or {})
     for j in robot.joints.values():
         if j.mimic and j.mimic.joint in q and j.name not in q:
             q[j.name] = q[j.mimic.joint] * j.mimic.multiplier + j.mimic.offset
     children = robot.joints_by_parent()
     base = np.eye(4) if root_pose is None else root_pose
+    if frozen:
+        base.flags.writeable = False
     order: list[str] = []
     via: dict[str, Joint | None] = {}          # link -> the joint that placed it (None: a root)
     for root in robot.roots or list(robot.links)[:1]:
@@ -149,6 +165,8 @@ def world_transforms(robot: Robot, q: dict[str, float] | None = None, root_pose:
             flat.extend(_motion_flat(j, norm.get(id(j), 0.0), q.get(j.name, 0.0)))
         M = np.array(flat, dtype=float).reshape(-1, 4, 4)
         T = parents @ P @ M
+        if frozen:
+            T.flags.writeable = False
         level = []
         for k, j in enumerate(joints):
             out[j.child] = T[k]

@@ -148,12 +148,16 @@ def inertia_vs_geometry(ctx):
     comps = Rt @ np.array([s.props.inertia for _, s in solid], dtype=float) @ R
     comps[abs(comps) < 1e-6 * abs(comps).max(axis=(1, 2))[:, None, None]] = 0.0   # as in in_inertial_frame
     coms = (Rt @ (np.array([s.props.com for _, s in solid], dtype=float) - p)[:, :, None])[:, :, 0]
-    for (name, s), comp, com in zip(solid, comps.tolist(), coms.tolist()):
+    cf, mf = comps.ravel().tolist(), coms.ravel().tolist()      # flat: no list per row per link
+    for k, (name, s) in enumerate(solid):
+        t9 = cf[9 * k:9 * k + 9]
+        comp = (tuple(t9[0:3]), tuple(t9[3:6]), tuple(t9[6:9]))
+        com = tuple(mf[3 * k:3 * k + 3])
         i = s.link.inertial
         line = inertia_line(comp)
         if ctx.opts.suggest:
             ctx.suggestions.append((name, line))
-        dd, cd = [i.ixx, i.iyy, i.izz], [comp[0][0], comp[1][1], comp[2][2]]
+        dd, cd = (float(i.ixx), float(i.iyy), float(i.izz)), (t9[0], t9[4], t9[8])
         ratios = []
         for d, c in zip(dd, cd):
             if c <= 0 or d <= 0:
@@ -168,8 +172,8 @@ def inertia_vs_geometry(ctx):
                 f"(ratio {'/'.join(_ratio(r) for r in ratios)}); fix: {line}",
                 i.loc or s.link.loc,
                 # tuples: the report writes them as lists; the collector stops scanning them (8 lists x 20,000 links)
-                {"link": name, "declared": tuple(dd), "computed": tuple(cd), "ratios": tuple(ratios),
-                 "geometry": s.source, "fix": line, "computed_tensor": tuple(map(tuple, comp)), "computed_com": tuple(com)},
+                {"link": name, "declared": dd, "computed": cd, "ratios": tuple(ratios),
+                 "geometry": s.source, "fix": line, "computed_tensor": comp, "computed_com": com},
                 severity=s.severity)
 
 

@@ -40,6 +40,8 @@ DENSITY_RANGE = (100.0, 23000.0)    # kg/m³: below balsa-and-foam structures, a
 class Solid:
     """A link's geometry as a uniform solid at the declared mass (link frame), or why not."""
 
+    __slots__ = ("link", "source", "items", "props", "why_not", "marker", "desc")   # 20,000 of them in a star
+
     def __init__(self, ctx, link):
         from myrabot_desc.model.kinematics import pose_matrix
         self.link = link
@@ -110,8 +112,9 @@ def fmt(x: float) -> str:
 
 
 def inertia_line(t) -> str:
-    return (f'<inertia ixx="{t[0, 0]:.4g}" ixy="{t[0, 1]:.4g}" ixz="{t[0, 2]:.4g}" '
-            f'iyy="{t[1, 1]:.4g}" iyz="{t[1, 2]:.4g}" izz="{t[2, 2]:.4g}"/>').replace('"-0"', '"0"')
+    """The <inertia/> element of a 3x3 tensor (an array or nested lists)."""
+    return (f'<inertia ixx="{t[0][0]:.4g}" ixy="{t[0][1]:.4g}" ixz="{t[0][2]:.4g}" '
+            f'iyy="{t[1][1]:.4g}" iyz="{t[1][2]:.4g}" izz="{t[2][2]:.4g}"/>').replace('"-0"', '"0"')
 
 
 @rule("I006", "inertia-vs-geometry", "warning",
@@ -132,16 +135,29 @@ def inertia_vs_geometry(ctx):
     """
     import numpy as np
 
-    for name, s in solids(ctx).items():
-        if s.props is None:
-            continue
+    from myrabot_desc.model.kinematics import pose_stack
+
+    solid = [(name, s) for name, s in solids(ctx).items() if s.props is not None]
+    if not solid:
+        return
+    # in_inertial_frame of every link at once: stacked products take the per-matrix kernel of
+    # one product per link, so the numbers are the same to the bit
+    T = pose_stack(s.link.inertial.origin for _, s in solid)
+    R, p = T[:, :3, :3], T[:, :3, 3]
+    Rt = np.swapaxes(R, 1, 2)
+    comps = Rt @ np.array([s.props.inertia for _, s in solid], dtype=float) @ R
+    comps[abs(comps) < 1e-6 * abs(comps).max(axis=(1, 2))[:, None, None]] = 0.0   # as in in_inertial_frame
+    coms = (Rt @ (np.array([s.props.com for _, s in solid], dtype=float) - p)[:, :, None])[:, :, 0]
+    cf, mf = comps.ravel().tolist(), coms.ravel().tolist()      # flat: no list per row per link
+    for k, (name, s) in enumerate(solid):
+        t9 = cf[9 * k:9 * k + 9]
+        comp = (tuple(t9[0:3]), tuple(t9[3:6]), tuple(t9[6:9]))
+        com = tuple(mf[3 * k:3 * k + 3])
         i = s.link.inertial
-        com, comp = s.in_inertial_frame()
-        decl = i.tensor()
         line = inertia_line(comp)
         if ctx.opts.suggest:
             ctx.suggestions.append((name, line))
-        dd, cd = np.diag(decl), np.diag(comp)
+        dd, cd = (float(i.ixx), float(i.iyy), float(i.izz)), (t9[0], t9[4], t9[8])
         ratios = []
         for d, c in zip(dd, cd):
             if c <= 0 or d <= 0:
@@ -155,8 +171,9 @@ def inertia_vs_geometry(ctx):
                 f"{s.desc} of {i.mass:g} kg gives {'/'.join(fmt(v) for v in cd)} "
                 f"(ratio {'/'.join(_ratio(r) for r in ratios)}); fix: {line}",
                 i.loc or s.link.loc,
-                {"link": name, "declared": dd.tolist(), "computed": cd.tolist(), "ratios": ratios,
-                 "geometry": s.source, "fix": line, "computed_tensor": comp.tolist(), "computed_com": com.tolist()},
+                # tuples: the report writes them as lists; the collector stops scanning them (8 lists x 20,000 links)
+                {"link": name, "declared": dd, "computed": cd, "ratios": tuple(ratios),
+                 "geometry": s.source, "fix": line, "computed_tensor": comp, "computed_com": com},
                 severity=s.severity)
 
 
@@ -183,27 +200,43 @@ def radius_of_gyration(ctx):
     """
     import numpy as np
 
-    from myrabot_desc.model.kinematics import pose_matrix
+    from myrabot_desc.model.kinematics import pose_stack
 
-    r = ctx.robot
+    pts_of = hull_points(ctx)
+    by_size: dict[int, list] = {}          # links grouped by point count: one stacked product per group
     for name, s in solids(ctx).items():
-        link = s.link
-        pts = _hull_points(ctx, link)
-        if pts is None:
+        if pts_of[name] is not None:
+            by_size.setdefault(len(pts_of[name]), []).append(s)
+    where = {}                              # link -> (its group's flat results, its index there)
+    for group in by_size.values():
+        pts = np.array([pts_of[s.link.name] for s in group], dtype=float)
+        T = pose_stack(s.link.inertial.origin for s in group)
+        local = (pts - T[:, None, :3, 3]) @ T[:, :3, :3]           # points in the inertial frame
+        tensors: list[float] = []
+        for s in group:
+            i = s.link.inertial
+            tensors.extend((i.ixx, i.ixy, i.ixz, i.ixy, i.iyy, i.iyz, i.ixz, i.iyz, i.izz))   # Inertial.tensor()
+        ev, vec = np.linalg.eigh(np.array(tensors, dtype=float).reshape(-1, 3, 3))
+        sq = (local ** 2).sum(2)
+        reach = np.stack([np.sqrt(np.maximum(sq - (local @ vec[:, :, k:k + 1])[:, :, 0] ** 2, 0)).max(1)
+                          for k in range(3)], axis=1)
+        flat = (ev.ravel().tolist(), np.swapaxes(vec, 1, 2).ravel().tolist(), reach.ravel().tolist())
+        for n, s in enumerate(group):
+            where[s.link.name] = (flat, n)
+    for name, s in solids(ctx).items():
+        if name not in where:
             continue
+        link = s.link
         i = link.inertial
-        T = pose_matrix(i.origin)
-        local = (pts - T[:3, 3]) @ T[:3, :3]            # points in the inertial frame
-        ev, vec = np.linalg.eigh(i.tensor())
+        (ev, axes, reaches), n = where[name]
         worst = None
         for k in range(3):
-            if ev[k] <= 0:
+            if ev[3 * n + k] <= 0:
                 continue
-            u = vec[:, k]
-            reach = float(np.sqrt(np.maximum((local ** 2).sum(1) - (local @ u) ** 2, 0)).max())
-            kg = math.sqrt(ev[k] / i.mass)
+            reach = reaches[3 * n + k]
+            kg = math.sqrt(ev[3 * n + k] / i.mass)
             if kg > 1.1 * reach + 1e-4 and (worst is None or kg / max(reach, 1e-9) > worst[0]):
-                worst = (kg / max(reach, 1e-9), kg, reach, ev[k], u)
+                worst = (kg / max(reach, 1e-9), kg, reach, ev[3 * n + k], axes[9 * n + 3 * k:9 * n + 3 * k + 3])
         if worst:
             _, kg, reach, moment, u = worst
             yield Finding(f"link {name}: radius of gyration √({moment:.3g}/{i.mass:g}) = {kg:.3g} m about axis "
@@ -211,6 +244,59 @@ def radius_of_gyration(ctx):
                           f"{reach:.3g} m from that axis", i.loc or link.loc,
                           {"link": name, "radius_of_gyration": kg, "reach": reach, "moment": float(moment)},
                           severity=s.severity)
+
+
+def hull_points(ctx) -> dict:
+    """link -> _hull_points(ctx, link) for every link of solids(ctx), None when unknown; built once for
+    I007 and I010, with one stacked product per shape size (the same bits as one product per shape)."""
+    cache = getattr(ctx, "_hull_points", None)
+    if cache is not None:
+        return cache
+    import numpy as np
+
+    from myrabot_desc.model.kinematics import pose_stack
+
+    parts: dict[str, list | None] = {}
+    by_size: dict[int, list] = {}           # point count -> [(points in the shape frame, origin, link, slot)]
+    for name, s in solids(ctx).items():
+        items = _hull_items(s.link)
+        todo = []
+        for it in items or ():
+            g = it.geometry
+            if g.kind == "mesh":
+                mesh = ctx.mesh(g) if ctx.opts.load_meshes else None
+                if mesh is None or isinstance(mesh, str):
+                    items = None
+                    break
+                local = np.asarray(mesh.vertices)    # the rules use extremes only: no hull needed (nor scipy)
+            else:
+                local = G.surface_points(g, 32)
+            todo.append((local, it.origin, name, len(todo)))
+        if not items:
+            parts[name] = None
+            continue
+        parts[name] = [None] * len(todo)
+        for t in todo:
+            by_size.setdefault(len(t[0]), []).append(t)
+    for group in by_size.values():
+        local = np.array([t[0] for t in group], dtype=float)
+        T = pose_stack(t[1] for t in group)
+        placed = local @ np.swapaxes(T[:, :3, :3], 1, 2) + T[:, None, :3, 3]
+        for (_, _, name, slot), pts in zip(group, placed):
+            parts[name][slot] = pts
+    cache = {name: (np.vstack(p) if p is not None else None) for name, p in parts.items()}
+    ctx._hull_points = cache
+    return cache
+
+
+def _hull_items(link):
+    """The shapes _hull_points measures (see there), or None."""
+    cols = [c for c in link.collisions if c.geometry is not None]
+    vis = [v for v in link.visuals if v.geometry is not None]
+    items = cols + vis
+    if any(it.geometry.kind == "mesh" for it in items):
+        items = cols or vis
+    return items or None
 
 
 def _hull_points(ctx, link):
@@ -293,10 +379,23 @@ def origin_inside(ctx):
     """
     import numpy as np
 
+    pts_of = hull_points(ctx)
+    by_size: dict[int, list] = {}
+    for name in solids(ctx):
+        if pts_of[name] is not None:
+            by_size.setdefault(len(pts_of[name]), []).append(name)
+    outside = set()
+    for names in by_size.values():      # the test below, for all links at once (same arithmetic)
+        pts = np.array([pts_of[n] for n in names], dtype=float)
+        lo, hi = pts.min(1), pts.max(1)
+        margin = (0.1 * (hi - lo).max(1) + 0.005)[:, None]
+        p = np.array([ctx.robot.links[n].inertial.origin.xyz for n in names], dtype=float)
+        gap = np.maximum(np.maximum(lo - margin - p, p - hi - margin), 0)
+        outside.update(n for n, g in zip(names, gap.max(1).tolist()) if g > 0)
     for name, s in solids(ctx).items():
-        pts = _hull_points(ctx, s.link)
-        if pts is None:
+        if name not in outside:
             continue
+        pts = pts_of[name]
         lo, hi = pts.min(0), pts.max(0)
         size = float((hi - lo).max())
         margin = 0.1 * size + 0.005

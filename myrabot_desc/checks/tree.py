@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-from collections import Counter
 
 from myrabot_desc.checks.rule import Finding, rule
 
@@ -89,14 +88,26 @@ def no_cycle(ctx):
     joint per link and close the loop in the simulator's own format.
     """
     r = ctx.robot
-    raw = [j for j in r.root_element.findall("joint")]
-    children = Counter(j.find("child").get("link") for j in raw
-                       if j.find("child") is not None and j.find("child").get("link") is not None)
-    for link, n in sorted(children.items()):
-        if n > 1:
-            js = [j.get("name") for j in raw if j.find("child") is not None and j.find("child").get("link") == link]
-            yield Finding(f"link {link} is the child of {n} joints ({', '.join(js)}): a link has one parent",
-                          ctx.loc_of(raw[[j.get('name') for j in raw].index(js[1])]), {"link": link, "joints": js})
+    raw = r.root_element.findall("joint")
+    first_child: dict = {}               # child link -> the name of its first joint
+    by_child: dict[str, list] = {}       # child link -> its joints' names, in document order, when more than one
+    first_named: dict = {}               # joint name -> its first element
+    for j in raw:
+        name = j.get("name")
+        first_named.setdefault(name, j)
+        c = next(j.iterchildren("child"), None)          # = j.find("child"), without parsing a path
+        link = c.get("link") if c is not None else None
+        if link is None:
+            continue
+        if link in first_child:
+            by_child.setdefault(link, [first_child[link]]).append(name)
+        else:
+            first_child[link] = name
+    for link, js in sorted(by_child.items()):
+        if len(js) > 1:
+            names = ", ".join(n if n is not None else "(unnamed)" for n in js)
+            yield Finding(f"link {link} is the child of {len(js)} joints ({names}): a link has one parent",
+                          ctx.loc_of(first_named[js[1]]), {"link": link, "joints": js})
     # cycles: each link walked once (model/tree.py; the walk per link was cubic in a chain's length)
     from myrabot_desc.model.tree import cycles
 
@@ -143,13 +154,20 @@ def unique_names(ctx):
     """
     root = ctx.robot.root_element
     for tag in ("link", "joint", "material"):
-        els = [e for e in root.findall(tag) if e.get("name") is not None]
-        counts = Counter(e.get("name") for e in els)
-        for name, n in sorted(counts.items()):
-            if n > 1:
-                dup = [e for e in els if e.get("name") == name][1]
-                yield Finding(f"{n} top-level <{tag}> elements are named '{name}'", ctx.loc_of(dup),
-                              {"kind": tag, "name": name, "count": n})
+        first: dict = {}                     # name -> its first element
+        dups: dict[str, list] = {}           # name -> its elements, in document order, when more than one
+        for e in root.iterchildren(tag):
+            name = e.get("name")
+            if name is None:
+                continue
+            if name in first:
+                dups.setdefault(name, [first[name]]).append(e)
+            else:
+                first[name] = e
+        for name, els in sorted(dups.items()):
+            if len(els) > 1:
+                yield Finding(f"{len(els)} top-level <{tag}> elements are named '{name}'", ctx.loc_of(els[1]),
+                              {"kind": tag, "name": name, "count": len(els)})
 
 
 def _is_limited(j) -> bool:

@@ -77,32 +77,34 @@ def suggest(word: str, choices) -> str | None:
     return m[0] if m else None
 
 
-def _walk(ctx):
-    """Yield (element, parent_tag, problem) for unknown children and attributes."""
-    root = ctx.robot.root_element
-    stack = [root]
+def _walk(ctx) -> list:
+    """(element, parent_tag, problem) for unknown children and attributes; one walk for T005 and T006."""
+    found = ctx.__dict__.get("_urdf_syntax_walk")
+    if found is None:
+        found = ctx.__dict__["_urdf_syntax_walk"] = _problems(ctx.robot.root_element)
+    return found
+
+
+def _problems(root) -> list:
+    out = []
+    stack = [(root, local(root.tag))]
     while stack:
-        el = stack.pop()
-        tag = local(el.tag)
+        el, tag = stack.pop()
         attrs, children = SCHEMA.get(tag, (None, None))
-        if attrs is not None and children is not None:     # free-form bodies keep their own attributes
-            for a in el.attrib:
-                if a.startswith("{") or a in attrs:   # namespaced attributes are extensions
-                    continue
-                yield el, tag, ("attribute", a)
-        if children is None:
+        if children is None:                   # unknown, or a free-form body (keeps its own attributes)
             continue
+        for a in el.keys():
+            if a not in attrs and not a.startswith("{"):     # namespaced attributes are extensions
+                out.append((el, tag, ("attribute", a)))
         for c in el:
-            if not isinstance(c.tag, str):
-                continue
-            if c.tag.startswith("{"):                # namespaced elements: extensions (Electric, drake:, ...)
-                continue
             ct = c.tag
+            if not isinstance(ct, str) or ct.startswith("{"):   # comments; namespaced elements: extensions
+                continue
             if ct in children:
-                stack.append(c)
+                stack.append((c, ct))
             else:
-                yield c, tag, ("element", ct)
-    return
+                out.append((c, tag, ("element", ct)))
+    return out
 
 
 @rule("T005", "unknown-element", "warning",

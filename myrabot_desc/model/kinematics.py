@@ -13,6 +13,33 @@ import numpy as np
 from myrabot_desc.model.parts import Joint, Pose, Robot
 
 
+def pose_rows(pose) -> list:
+    """pose_matrix(pose) as nested lists of the same floats (many of them become one array at once)."""
+    r, p, y = pose.rpy
+    cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
+    x, yy, z = pose.xyz
+    return [[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr, x],
+            [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr, yy],
+            [-sp, cp * sr, cp * cr, z],
+            [0.0, 0.0, 0.0, 1.0]]
+
+
+def pose_stack(poses) -> np.ndarray:
+    """pose_matrix of every pose as one (n, 4, 4) array (the same floats), built from one flat list:
+    a list per row and pose would be 100,000 objects for the garbage collector to rescan."""
+    flat: list[float] = []
+    add = flat.extend
+    for pose in poses:
+        r, p, y = pose.rpy
+        cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
+        x, yy, z = pose.xyz
+        add((cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr, x,
+             sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr, yy,
+             -sp, cp * sr, cp * cr, z,
+             0.0, 0.0, 0.0, 1.0))
+    return np.array(flat, dtype=float).reshape(-1, 4, 4)
+
+
 def rpy_matrix(rpy) -> np.ndarray:
     r, p, y = rpy
     cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
@@ -22,35 +49,52 @@ def rpy_matrix(rpy) -> np.ndarray:
 
 
 def pose_matrix(pose: Pose) -> np.ndarray:
-    T = np.eye(4)
-    T[:3, :3] = rpy_matrix(pose.rpy)
-    T[:3, 3] = pose.xyz
-    return T
+    return np.array(pose_rows(pose), dtype=float)
+
+
+def _norms(axes) -> list[float]:
+    """np.linalg.norm of each axis, bit for bit (it is sqrt(a.dot(a)); the stacked 1x3 @ 3x1
+    products take the same dot kernel), in one call instead of one per joint."""
+    if not axes:
+        return []
+    a = np.array(axes, dtype=float).reshape(-1, 3)
+    return np.sqrt((a[:, None, :] @ a[:, :, None])[:, 0, 0]).tolist()
 
 
 def axis_angle(axis, angle: float) -> np.ndarray:
     a = np.asarray(axis, dtype=float)
     n = np.linalg.norm(a)
+    return np.array(_axis_angle_rows(a.tolist(), float(n), angle))
+
+
+def _axis_angle_rows(axis, n: float, angle: float) -> list:
     if n == 0:
-        return np.eye(3)
-    x, y, z = a / n
+        return [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+    x, y, z = axis[0] / n, axis[1] / n, axis[2] / n
     c, s, C = math.cos(angle), math.sin(angle), 1 - math.cos(angle)
-    return np.array([[c + x * x * C, x * y * C - z * s, x * z * C + y * s],
-                     [y * x * C + z * s, c + y * y * C, y * z * C - x * s],
-                     [z * x * C - y * s, z * y * C + x * s, c + z * z * C]])
+    return [[c + x * x * C, x * y * C - z * s, x * z * C + y * s],
+            [y * x * C + z * s, c + y * y * C, y * z * C - x * s],
+            [z * x * C - y * s, z * y * C + x * s, c + z * z * C]]
+
+
+def _motion_flat(joint: Joint, n: float, q: float) -> tuple:
+    """joint_motion(joint, q) as 16 floats, row by row; ``n`` is the norm of the joint's axis."""
+    if joint.type in ("revolute", "continuous"):
+        (a, b, c), (d, e, f), (g, h, i) = _axis_angle_rows([float(v) for v in joint.axis], n, q)
+        return (a, b, c, 0.0, d, e, f, 0.0, g, h, i, 0.0, 0.0, 0.0, 0.0, 1.0)
+    t = (0.0, 0.0, 0.0)
+    if joint.type == "prismatic" and n:
+        t = [float(v) / n * q for v in joint.axis]
+    return (1.0, 0.0, 0.0, t[0], 0.0, 1.0, 0.0, t[1], 0.0, 0.0, 1.0, t[2], 0.0, 0.0, 0.0, 1.0)
+
+
+_MOVING = ("revolute", "continuous", "prismatic")
 
 
 def joint_motion(joint: Joint, q: float) -> np.ndarray:
     """Transform of the joint's own motion by position q (revolute/continuous/prismatic)."""
-    T = np.eye(4)
-    if joint.type in ("revolute", "continuous"):
-        T[:3, :3] = axis_angle(joint.axis, q)
-    elif joint.type == "prismatic":
-        a = np.asarray(joint.axis, dtype=float)
-        n = np.linalg.norm(a)
-        if n:
-            T[:3, 3] = a / n * q
-    return T
+    n = _norms([joint.axis])[0] if joint.type in _MOVING else 0.0
+    return np.array(_motion_flat(joint, n, q), dtype=float).reshape(4, 4)
 
 
 def world_transforms(robot: Robot, q: dict[str, float] | None = None, root_pose: np.ndarray | None = None
@@ -58,26 +102,76 @@ def world_transforms(robot: Robot, q: dict[str, float] | None = None, root_pose:
     """World (root-frame) 4x4 transform of every link reachable from the root(s).
 
     Joints not in ``q`` sit at 0. Mimic joints follow their target. Cycles are
-    cut (each link is placed once).
+    cut (each link is placed once: by the first joint a depth-first walk takes to it).
+
+    The walk runs on names; the products are then taken one tree level at a time as stacked
+    4x4 products (the same per-matrix kernel, so the same bits as one product per joint, but
+    without a numpy call per joint: a 20,000-link star is two calls).
+
+    The zero configuration (no ``q``, no ``root_pose``) is computed once per robot (check asks
+    for it from several rules); its arrays are read-only, each call gets its own dict.
     """
+    if not q and root_pose is None:
+        key = (id(robot.joints), len(robot.joints), id(robot.links), len(robot.links))
+        cached = robot.derived.get("world_transforms")
+        if cached is None or cached[0] != key:
+            cached = (key, _world_transforms(robot, {}, None, frozen=True))
+            robot.derived["world_transforms"] = cached
+        return dict(cached[1])
+    return _world_transforms(robot, q, root_pose)
+
+
+def _world_transforms(robot: Robot, q, root_pose, frozen: bool = False) -> dict[str, np.ndarray]:
     q = dict(q or {})
     for j in robot.joints.values():
         if j.mimic and j.mimic.joint in q and j.name not in q:
             q[j.name] = q[j.mimic.joint] * j.mimic.multiplier + j.mimic.offset
     children = robot.joints_by_parent()
-    out: dict[str, np.ndarray] = {}
     base = np.eye(4) if root_pose is None else root_pose
+    if frozen:
+        base.flags.writeable = False
+    order: list[str] = []
+    via: dict[str, Joint | None] = {}          # link -> the joint that placed it (None: a root)
     for root in robot.roots or list(robot.links)[:1]:
-        stack = [(root, base)]
+        stack: list[tuple[str, Joint | None]] = [(root, None)]
         while stack:
-            link, T = stack.pop()
-            if link in out:
+            link, j = stack.pop()
+            if link in via:
                 continue
-            out[link] = T
-            for j in children.get(link, []):
-                if j.child not in out:
-                    stack.append((j.child, T @ pose_matrix(j.origin) @ joint_motion(j, q.get(j.name, 0.0))))
-    return out
+            via[link] = j
+            order.append(link)
+            for c in children.get(link, []):
+                if c.child not in via:
+                    stack.append((c.child, c))
+    out: dict[str, np.ndarray] = {}
+    level = [link for link in order if via[link] is None]
+    for link in level:
+        out[link] = base
+    kids: dict[str, list[Joint]] = {}
+    for link in order:
+        j = via[link]
+        if j is not None:
+            kids.setdefault(j.parent, []).append(j)
+    while level:
+        joints = [j for link in level for j in kids.get(link, ())]
+        if not joints:
+            break
+        moving = [j for j in joints if j.type in _MOVING]
+        norm = dict(zip(map(id, moving), _norms([j.axis for j in moving])))
+        parents = np.array([out[j.parent] for j in joints], dtype=float)
+        P = pose_stack(j.origin for j in joints)
+        flat: list[float] = []
+        for j in joints:
+            flat.extend(_motion_flat(j, norm.get(id(j), 0.0), q.get(j.name, 0.0)))
+        M = np.array(flat, dtype=float).reshape(-1, 4, 4)
+        T = parents @ P @ M
+        if frozen:
+            T.flags.writeable = False
+        level = []
+        for k, j in enumerate(joints):
+            out[j.child] = T[k]
+            level.append(j.child)
+    return {link: out[link] for link in order}
 
 
 def joint_world_transforms(robot: Robot, q: dict[str, float] | None = None) -> dict[str, np.ndarray]:
@@ -89,13 +183,17 @@ def joint_world_transforms(robot: Robot, q: dict[str, float] | None = None) -> d
 def center_of_mass(robot: Robot, q: dict[str, float] | None = None) -> tuple[float, np.ndarray]:
     """Total mass and centre of mass (world frame) of every link with an inertial."""
     T = world_transforms(robot, q)
-    total, acc = 0.0, np.zeros(3)
-    for name, link in robot.links.items():
-        if link.inertial is None or name not in T or link.inertial.mass <= 0:
-            continue
-        p = (T[name] @ pose_matrix(link.inertial.origin))[:3, 3]
-        total += link.inertial.mass
-        acc += link.inertial.mass * p
+    links = [link for name, link in robot.links.items()
+             if link.inertial is not None and name in T and link.inertial.mass > 0]
+    total, acc = 0.0, [0.0, 0.0, 0.0]
+    if links:   # the products stacked (same bits as one per link); the sums in link order, as before
+        W = np.array([T[link.name] for link in links], dtype=float) @ pose_stack(link.inertial.origin for link in links)
+        ps = W[:, :3, 3].ravel().tolist()
+        for k, link in enumerate(links):
+            m = link.inertial.mass
+            total += m
+            acc = [acc[0] + m * ps[3 * k], acc[1] + m * ps[3 * k + 1], acc[2] + m * ps[3 * k + 2]]
+    acc = np.array(acc)
     return total, (acc / total if total > 0 else np.full(3, np.nan))
 
 

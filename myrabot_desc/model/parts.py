@@ -222,6 +222,26 @@ class Transmission(NamedTuple):
 
 
 # ---------------------------------------------------------------- the robot
+class SourceLines:
+    """``Robot.element_locs`` of a URDF read from one file: each element's location is that file
+    and the element's own line, so nothing is stored per element. ``values()`` gives the location
+    of every element, as the id -> Loc dict of a built model does."""
+
+    __slots__ = ("file", "root")
+
+    def __init__(self, file: str, root):
+        self.file, self.root = file, root
+
+    def loc(self, el) -> Loc | None:
+        """The element's location, None for a comment or an element of another document."""
+        if el is None or not isinstance(el.tag, str) or el.getroottree().getroot() is not self.root:
+            return None
+        return Loc(self.file, el.sourceline)
+
+    def values(self):
+        return (Loc(self.file, el.sourceline) for el in self.root.iter() if isinstance(el.tag, str))
+
+
 @dataclass
 class Robot:
     name: str
@@ -239,8 +259,9 @@ class Robot:
     from_xacro: bool = False
     # Problems found while reading (bad numbers, unknown joint types...) that checks report.
     load_issues: list = field(default_factory=list)
-    # id(lxml element of root_element) -> Loc, for consumers that walk the raw XML (check's T005/T006).
-    element_locs: dict = field(default_factory=dict, repr=False)
+    # id(lxml element of root_element) -> Loc, for consumers that walk the raw XML (check's T005/T006);
+    # a SourceLines for a URDF read from one file (use loc_of rather than this map).
+    element_locs: dict | SourceLines = field(default_factory=dict, repr=False)
     _elements: list = field(default_factory=list, repr=False)      # keeps those lxml proxies (and ids) alive
     # Facts derived from the robot, built once by whoever needs them first (sim/prepared.py);
     # the robot is not modified after loading, so they stay true for its lifetime.
@@ -248,7 +269,16 @@ class Robot:
 
     def loc_of(self, el) -> Loc | None:
         """Source location of an element of ``root_element`` (None when unknown)."""
-        return self.element_locs.get(id(el))
+        if type(self.element_locs) is dict:
+            return self.element_locs.get(id(el))
+        return self.element_locs.loc(el)
+
+    def source_files(self) -> list[str]:
+        """The files the model's elements came from (the input and, for xacro, its includes), in
+        order of first use; one file for a URDF read from one file, without visiting its elements."""
+        if type(self.element_locs) is dict:
+            return list(dict.fromkeys(loc.file for loc in self.element_locs.values() if loc is not None))
+        return [self.element_locs.file]
 
     # -------------------------------------------------------- tree helpers
     def child_joints(self, link: str) -> list[Joint]:

@@ -65,11 +65,17 @@ def check_one(task: Task):
     from myrabot_desc.diagnostics import Loc
     from myrabot_desc.errors import InputError
 
+    import gc
+
     path = task.path
     res = FileResult(file=path or "", strict=task.strict)
     saved = {k: os.environ.get(k) for k, _v in task.limits}
     os.environ.update({k: str(v) for k, v in task.limits})
-
+    # The collector stays off while one file is checked: a robot's records make no cycles worth
+    # finding mid-check, and every full pass rescanned all of them (~10% of a 20,000-link
+    # check). Turned back on after each file, it frees what that file's build left.
+    collecting = gc.isenabled()
+    gc.disable()
     try:
         cached = None
         if task.cache_dir:
@@ -97,6 +103,8 @@ def check_one(task: Task):
         res.failure = f"{path}: error: input too large or nested too deeply ({type(exc).__name__})"
         res.failure_loc = Loc(path or "")
     finally:
+        if collecting:
+            gc.enable()
         for k, v in saved.items():
             if v is None:
                 os.environ.pop(k, None)

@@ -6,6 +6,7 @@ current folder when they lie under it (stable across machines in CI).
 
 from __future__ import annotations
 
+import functools
 import json
 import os
 from dataclasses import dataclass, field
@@ -38,12 +39,18 @@ class FileResult:
 
 
 def rel(path: str | None) -> str | None:
+    """``path`` relative to the working folder when it lies below it (a report names a file once
+    per finding: a 20,000-link robot's report asked for the same answer 40,000 times)."""
     if not path:
         return path
+    return _rel(path, os.getcwd())
+
+
+@functools.lru_cache(maxsize=4096)
+def _rel(path: str, cwd: str) -> str:
     try:
-        p = Path(path)
-        if p.is_absolute():
-            r = os.path.relpath(p, Path.cwd())
+        if os.path.isabs(path):
+            r = os.path.relpath(path, cwd)
             if not r.startswith(".."):
                 return r
     except ValueError:

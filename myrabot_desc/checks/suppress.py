@@ -115,7 +115,7 @@ def covers(s: Suppression, code: str, line: int | None) -> bool:
 
 def source_files(robot) -> list[str]:
     """The source files the model's elements came from (the input and, for xacro, its includes)."""
-    files = dict.fromkeys(loc.file for loc in robot.element_locs.values() if loc is not None)
+    files = dict.fromkeys(robot.source_files())
     if robot.loc is not None:
         files.setdefault(robot.loc.file)
     return list(files)

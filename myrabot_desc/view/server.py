@@ -114,7 +114,7 @@ class Viewer:
         """Files the loaded model was read from (xacro sources, meshes): what --watch polls."""
         r = self.robot
         out = {str(r.source)} if r.source else set()
-        out |= {loc.file for loc in r.element_locs.values() if loc is not None and loc.file}
+        out |= {f for f in r.source_files() if f}
         for link in r.links.values():
             for item in (*link.visuals, *link.collisions):
                 g = item.geometry

@@ -700,9 +700,10 @@ def _make_ready(mujoco, spec, model, robot, notes, report, free):
         report.set("contact", "self-collision", "approximated",
                    f"{len(excluded)} body pair(s) touching at rest excluded from collision: "
                    + ", ".join(f"{a}-{b}" for a, b in sorted(excluded)))
-    # actuators, sized by the joint-space inertia at home
-    M = np.zeros((model.nv, model.nv))
-    mujoco.mj_fullM(model, d, M)
+    # actuators, sized by the joint-space inertia at home: its diagonal, the last entry of each row
+    # of MuJoCo's sparse lower-triangular M (mj_fullM would make a dense nv x nv copy: 3.2 GB at
+    # 20,000 joints)
+    diag = d.M[model.M_rowadr + model.M_rownnz - 1]
     dt = model.opt.timestep
     ctrl = []
     n_pos = n_vel = 0
@@ -716,7 +717,7 @@ def _make_ready(mujoco, spec, model, robot, notes, report, free):
                        f"no actuator: {why}")
             continue
         dof = model.jnt_dofadr[jid]
-        inertia = max(float(M[dof, dof]), 1e-9)
+        inertia = max(float(diag[dof]), 1e-9)
         effort = j.limit.effort if j.limit is not None and j.limit.effort else None
         act = spec.add_actuator()
         act.name, act.target, act.trntype = name, name, mujoco.mjtTrn.mjTRN_JOINT

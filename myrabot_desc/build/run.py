@@ -37,7 +37,7 @@ def fast_build(argv) -> int | None:
     except UsageProblem:
         return None
     try:
-        run_build(inputs, **{o.dest: values[o.dest] for o in BUILD_OPTS})
+        run_build(inputs, one_shot=True, **{o.dest: values[o.dest] for o in BUILD_OPTS})
     except KeyboardInterrupt:     # as click's standalone mode says it
         echo("")
         echo("Aborted!")
@@ -45,15 +45,19 @@ def fast_build(argv) -> int | None:
     return 0
 
 
-def run_build(inputs, output=None, deps=False, resolve_uris=False, allow_errors=False, **limit_flags) -> None:
+def run_build(inputs, output=None, deps=False, resolve_uris=False, allow_errors=False, one_shot=False,
+              **limit_flags) -> None:
     """The build command itself (click's and the fast path's); exits 1 or 2 on errors."""
     import gc
 
-    # One-shot command: the cyclic GC would only rescan the millions of DOM objects of a
-    # big expansion once build_file re-enables it (~0.4 s at 4,000 macro calls), and the
-    # interpreter's final collection at exit would free them one by one (another ~0.4 s):
-    # GC stays off, and what the build left is frozen out of that last collection.
-    gc.disable()
+    # A one-shot process (the console script's fast path): the cyclic GC would only rescan the
+    # millions of DOM objects of a big expansion once build_file re-enables it (~0.4 s at 4,000
+    # macro calls), and the interpreter's final collection at exit would free them one by one
+    # (another ~0.4 s): GC stays off, and what the build left is frozen out of that last
+    # collection. Never in a process that goes on (tests, library use): that would leak each
+    # build's document.
+    if one_shot:
+        gc.disable()
     from myrabot_desc.build.driver import build_file
     from myrabot_desc.output import write_output
     from myrabot_desc.safety import Limits
@@ -70,7 +74,8 @@ def run_build(inputs, output=None, deps=False, resolve_uris=False, allow_errors=
         result = build_file(src, inputs.mappings, packages=inputs.packages, package_paths=inputs.package_paths,
                             legacy=inputs.legacy, unsafe_eval=inputs.unsafe_eval, no_env=inputs.no_env,
                             allow_paths=inputs.allow_paths, limits=limits)
-        gc.freeze()
+        if one_shot:
+            gc.freeze()
         for d in result.diagnostics:
             echo(str(d))
         if deps:

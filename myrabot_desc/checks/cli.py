@@ -141,6 +141,15 @@ def default_jobs() -> int:
 def run_tasks(tasks: list, jobs: int, progress: bool) -> list:
     """Results in task order; ``jobs`` worker processes when there is more than one file.
     A progress bar on stderr when asked (it shows only when stderr is a terminal)."""
+    import gc
+
+    try:
+        return _run_tasks(tasks, jobs, progress)
+    finally:
+        gc.unfreeze()       # what _preload froze for the workers is the collector's again here
+
+
+def _run_tasks(tasks: list, jobs: int, progress: bool) -> list:
     from contextlib import nullcontext
 
     jobs = max(1, min(jobs, len(tasks)))

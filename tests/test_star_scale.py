@@ -269,3 +269,21 @@ def test_duplicate_child_with_an_unnamed_joint(tmp_path):
     res = CliRunner().invoke(main, ["check", "--no-cache", "--select", "T002", str(path)])
     assert res.exit_code == 1, res.output
     assert "link b is the child of 2 joints ((unnamed), j2)" in res.output
+
+
+def test_mjcf_refuses_more_links_than_its_limit(tmp_path, monkeypatch):
+    """MuJoCo's parse/compile and the at-rest contact search grow faster than the link count
+    (a 5,000-link star took 12 s and 2 GB, 20,000 ran out of MuJoCo's memory after 25 s): past
+    MYRABOT_DESC_MAX_MJCF_BODIES the conversion is one error line, exit 2, nothing written."""
+    src = tmp_path / "star.urdf"
+    src.write_text(tree_urdf("star", 60))
+    out = tmp_path / "out" / "star.xml"
+    monkeypatch.setenv("MYRABOT_DESC_MAX_MJCF_BODIES", "50")
+    r = CliRunner().invoke(main, ["convert", "--to", "mjcf", str(src), "-o", str(out)])
+    assert r.exit_code == 2
+    assert "the robot has 60 links, over the 50 that `convert --to mjcf` takes" in r.output
+    assert not out.parent.exists() or not any(out.parent.iterdir())
+    monkeypatch.setenv("MYRABOT_DESC_MAX_MJCF_BODIES", "60")
+    r = CliRunner().invoke(main, ["convert", "--to", "mjcf", str(src), "-o", str(out)])
+    assert r.exit_code == 0, r.output
+    assert "60 bodies" in r.output

@@ -539,7 +539,16 @@ MAX_BODY_DEPTH = 1000  # MuJoCo fails past 1024 nested bodies, after seconds of 
 
 
 def _check_depth(robot) -> None:
-    """Refuse a body chain MuJoCo cannot take before spending seconds in its compiler."""
+    """Refuse a body chain MuJoCo cannot take, or more bodies than the limit, before spending
+    seconds in its compiler: MuJoCo's parse and compile, run several times here, and the search
+    for bodies touching at rest grow faster than the link count."""
+    from myrabot_desc.safety import limit
+
+    most = limit("max_mjcf_bodies")
+    if len(robot.links) > most:
+        raise InputError(f"the robot has {len(robot.links)} links, over the {most} that `convert --to mjcf` takes "
+                         "(MYRABOT_DESC_MAX_MJCF_BODIES): MuJoCo's compile and the contact search would take "
+                         "minutes and gigabytes", robot.loc)
     children = robot.joints_by_parent()
     child_links = {j.child for j in robot.joints.values()}
     depth: dict[str, int] = {}

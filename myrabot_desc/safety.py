@@ -104,11 +104,13 @@ def _short(text: str, n: int = 200) -> str:
     return text if len(text) <= n else text[:n] + f"... ({len(text)} characters)"
 
 
-def safe_parser():
+def safe_parser(huge_tree: bool = False, **options):
+    """lxml's parser with no entities, DTDs or network. ``huge_tree`` only for files whose size
+    another limit bounds (meshes: a COLLADA float array is often one text node over 10 MB)."""
     from lxml import etree
 
     return etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False, dtd_validation=False,
-                           huge_tree=False, remove_blank_text=False, collect_ids=False)
+                           huge_tree=huge_tree, remove_blank_text=False, collect_ids=False, **options)
 
 
 def check_xml_bytes(data: bytes, name: str) -> None:

@@ -639,10 +639,10 @@ def _dae_parts(data: bytes):
 
     if b"<!DOCTYPE" in data[:65536] or b"<!ENTITY" in data[:65536]:
         raise _NotLean("DTD")
-    parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False, huge_tree=True,
-                             remove_comments=True, remove_pis=True)
+    from myrabot_desc.safety import safe_parser
+
     try:
-        root = etree.fromstring(data, parser)
+        root = etree.fromstring(data, safe_parser(huge_tree=True, remove_comments=True, remove_pis=True))
     except (etree.XMLSyntaxError, ValueError, RecursionError) as exc:
         raise _NotLean(str(exc)) from None
     if not isinstance(root.tag, str) or not root.tag.endswith("COLLADA"):

@@ -146,13 +146,18 @@ def loads(text: str, name: str):
     fast = _fast_loader()
     if fast is not None:
         try:
-            return _load(fast(text), text, name)
+            return _load(fast, text, name)
         except InputError:
             pass        # PyYAML's pure-Python reader words the error (the same on every machine)
-    return _load(Loader(text), text, name)
+    return _load(Loader, text, name)
 
 
-def _load(loader, text: str, name: str):
+def _load(loader_class, text: str, name: str):
+    try:
+        loader = loader_class(text)     # the pure-Python reader refuses control characters here
+    except yaml.reader.ReaderError as exc:
+        line = text.count("\n", 0, exc.position) + 1
+        raise InputError(f"not valid YAML ({str(exc).splitlines()[0]})", Loc(name, line)) from None
     try:
         node = loader.get_single_node()
         if node is None:

@@ -566,6 +566,8 @@ def make_xacro():
                         '<link name="${y}"/>', "YAML alias bomb printed as a string"),
         "yaml_missing_key": ('<xacro:property name="y" value="${xacro.load_yaml(\'ok.yaml\')}"/>'
                              '<link name="${y.nope}"/>', "missing key in YAML"),
+        "yaml_control_char": ('<xacro:property name="y" value="${xacro.load_yaml(\'control.yaml\')}"/>'
+                              '<link name="${y.a}"/>', "YAML with a control character (BEL) on line 2"),
         "big_string": ('<xacro:property name="s" value="${\'a\' * 900000}"/>' + "".join(
             f'<link name="l{i}${{s}}"/>' for i in range(80)), "a 900 kB string used in 80 names"),
         "unknown_xacro_tag": ("<xacro:frobnicate/>" + LINK, "unknown xacro: tag (treated as a macro call)"),
@@ -594,6 +596,7 @@ def make_xacro():
         f"{chr(98 + i)}: &{chr(98 + i)} [{', '.join(['*' + chr(97 + i)] * 10)}]\n" for i in range(9)), "asset", "-",
         "YAML billion laughs (aliases)")
     add(x + "ok.yaml", "a: 1\n", "asset", "-", "a small valid YAML")
+    add(x + "control.yaml", "a: 1\nb: \x07\n", "asset", "-", "YAML with a control character")
     add(x + "tag_code.yaml", "a: !degrees __import__('os').system('touch /tmp/myrabot_pwned')\n", "asset", "-",
         "a unit tag holding code (xacro's own loader would run it)")
 
@@ -902,7 +905,7 @@ def main() -> None:
              "model loads, `check` reports errors (exit 1), the other commands work on what is there or exit 2;",
              "**warn** = loads, may warn; **not-robot** = XML that is no URDF robot: `build` expands it (as",
              "xacro does), every other command exits 2 saying what it is. In every case: no traceback, no hang",
-             "(5 s), nothing half-written, no file read outside the input's folder and package roots, no",
+             "(10 s of CPU), nothing half-written, no file read outside the input's folder and package roots, no",
              "network, no subprocess.", "",
              "| input | commands | expect | what |", "|---|---|---|---|"]
     for c in CASES:

@@ -20,7 +20,7 @@ def _both(text):
     out = []
     for loader in (yaml_load.Loader, yaml_load._fast_loader()):
         try:
-            out.append(("ok", yaml_load._load(loader(text), text, "f.yaml")))
+            out.append(("ok", yaml_load._load(loader, text, "f.yaml")))
         except InputError as e:
             out.append(("error", str(e)))
     return out
@@ -65,3 +65,43 @@ def test_refusals_are_kept(text, message):
 def test_unit_tags():
     assert yaml_load.loads("x: !degrees 90\ny: !millimeters 5\n", "f.yaml") == pytest.approx(
         {"x": 1.5707963267948966, "y": 0.005})
+
+
+_DEFERRED_PROBE = r"""
+import re, sys
+compile_ = re.compile
+from myrabot_desc.build import driver
+driver._lazy_yaml()                      # what a build does before xacro imports PyYAML
+from myrabot_desc.build import yaml_load
+import yaml.reader
+p = yaml.reader.Reader.NON_PRINTABLE
+print(type(p).__name__, re.compile is compile_)
+try:
+    yaml_load.loads("a: 1\nb: \x07\n", "f.yaml")
+except Exception as e:
+    print(type(e).__name__, str(e).replace("\n", " | "))
+try:
+    yaml.load("b: \x07", Loader=yaml.SafeLoader)     # the pure-Python reader, which uses the pattern
+except yaml.YAMLError as e:
+    print(type(e).__name__, str(e).replace("\n", " | "))
+print(type(p).__name__, [bool(p.search(s)) for s in ("ok", "\x07", "\ufffe", "\U0001f600", "\x85")])
+"""
+
+
+def test_pyyaml_reader_pattern_compiled_only_when_used():
+    """The build imports PyYAML with its pure-Python reader's character class left uncompiled
+    (~5 ms); that reader still refuses the same characters, with the same words, when it runs."""
+    import subprocess
+    import sys
+
+    out = subprocess.run([sys.executable, "-c", _DEFERRED_PROBE], capture_output=True, text=True, check=True)
+    lines = out.stdout.splitlines()
+    assert lines[0] == "_DeferredPattern True"         # deferred (a new PyYAML pattern fails here) and re restored
+    plain = yaml.reader.Reader.NON_PRINTABLE           # this process: PyYAML imported the usual way
+    assert lines[1].startswith("InputError f.yaml:2") and "#x0007" in lines[1]
+    try:
+        yaml.load("b: \x07", Loader=yaml.SafeLoader)
+    except yaml.YAMLError as e:
+        assert lines[2] == f"{type(e).__name__} " + str(e).replace("\n", " | ")
+    expected = [bool(plain.search(s)) for s in ("ok", "\x07", "\ufffe", "\U0001f600", "\x85")]
+    assert lines[3] == f"_DeferredPattern {expected}" and expected == [False, True, True, False, False]

@@ -567,7 +567,44 @@ class _LazyModule(type(sys)):
 def _real_module(name: str):
     import importlib
 
-    return importlib.import_module(name)
+    if name != "yaml" or "yaml" in sys.modules:
+        return importlib.import_module(name)
+    import re
+
+    compile_ = re.compile
+
+    def compile_deferred(pattern, flags=0):    # only while PyYAML's modules run, see below
+        if pattern == _PYYAML_NON_PRINTABLE:
+            return _DeferredPattern(compile_, pattern, flags)
+        return compile_(pattern, flags)
+
+    re.compile = compile_deferred
+    try:
+        return importlib.import_module(name)
+    finally:
+        re.compile = compile_
+
+
+# PyYAML's pure-Python reader compiles this character class when imported (~5 ms, a third of
+# PyYAML's import and a tenth of a small robot's build). We read YAML through libyaml, which makes
+# the same check itself, so the pattern is only needed if the pure-Python reader runs (it words
+# our error messages): it is compiled then. If PyYAML changes the pattern, it is compiled as before.
+_PYYAML_NON_PRINTABLE = "[^\x09\x0A\x0D\x20-\x7E\x85\xA0-\uD7FF\uE000-\uFFFD\U00010000-\U0010ffff]"
+
+
+class _DeferredPattern:
+    """A compiled regular expression that is compiled on first use."""
+
+    def __init__(self, compile_, pattern, flags):
+        self._compile = (compile_, pattern, flags)
+
+    def __getattr__(self, name):       # first use: compile, and keep the real methods from now on
+        compile_, pattern, flags = self._compile
+        real = compile_(pattern, flags)
+        for attr in ("search", "match", "fullmatch", "sub", "subn", "split", "findall", "finditer"):
+            setattr(self, attr, getattr(real, attr))
+        self.pattern, self.flags = pattern, real.flags
+        return getattr(real, name)
 
 
 def _lazy_xacro_cli() -> None:

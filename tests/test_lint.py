@@ -362,6 +362,26 @@ def test_x007_lists_environment_variables_and_values(tmp_path, monkeypatch):
     assert json.loads(res.stdout)["files"][0]["diagnostics"][0]["data"]["environment"]["LINT_TEST_BASE"] == "base"
 
 
+def test_x007_summarises_many_variables(tmp_path, monkeypatch):
+    """A base like Husky reads ~90 $(optenv): the set ones keep their values, the unset ones are
+    named (eight of each at most), and the JSON data still has every value."""
+    names = [f"LINT_MANY_{i:02d}" for i in range(12)]
+    links = "".join(f'  <link name="l{i}_$(optenv {n} d{i})"/>\n' for i, n in enumerate(names))
+    model = tmp_path / "many.urdf.xacro"
+    model.write_text('<?xml version="1.0"?>\n<robot name="m" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+                     + links + "</robot>\n")
+    for n in names:
+        monkeypatch.delenv(n, raising=False)
+    monkeypatch.setenv("LINT_MANY_03", "x")
+    monkeypatch.setenv("LINT_MANY_07", "y")
+    res = run(model, "--format", "json", "--select", "X007", cwd=tmp_path)
+    d = json.loads(res.stdout)["files"][0]["diagnostics"][0]
+    assert len(d["data"]["environment"]) == 12 and d["data"]["environment"]["LINT_MANY_11"] == "d11"
+    assert ("12 variables, 2 set (LINT_MANY_03='x', LINT_MANY_07='y') and 10 unset, defaults used "
+            "(LINT_MANY_00, LINT_MANY_01, LINT_MANY_02, LINT_MANY_04, LINT_MANY_05, LINT_MANY_06, LINT_MANY_08, "
+            "LINT_MANY_09, and 2 more)") in d["message"]
+
+
 # ---------------------------------------------------------------- pre-commit
 @pytest.mark.slow
 @pytest.mark.skipif(shutil.which("git") is None, reason="needs git")

@@ -341,11 +341,10 @@ class _Build:
             self.deps = [str(self.src)] + [d for d in dict.fromkeys(xacro.all_includes)]
         self._xacro_warnings(chatter.getvalue())
         if self.env_used:
-            used = ", ".join(f"{k}={v!r}" + ("" if was_set else " (unset: default)")
-                             for k, (v, was_set) in sorted(self.env_used.items()))
             self.diagnostics.append(Diagnostic(
-                "X007", "info", f"the build depends on the environment: {used}; pin them as xacro args or in the "
-                "CI job", Loc(display(self.src)), {"environment": {k: v for k, (v, _s) in sorted(self.env_used.items())}}))
+                "X007", "info", f"the build depends on the environment: {_env_summary(self.env_used)}; pin them as "
+                "xacro args or in the CI job", Loc(display(self.src)),
+                {"environment": {k: v for k, (v, _s) in sorted(self.env_used.items())}}))
         text, locations = self.render(doc)
         self.check_unexpanded(doc, locations)
         result = BuildResult(text=text, locations=locations, diagnostics=self.diagnostics, deps=self.deps,
@@ -546,6 +545,26 @@ def _defined_nearby(name: str, src: Path, roots) -> str | None:
             if name in text and name in scan_tag_attr(text, "macro", "name"):
                 return str(f)
     return None
+
+
+def _env_summary(env_used: dict, most: int = 8) -> str:
+    """The variables a build read, for X007's one line: each with its value when there are few;
+    a base like Husky's reads ~90 ``$(optenv)``, so then the set ones with their values and the
+    unset ones (defaults used) by name, at most ``most`` of each (the JSON data has them all)."""
+    items = sorted(env_used.items())
+    if len(items) <= most:
+        return ", ".join(f"{k}={v!r}" + ("" if was_set else " (unset: default)") for k, (v, was_set) in items)
+
+    def some(names):
+        more = len(names) - most
+        return ", ".join(names[:most]) + (f", and {more} more" if more > 0 else "")
+
+    set_ = [f"{k}={v!r}" for k, (v, was_set) in items if was_set]
+    unset = [k for k, (_v, was_set) in items if not was_set]
+    parts = [f"{len(set_)} set ({some(set_)})"] if set_ else []
+    if unset:
+        parts.append(f"{len(unset)} unset, defaults used ({some(unset)})")
+    return f"{len(items)} variables, " + " and ".join(parts) + " (check --format json lists every value)"
 
 
 class _LazyModule(type(sys)):

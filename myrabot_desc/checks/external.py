@@ -120,7 +120,8 @@ EXTERNAL_RULES: dict[str, ExternalRule] = {r.code: r for r in (
         "The build read $(env VAR)/$(optenv VAR): its output depends on the environment (values listed).",
         "A model that reads `$(env VAR)` or `$(optenv VAR default)` builds differently on each machine "
         "and CI runner. The finding lists each variable and the value this build used (\"(unset: "
-        "default)\" when `$(optenv)` fell back to its default).",
+        "default)\" when `$(optenv)` fell back to its default); past eight variables it counts them and "
+        "names eight set and eight unset ones, and the JSON output's `data.environment` has them all.",
         "Pin the values: make them xacro args (`NAME:=VALUE`, or `args` in the configuration) or set "
         "them in the CI job; `--no-env` refuses the lookups.",
         Example(_ROBOT + '  <link name="$(optenv MYRABOT_EXAMPLE_BASE base_link)"/>\n</robot>\n',

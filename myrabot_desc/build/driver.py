@@ -561,10 +561,13 @@ def _env_summary(env_used: dict, most: int = 8) -> str:
 
     set_ = [f"{k}={v!r}" for k, (v, was_set) in items if was_set]
     unset = [k for k, (_v, was_set) in items if not was_set]
-    parts = [f"{len(set_)} set ({some(set_)})"] if set_ else []
-    if unset:
-        parts.append(f"{len(unset)} unset, defaults used ({some(unset)})")
-    return f"{len(items)} variables, " + " and ".join(parts) + " (check --format json lists every value)"
+    if not unset:
+        told = f"all set ({some(set_)})"
+    elif not set_:
+        told = f"all unset, defaults used ({some(unset)})"
+    else:
+        told = f"{len(set_)} set ({some(set_)}) and {len(unset)} unset, defaults used ({some(unset)})"
+    return f"{len(items)} variables, {told} (check --format json lists every value)"
 
 
 class _LazyModule(type(sys)):

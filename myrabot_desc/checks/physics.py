@@ -19,27 +19,10 @@ SPAWN_TOL = 0.002        # m: penetration Gazebo resolves without a visible jump
 
 
 def _collision_world(ctx):
-    """[(link, item, world pose 4x4, mesh or None)] for every collision shape we can place."""
-    from myrabot_desc.model.kinematics import pose_matrix
+    """model/support.placed_collisions with check's mesh cache (mesh shapes only with --inertia/--meshes)."""
+    from myrabot_desc.model.support import placed_collisions
 
-    out = []
-    W = ctx.world
-    for link in ctx.robot.links.values():
-        if link.name not in W:
-            continue
-        for it in link.collisions:
-            g = it.geometry
-            if g is None:
-                continue
-            mesh = None
-            if g.kind == "mesh":
-                if not ctx.opts.load_meshes or g.path is None:
-                    continue
-                mesh = ctx.mesh(g)
-                if mesh is None or isinstance(mesh, str):
-                    continue
-            out.append((link, it, W[link.name] @ pose_matrix(it.origin), mesh))
-    return out
+    return placed_collisions(ctx.robot, ctx.world, (lambda g, loc: ctx.mesh(g)) if ctx.opts.load_meshes else None)
 
 
 def wheels(ctx) -> list[str]:

@@ -51,7 +51,7 @@ def _mesh_reader(meshes):
     import numpy as np
 
     if meshes is False or meshes is None:
-        return lambda g, loc: None
+        return None
     if meshes is True:
         from myrabot_desc.model.shapes import surface_points
 
@@ -70,16 +70,13 @@ def _mesh_reader(meshes):
     return read_loaded
 
 
-def lowest(robot, world, meshes=True):
-    """[(min z, [points within CONTACT_TOL of it], link name)] of every collision shape placed by
-    ``world`` (link -> 4x4, from model.kinematics.world_transforms)."""
-    import numpy as np
-
+def placed_collisions(robot, world, mesh_of=None):
+    """(link, collision item, world pose 4x4, mesh) for every collision shape placed by ``world``
+    (link -> 4x4, from model.kinematics.world_transforms). ``mesh`` is None for primitives; mesh
+    shapes come with ``mesh_of(geometry, loc)``'s answer and are left out without ``mesh_of`` or
+    when it gives None or a reason (a str). The one walk check's P rules and the support share."""
     from myrabot_desc.model.kinematics import pose_matrix
-    from myrabot_desc.model.shapes import lowest_points
 
-    read = _mesh_reader(meshes)
-    out = []
     for link in robot.links.values():
         if link.name not in world:
             continue
@@ -87,18 +84,36 @@ def lowest(robot, world, meshes=True):
             g = it.geometry
             if g is None:
                 continue
-            T = world[link.name] @ pose_matrix(it.origin)
+            mesh = None
             if g.kind == "mesh":
-                v = read(g, it.loc) if g.path is not None else None
-                if v is None or not len(v):
+                if mesh_of is None or g.path is None:
                     continue
-                w = v @ T[:3, :3].T + T[:3, 3]
-                z = float(w[:, 2].min())
-                out.append((z, list(w[w[:, 2] <= z + CONTACT_TOL]), link.name))
+                mesh = mesh_of(g, it.loc)
+                if mesh is None or isinstance(mesh, str):
+                    continue
+            yield link, it, world[link.name] @ pose_matrix(it.origin), mesh
+
+
+def lowest(robot, world, meshes=True):
+    """[(min z, [points within CONTACT_TOL of it], link name)] of every collision shape placed by
+    ``world`` (link -> 4x4, from model.kinematics.world_transforms)."""
+    import numpy as np
+
+    from myrabot_desc.model.shapes import lowest_points
+
+    read = _mesh_reader(meshes)
+    out = []
+    for link, it, T, v in placed_collisions(robot, world, read):
+        if v is not None:
+            if not len(v):
                 continue
-            lp = lowest_points(g, T, None, CONTACT_TOL)
-            if lp is not None:
-                out.append((float(lp[0]), [np.asarray(p, dtype=float) for p in lp[1]], link.name))
+            w = v @ T[:3, :3].T + T[:3, 3]
+            z = float(w[:, 2].min())
+            out.append((z, list(w[w[:, 2] <= z + CONTACT_TOL]), link.name))
+            continue
+        lp = lowest_points(it.geometry, T, None, CONTACT_TOL)
+        if lp is not None:
+            out.append((float(lp[0]), [np.asarray(p, dtype=float) for p in lp[1]], link.name))
     return out
 
 

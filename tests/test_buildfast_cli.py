@@ -130,3 +130,28 @@ def test_a_plain_build_imports_no_click_lxml_yaml(tmp_path):
     argv = ["build", str(MATH), "-o", str(tmp_path / "math.urdf")]
     p = subprocess.run([sys.executable, "-c", code, *argv], capture_output=True, text=True, timeout=120)
     assert p.returncode == 0 and p.stderr.splitlines()[-1] == "['yaml.reader']", p.stderr
+
+
+def test_display_is_remembered_per_working_folder_and_bounded(tmp_path, monkeypatch):
+    """safety.display (every location a build records) is remembered, but per working folder,
+    and the memory stays bounded in a long-lived process."""
+    import os
+
+    from myrabot_desc import safety
+
+    f = tmp_path / "pkg" / "r.urdf"
+    f.parent.mkdir()
+    f.write_text("<robot name='r'/>")
+    (tmp_path / "link").symlink_to(tmp_path / "pkg")
+    monkeypatch.chdir(tmp_path)
+    assert safety.display(f) == safety.display("pkg/r.urdf") == os.path.join("pkg", "r.urdf")
+    assert safety.display("link/r.urdf") == os.path.join("pkg", "r.urdf")     # symlinks resolved
+    monkeypatch.chdir(tmp_path / "pkg")
+    assert safety.display(f) == "r.urdf"
+    other = tmp_path / "other"
+    other.mkdir()
+    monkeypatch.chdir(other)
+    assert safety.display(f) == str(f.resolve())        # outside the working folder: absolute
+    for i in range(5000):
+        safety.display(f"x{i}.urdf")
+    assert len(safety._DISPLAYED) <= 4096

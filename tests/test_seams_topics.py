@@ -120,3 +120,36 @@ def test_resolve():
     assert P.resolve("scan", "", "cam") == "cam/scan"
     assert P.resolve("scan", "/ns/", "cam") == "/ns/cam/scan"
     assert P.resolve("/scan", "/ns", "cam") == "/scan"
+
+
+def test_ros2_remapped_lasers_collide_but_a_ring_of_sonars_does_not(tmp_path):
+    """G010 reads a ROS 2 ray sensor's ~/out remapping (the topic convert carries over): two
+    lasers remapped to one topic collide; Range sensors sharing one topic are a design."""
+    laser = ('<gazebo reference="{link}"><sensor name="{n}" type="ray"><plugin name="{n}p" '
+             'filename="libgazebo_ros_ray_sensor.so"><ros><namespace>/r</namespace><remapping>~/out:={topic}'
+             '</remapping></ros><output_type>sensor_msgs/{out}</output_type></plugin></sensor></gazebo>')
+    robot = _robot(tmp_path, laser.format(link="cam", n="front", topic="scan", out="LaserScan")
+                   + laser.format(link="base", n="rear", topic="scan", out="LaserScan")
+                   + "".join(laser.format(link="base", n=f"sonar{i}", topic="sonar_base", out="Range")
+                             for i in range(3)))
+    by = {p.name: p for p in robot.plugins()}
+    assert P.published_topics(by["frontp"]) == [("/r/scan", "remapping ~/out")]
+    assert P.sensor_topic(by["frontp"]) == "/r/scan"                    # convert's answer, the same topic
+    assert [P.publishes_ranges(by[f"sonar{i}p"]) for i in range(3)] == [True] * 3
+    assert not P.publishes_ranges(by["frontp"])
+    g010 = [d for d in run_checks(robot) if d.code == "G010"]
+    assert [d.data["topic"] for d in g010] == ["/r/scan"]
+    assert g010[0].data["publishers"] == ["frontp (remapping ~/out)", "rearp (remapping ~/out)"]
+
+
+@pytest.mark.corpus
+def test_tiago_sonars_share_a_topic_without_g010():
+    """TIAGo (ROS 2): its base laser, IMU and three sonars are found by their remappings; the
+    sonars share /sonar_base by design, so G010 stays quiet."""
+    robot = load_robot(CORPUS / "tiago_description/robots/tiago.urdf.xacro", package_paths=[CORPUS])
+    found = {p.name: P.published_topics(p) for p in robot.plugins() if P.published_topics(p)}
+    assert found["base_laser"] == [("/scan_raw", "remapping ~/out")]
+    assert found["base_imu"] == [("/base_imu", "remapping ~/out")]
+    sonars = [n for n, t in found.items() if t == [("/sonar_base", "remapping ~/out")]]
+    assert len(sonars) == 3
+    assert "G010" not in {d.code for d in run_checks(robot)}

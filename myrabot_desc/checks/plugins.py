@@ -6,7 +6,7 @@ from myrabot_desc.checks.examples import ELECTRIC_IMU, MODERN_IMU, drive_example
 from myrabot_desc.checks.rule import Finding, rule
 from myrabot_desc.model import drive as D
 from myrabot_desc.model.drive import GZ, ROS1, ROS2
-from myrabot_desc.model.plugins import published_topics
+from myrabot_desc.model.plugins import published_topics, publishes_ranges
 
 # Parameters every old-style plugin is known to carry but that a given plugin ignores: a hint for G007.
 IGNORED_HINT = {
@@ -386,15 +386,17 @@ def topic_unique(ctx):
     Two publishers of one topic interleave their messages (two LaserScans on /scan from
     different frames): consumers see both. Topics are resolved as the plugins do: under
     the robot namespace, and for gazebo_ros camera plugins under their `<cameraName>`
-    (two cameras publishing `image_raw` under their own names do not collide). Fix:
-    distinct topicName values or namespaces.
+    (two cameras publishing `image_raw` under their own names do not collide), and for
+    ROS 2 ray sensors by their `~/out` remapping. Range sensors (sonars, IR) sharing a topic
+    are not reported: each Range message names its frame, and a ring of sonars on one topic is
+    a common design. Fix: distinct topicName values, remappings or namespaces.
     """
     seen: dict[str, list] = {}
     for p in ctx.robot.plugins():
         for full, key in published_topics(p):     # model/plugins.py: the names convert carries over
             seen.setdefault(full, []).append((p, key))
     for t, users in sorted(seen.items()):
-        if len(users) > 1:
+        if len(users) > 1 and not all(publishes_ranges(u) for u, _k in users):
             names = [f"{u.name or u.library} ({k})" for u, k in users]
             yield Finding(f"topic {t} is published by {len(users)} plugins: {', '.join(names)}", users[1][0].loc,
                           {"topic": t, "publishers": names})

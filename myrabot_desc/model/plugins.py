@@ -135,16 +135,25 @@ def sensor_topic(p, default: str | None = None) -> str | None:
 
 
 def published_topics(p) -> list[tuple[str, str]]:
-    """[(absolute topic, parameter)] the plugin publishes, from the topic parameters it gives
-    (names with an unexpanded ``$`` left out: they are not known)."""
+    """[(absolute topic, parameter)] the plugin publishes, from the topic parameters it gives and,
+    for a ROS 2 ray sensor, its ``~/out`` remapping (names with an unexpanded ``$`` left out: they
+    are not known)."""
     ns, camera = namespace(p), camera_scope(p)
     if "$" in camera:
         camera = ""
+    given = [(param(p, k), k) for k in TOPIC_KEYS if k not in SUBSCRIBED]
+    if kind(p) in RAY_KINDS and not param(p, "topicName", "topic_name"):
+        given.append((remap(p, "~/out", "out"), "remapping ~/out"))
     out = []
-    for k in TOPIC_KEYS:
-        t = param(p, k)
-        if k in SUBSCRIBED or not t or "$" in t:
+    for t, k in given:
+        if not t or "$" in t:
             continue
         full = resolve(t, ns, camera)
         out.append((full if full.startswith("/") else "/" + full, k))
     return out
+
+
+def publishes_ranges(p) -> bool:
+    """A sonar/IR range plugin (sensor_msgs/Range): several may share one topic by design, as
+    each message names its frame (a base's ring of sonars on one topic)."""
+    return kind(p) == "sonar" or (param(p, "output_type", "outputType") or "").endswith("Range")

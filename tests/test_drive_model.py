@@ -264,22 +264,27 @@ def test_legacy_mode_default_turns_the_wrong_way_in_check_convert_and_sim(tmp_pa
 
 
 def test_sim_drive_with_named_wheels(tmp_path):
-    """Wheels nobody declares (l_wheel_joint / r_wheel_joint): named with --wheels or --left/--right-wheel."""
+    """Wheels nobody declares and whose names do not say "wheel" (l_drive / r_drive): named with
+    --wheels or --left/--right-wheel. (l_wheel_joint / r_wheel_joint are found by where they sit.)"""
     f = tmp_path / "bare.urdf"
     f.write_text(ROVER.format(wheels="".join(WHEEL.format(n=n, x=0, y=y) for n, y in
-                                             (("l_wheel_joint", 0.15), ("r_wheel_joint", -0.15))), extra=""))
+                                             (("l_drive", 0.15), ("r_drive", -0.15))), extra=""))
     r = invoke("sim", "drive", f)
     assert r.exit_code == 2 and "--wheels LEFT,RIGHT" in r.output and "Traceback" not in r.output
-    for names in (["--wheels", "l_wheel_joint,r_wheel_joint"],
-                  ["--left-wheel", "l_wheel_joint", "--right-wheel", "r_wheel_joint"]):
+    for names in (["--wheels", "l_drive,r_drive"],
+                  ["--left-wheel", "l_drive", "--right-wheel", "r_drive"]):
         r = invoke("sim", "drive", "--json", "--twist", "0.2,0.5,2", *names, f)
         assert r.exit_code == 0, r.output
         info = json.loads(r.stdout)["info"]
         assert info["URDF wheel separation"] == pytest.approx(0.3) and info["URDF wheel radius"] == pytest.approx(0.05)
-    r = invoke("sim", "drive", "--wheels", "l_wheel_joint,nope", f)
+    r = invoke("sim", "drive", "--wheels", "l_drive,nope", f)
     assert r.exit_code == 2 and "'nope' is not in the model" in r.output
     r = invoke("sim", "drive", "--wheels", "a,b,c", f)
     assert r.exit_code == 2 and "LEFT,RIGHT" in r.output
+    f.write_text(f.read_text().replace("l_drive", "l_wheel_joint").replace("r_drive", "r_wheel_joint"))
+    r = invoke("sim", "drive", "--json", "--twist", "0.2,0.5,2", f)
+    assert r.exit_code == 0, r.output
+    assert json.loads(r.stdout)["info"]["URDF wheel separation"] == pytest.approx(0.3)
 
 
 def test_one_imu_sensor_per_imu(tmp_path):

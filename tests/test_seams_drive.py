@@ -54,3 +54,39 @@ def test_undeclared_wheel_needs_a_level_axle(tmp_path):
         p = tmp_path / "r.urdf"
         p.write_text(f'<robot name="r">{body.format(rpy=rpy, axis=axis)}</robot>')
         assert D.is_mobile(load_robot(p)) is want
+
+
+def _two_wheels(tmp_path, left: str, right: str, caster: str = "caster_wheel_joint"):
+    wheel = ('<link name="{n}"><collision><geometry><cylinder radius="0.06" length="0.03"/></geometry></collision>'
+             '</link><joint name="{j}" type="continuous"><parent link="base"/><child link="{n}"/>'
+             '<origin xyz="{x} {y} 0.06" rpy="-1.5708 0 0"/><axis xyz="0 0 1"/></joint>')
+    p = tmp_path / "b.urdf"
+    p.write_text('<robot name="b"><link name="base"><inertial><mass value="10"/><inertia ixx="0.1" iyy="0.1" '
+                 'izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>'
+                 + wheel.format(n="lw", j=left, x=0, y=0.19) + wheel.format(n="rw", j=right, x=0, y=-0.19)
+                 + wheel.format(n="cw", j=caster, x=-0.2, y=0.05) + "</robot>")
+    return load_robot(p)
+
+
+@pytest.mark.parametrize("left, right", [("l_wheel_joint", "r_wheel_joint"),        # Fetch
+                                         ("wheel_left_joint", "wheel_right_joint"),  # TurtleBot 2/3
+                                         ("left_wheel", "right_wheel")])
+def test_sim_finds_wheels_by_where_they_sit(tmp_path, left, right):
+    """sim's fallback drive sides continuous *wheel* joints by position (left at +y), whatever
+    their names say, and leaves casters out."""
+    d = D.guess_drive(_two_wheels(tmp_path, left, right))
+    assert (d.left, d.right, d.source) == ((left,), (right,), "guess")
+
+
+def test_sim_drive_on_a_fetch_like_base(tmp_path):
+    """`sim drive` on a base without a drive plugin whose wheels are l_wheel_joint/r_wheel_joint
+    (Fetch's names): it drives on the URDF's wheel geometry (separation 0.38 m, radius 0.06 m)."""
+    from click.testing import CliRunner
+
+    from myrabot_desc.cli import main
+
+    _two_wheels(tmp_path, "l_wheel_joint", "r_wheel_joint")
+    r = CliRunner().invoke(main, ["sim", "drive", str(tmp_path / "b.urdf")])
+    assert r.exit_code == 0, r.output
+    assert "URDF wheel separation: 0.3800" in r.output and "URDF wheel radius: 0.0600" in r.output
+    assert "l_wheel_joint, r_wheel_joint" in r.output and "verdict: PASS" in r.output

@@ -131,7 +131,7 @@ class Drive(NamedTuple):
     """A declared drive: the wheels it turns and the numbers it believes.
 
     ``source``: 'plugin', 'ros_control' (transmissions), 'ros2_control', 'user' or 'guess'
-    (continuous joints named left*/right* wheel, sim only). Numbers are None when not given
+    (continuous joints named like wheels, sided by position; sim only). Numbers are None when not given
     (``spec.defaults`` says what the plugin then uses). ``accel`` is in ``spec.accel_unit``.
     """
 
@@ -383,13 +383,16 @@ def user_drive(robot, left, right) -> Drive:
 
 
 def guess_drive(robot) -> Drive | None:
-    """Continuous joints named *left*wheel* / *right*wheel* (sim's fallback when nothing declares a drive)."""
-    cands = [j for j in robot.joints.values() if j.type == "continuous" and "wheel" in j.name.lower()]
-    left = [j.name for j in cands if "left" in j.name.lower()]
-    right = [j.name for j in cands if "right" in j.name.lower()]
-    if len(left) != 1 or len(right) != 1:
+    """Continuous joints named like wheels ("wheel" in the name, casters left out), split into
+    left (+y) and right (−y) by where they sit on the base, as ``_sided`` does for ros_control
+    wheels: sim's fallback when nothing declares a drive. Names vary (``left_wheel_joint``,
+    ``wheel_left_joint``, Fetch's ``l_wheel_joint``); where a wheel sits does not."""
+    names = [j.name for j in robot.joints.values() if j.type == "continuous" and "wheel" in j.name.lower()
+             and "caster" not in j.name.lower() and "castor" not in j.name.lower()]
+    left, right = _sided(robot, names)
+    if not left or not right:
         return None
-    return Drive("guess", "continuous joints named left/right wheel", (left[0],), (right[0],), loc=robot.loc)
+    return Drive("guess", "continuous joints named like wheels", left, right, loc=robot.loc)
 
 
 def find(robot) -> list[Drive]:

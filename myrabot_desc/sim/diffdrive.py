@@ -109,14 +109,14 @@ class Drive:
 def find_drive(robot, wheels: str = "plugin", left=(), right=()) -> Drive:
     """The base's drive from the one drive model (model/drive.py): the user's wheel joints, else
     the first declared drive (a plugin of any dialect, ros_control velocity wheels), else
-    continuous joints named left/right wheel. A skid-steer base is its equivalent diff drive
+    continuous joints named like wheels, sided by where they sit. A skid-steer base is its equivalent diff drive
     (each side's wheels turn together; the separation is between the sides' centres)."""
     from myrabot_desc.model import drive as D
 
     d = D.main_drive(robot, tuple(left), tuple(right), guess=True)
     if d is None:
         raise InputError(f"{robot.name}: cannot tell the drive wheels (no drive plugin, no ros_control velocity "
-                         "wheels, no continuous joints named left*/right*wheel*): name them with "
+                         "wheels, no continuous *wheel* joints on both sides of the base): name them with "
                          "--wheels LEFT,RIGHT", robot.loc)
     for name in d.missing(robot):
         raise InputError(f"diff-drive wheel joint {name!r} is not in the model", d.loc or robot.loc)

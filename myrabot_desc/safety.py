@@ -105,7 +105,7 @@ def display(path) -> str:
             shown = rel if not rel.startswith("..") else str(p.resolve())
         except ValueError:
             shown = str(p)
-        shown = _DISPLAYED[key] = shown
+        _DISPLAYED[key] = shown
     return shown
 
 

@@ -567,11 +567,22 @@ def _check_depth(robot) -> None:
 
 # Position actuators reach the joint's effort limit at this error (rad, or m for prismatic joints),
 # and are held to a natural frequency of at most OMEGA_DT / timestep (explicit springs beyond it
-# ring or diverge on light links); critically damped. Wheels: velocity actuators that reach their
-# effort at WHEEL_SLIP of their velocity limit.
+# ring or diverge on light links); critically damped.
 FULL_EFFORT_AT = {"hinge": 0.05, "slide": 0.005}
 OMEGA_DT = 0.5
-WHEEL_SLIP = 0.1
+# Wheels: velocity actuators. implicitfast integrates a velocity servo implicitly, stable at any
+# gain, but a force clamped at its range is integrated explicitly: one clamped step on a light
+# wheel overshoots by effort*dt/I and the model diverges (ros2_control_demos' DiffBot: 0.3 kg,
+# r 1.5 cm wheels, effort 100 N·m, gain 1000: gone to x 69 m, z 72 m). So with an effort limit
+# the gain reaches it only at WHEEL_CLAMP_AT times the velocity limit (no command inside
+# ctrlrange clamps, from rest), and at least ROLLING_CLAMPED x the rolling gain below, at which a
+# clamped step on a loaded wheel does not overshoot. (DiffBot still hops on a step command: gain
+# 50 against a 1.5 cm wheel on a 1.1 kg robot is stiffer than implicitfast holds there.)
+# Without one, nothing clamps, and the gain is stiff against what the wheel turns: itself and its
+# share of the robot rolling on it (m/n r²), plus WHEEL_OVER_DAMPING times its joint damping.
+WHEEL_CLAMP_AT = 2.0
+WHEEL_OVER_DAMPING = 50.0
+ROLLING_CLAMPED = 0.5
 
 
 def _joint_plan(robot, wheels):
@@ -590,6 +601,17 @@ def _joint_plan(robot, wheels):
         else:
             plan[j.name] = ("position", "")
     return plan
+
+
+def _rolling_kv(robot, joint, inertia: float, dt: float, mass_share: float) -> float:
+    """A wheel's velocity gain without an effort limit: (its own inertia + its share of the robot's
+    mass at its radius) / timestep, plus WHEEL_OVER_DAMPING x its joint damping (see WHEEL_CLAMP_AT)."""
+    from myrabot_desc.model import drive as D
+
+    w = D.wheel(robot, joint.name, read_meshes=True)
+    r = w.radius if w is not None and w.radius else 0.0
+    damping = joint.dynamics.damping if joint.dynamics is not None else 0.0
+    return (inertia + mass_share * r * r) / dt + WHEEL_OVER_DAMPING * damping
 
 
 def _lowest_point(mujoco, np, m, d, geoms) -> float:
@@ -714,6 +736,8 @@ def _make_ready(mujoco, spec, model, robot, notes, report, free):
     # 20,000 joints)
     diag = d.M[model.M_rowadr + model.M_rownnz - 1]
     dt = model.opt.timestep
+    n_wheels = sum(1 for kind, _ in plan.values() if kind == "velocity")
+    wheel_share = float(model.body_mass.sum()) / max(n_wheels, 1)     # the mass each wheel rolls
     ctrl = []
     n_pos = n_vel = 0
     for name, (kind, why) in plan.items():
@@ -735,7 +759,8 @@ def _make_ready(mujoco, spec, model, robot, notes, report, free):
             act.forcerange = [-effort, effort]
         if kind == "velocity":
             vel = j.limit.velocity if j.limit is not None and j.limit.velocity else None
-            kv = float(f"{effort / (WHEEL_SLIP * vel) if effort and vel else inertia / dt:.4g}")
+            rolling = _rolling_kv(robot, j, inertia, dt, wheel_share)
+            kv = float(f"{max(effort / (WHEEL_CLAMP_AT * vel), ROLLING_CLAMPED * rolling) if effort and vel else rolling:.4g}")
             act.set_to_velocity(kv=float(num(kv)))
             if vel:
                 act.ctrllimited = mujoco.mjtLimited.mjLIMITED_TRUE

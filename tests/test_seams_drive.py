@@ -90,3 +90,23 @@ def test_sim_drive_on_a_fetch_like_base(tmp_path):
     assert r.exit_code == 0, r.output
     assert "URDF wheel separation: 0.3800" in r.output and "URDF wheel radius: 0.0600" in r.output
     assert "l_wheel_joint, r_wheel_joint" in r.output and "verdict: PASS" in r.output
+
+
+def test_sim_drive_refuses_wheels_that_mimic_one_joint(tmp_path):
+    """A car-like base (ros2_control_demos' CarlikeBot): both rear wheels <mimic> one virtual joint,
+    so they cannot turn at different speeds; sim drive used to pass it turning on the spot."""
+    from click.testing import CliRunner
+
+    from myrabot_desc.cli import main
+
+    _two_wheels(tmp_path, "rear_left_wheel_joint", "rear_right_wheel_joint", caster="virtual_rear_wheel_joint")
+    f = tmp_path / "b.urdf"
+    text = f.read_text()
+    for side in ("left", "right"):
+        text = text.replace(f'<joint name="rear_{side}_wheel_joint" type="continuous">',
+                            f'<joint name="rear_{side}_wheel_joint" type="continuous">'
+                            '<mimic joint="virtual_rear_wheel_joint" multiplier="1.0"/>')
+    f.write_text(text)
+    r = CliRunner().invoke(main, ["sim", "drive", str(f)])
+    assert r.exit_code == 2 and "Traceback" not in r.output
+    assert "turn together (<mimic> of 'virtual_rear_wheel_joint'): not a differential drive" in r.output

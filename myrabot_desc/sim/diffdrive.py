@@ -122,6 +122,12 @@ def find_drive(robot, wheels: str = "plugin", left=(), right=()) -> Drive:
         raise InputError(f"diff-drive wheel joint {name!r} is not in the model", d.loc or robot.loc)
     if not d.left or not d.right:
         raise InputError(f"{d.label}: no left and right wheel joints given", d.loc or robot.loc)
+    lead = {n: robot.joints[n].mimic.joint if robot.joints[n].mimic is not None else n for n in d.joints}
+    shared = sorted({lead[n] for n in d.left} & {lead[n] for n in d.right})
+    if shared:     # a car-like base: its rear wheels follow one joint, it steers instead
+        raise InputError(f"{d.label}: the left and right wheels ({', '.join(d.joints)}) turn together (<mimic> of "
+                         f"'{shared[0]}'): not a differential drive, they cannot turn at different speeds",
+                         d.loc or robot.loc)
     plugin = _plugin_drive(d) if d.source == "plugin" else None
     urdf = urdf_wheels(robot, d)
     notes = []

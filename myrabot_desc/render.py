@@ -192,7 +192,7 @@ def build_model(scene, q: dict, layers: Layers):
             place(M, type=mujoco.mjtGeom.mjGEOM_BOX, size=size,
                   rgba=[0.15, 0.35, 1.0, 0.45] if box.valid else [1.0, 0.1, 0.1, 0.6], group=3)
             place(M, type=mujoco.mjtGeom.mjGEOM_SPHERE, size=[0.008 * diag, 0, 0], rgba=[0.1, 0.1, 0.1, 1], group=3)
-        mass, com = center_of_mass(scene.robot, scene.clamp(q))
+        mass, com = center_of_mass(scene.robot, scene.pose(q))
         if mass > 0:
             world.add_geom(type=mujoco.mjtGeom.mjGEOM_SPHERE, pos=list(com), size=[0.02 * diag, 0, 0],
                            rgba=[1.0, 0.0, 0.8, 1], contype=0, conaffinity=0, group=3)

@@ -150,6 +150,28 @@ def test_actuators_keyframe_and_exclusions(tmp_path):
     assert '<include file="myrabot.xml"/>' in scene and 'name="floor"' in scene and "<light" in scene
 
 
+def test_home_clamps_joints_whose_range_excludes_zero(tmp_path):
+    """A quadruped's knee (Unitree A1: calf limit [-2.697, -0.916]) is at its nearer limit in `home`,
+    and so is its position actuator's target (they were left at 0, outside the range)."""
+    f = tmp_path / "knee.urdf"
+    inertial = ('<inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/>'
+                '</inertial>')
+    f.write_text(f'<robot name="k"><link name="thigh">{inertial}</link><link name="calf">{inertial}</link>'
+                 '<joint name="calf_joint" type="revolute"><parent link="thigh"/><child link="calf"/>'
+                 '<origin xyz="0 0 -0.2"/><axis xyz="0 1 0"/>'
+                 '<limit effort="33.5" lower="-2.6965" upper="-0.9163" velocity="21"/></joint>'
+                 '<joint name="slide" type="prismatic"><parent link="calf"/><child link="foot"/><axis xyz="0 0 1"/>'
+                 f'<limit effort="10" lower="0.1" upper="0.2" velocity="1"/></joint><link name="foot">{inertial}</link>'
+                 '</robot>')
+    out = tmp_path / "k" / "knee.xml"
+    assert CliRunner().invoke(main, ["convert", str(f), "--to", "mjcf", "--base", "fixed", "-o", str(out)]).exit_code == 0
+    m = mujoco.MjModel.from_xml_path(str(out))
+    home = m.key("home")
+    knee, slide = m.jnt_qposadr[m.joint("calf_joint").id], m.jnt_qposadr[m.joint("slide").id]
+    assert home.qpos[knee] == pytest.approx(-0.9163) and home.qpos[slide] == pytest.approx(0.1)
+    assert home.ctrl[m.actuator("calf_joint").id] == pytest.approx(-0.9163)
+
+
 def test_touching_bodies_are_excluded_and_mimic_is_an_equality(tmp_path):
     """Two arms whose boxes overlap at rest get a contact exclusion (found by MuJoCo's collision
     pass); a mimic joint is an equality constraint with the URDF's multiplier and offset and no

@@ -94,3 +94,32 @@ def test_primitive_meshes_are_closed_and_outward(geom, volume):
     else:
         assert m.volume == pytest.approx(4 / 3 * math.pi * 0.07 ** 3, rel=0.05)
         assert m.extents == pytest.approx([0.14, 0.14, 0.14], rel=0.01)
+
+
+def test_rest_pose_puts_a_joint_at_its_nearer_limit_when_zero_is_outside(tmp_path):
+    """render, the viewer's sliders and the MJCF `home` keyframe start from one rest pose: 0, or the
+    nearer limit (Unitree A1's knee: [-2.697, -0.916] -> -0.916; it was drawn at 0)."""
+    from click.testing import CliRunner
+
+    from myrabot_desc.cli import main
+    from myrabot_desc.view.scene import build_scene
+
+    inertial = '<inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>'
+    f = tmp_path / "knee.urdf"
+    f.write_text(f'<robot name="k"><link name="thigh">{inertial}</link><link name="calf">{inertial}'
+                 '<visual><origin xyz="0 0 -0.1"/><geometry><box size="0.02 0.02 0.2"/></geometry></visual></link>'
+                 '<joint name="calf_joint" type="revolute"><parent link="thigh"/><child link="calf"/>'
+                 '<axis xyz="0 1 0"/><limit effort="33.5" lower="-2.6965" upper="-0.9163" velocity="21"/></joint>'
+                 '<joint name="free_turn" type="continuous"><parent link="thigh"/><child link="tip"/></joint>'
+                 f'<link name="tip">{inertial}</link></robot>')
+    scene = build_scene(load_robot(f))
+    assert scene.rest() == {"calf_joint": pytest.approx(-0.9163), "free_turn": 0.0}
+    R = scene.transforms({})["calf"][:3, :3]
+    assert math.atan2(R[0, 2], R[2, 2]) == pytest.approx(-0.9163)        # drawn bent, as MuJoCo's home
+    assert scene.pose({"calf_joint": -2.0}) == {"calf_joint": -2.0, "free_turn": 0.0}
+    import mujoco
+
+    out = tmp_path / "m" / "knee.xml"
+    assert CliRunner().invoke(main, ["convert", str(f), "--to", "mjcf", "--base", "fixed", "-o", str(out)]).exit_code == 0
+    m = mujoco.MjModel.from_xml_path(str(out))
+    assert m.key("home").qpos[m.jnt_qposadr[m.joint("calf_joint").id]] == pytest.approx(scene.rest()["calf_joint"])

@@ -642,8 +642,9 @@ def _lowest_point(mujoco, np, m, d, geoms) -> float:
 def home_qpos(mujoco, model):
     """Every joint at 0, clamped into its range."""
     qpos = model.qpos0.copy()
+    moving = (int(mujoco.mjtJoint.mjJNT_HINGE), int(mujoco.mjtJoint.mjJNT_SLIDE))   # ints: `np.int32 in (enum,)` is False
     for j in range(model.njnt):
-        if model.jnt_type[j] in (mujoco.mjtJoint.mjJNT_HINGE, mujoco.mjtJoint.mjJNT_SLIDE) and model.jnt_limited[j]:
+        if int(model.jnt_type[j]) in moving and model.jnt_limited[j]:
             a = model.jnt_qposadr[j]
             qpos[a] = min(max(qpos[a], model.jnt_range[j][0]), model.jnt_range[j][1])
     return qpos

@@ -54,7 +54,16 @@ class Scene:
         """link -> 4x4 world pose (mimic joints follow their leader)."""
         from myrabot_desc.model.kinematics import world_transforms
 
-        return world_transforms(self.robot, self.clamp(q))
+        return world_transforms(self.robot, self.pose(q))
+
+    def rest(self) -> dict:
+        """Every joint at 0, or at its nearer limit when 0 is outside its range (a quadruped's knee):
+        the pose render and the viewer start from, as the MJCF ``home`` keyframe does."""
+        return {name: min(max(0.0, r.lower), r.upper) for name, r in self.joints.items()}
+
+    def pose(self, q: dict | None) -> dict:
+        """The rest pose with ``q``'s joints (clamped) set."""
+        return {**self.rest(), **self.clamp(q)}
 
     def clamp(self, q: dict | None) -> dict:
         """Joint values limited to the slider ranges; unknown names dropped."""

@@ -257,7 +257,7 @@ class Viewer:
         with gui.add_folder("Joints"):
             for name, rng in self.scene.joints.items():
                 step = 0.001 if rng.type == "prismatic" else 0.005
-                v = min(max(self.q.get(name, 0.0 if rng.lower <= 0 <= rng.upper else rng.lower), rng.lower), rng.upper)
+                v = min(max(self.q.get(name, self.scene.rest()[name]), rng.lower), rng.upper)
                 self.q[name] = v
                 s = gui.add_slider(name, min=round(rng.lower, 6), max=round(rng.upper, 6), step=step,
                                    initial_value=round(v, 6), hint=f"{rng.type} joint, "

@@ -338,3 +338,16 @@ def test_corpus_parts_files_named_on_the_command_line_are_not_errors():
     for f in json.loads(res.stdout)["files"]:
         assert f["links"] == 0 and f["counts"]["error"] == 0
         assert ("T017", "info") in [(d["code"], d["severity"]) for d in f["diagnostics"]]
+
+
+# ---------------------------------------------------------------- I006: ratios below 1 stay readable
+def test_i006_ratio_below_one_is_a_plain_number(tmp_path):
+    """Unitree B2's lidar_link (6.55e-08 kg worth of inertia on a real part) printed
+    "ratio 1/142875/1/142875/1/115344": the ratios are joined with "/", so a fraction is a number."""
+    f = tmp_path / "r.urdf"
+    f.write_text('<robot name="r"><link name="lidar"><inertial><mass value="0.5"/><inertia ixx="1e-09" ixy="0" '
+                 'ixz="0" iyy="1e-09" iyz="0" izz="2e-09"/></inertial><collision><geometry><box size="0.1 0.1 0.1"/>'
+                 '</geometry></collision></link></robot>')
+    d = [x for x in run_checks(load_robot(f), CheckOptions(inertia=True)) if x.code == "I006"]
+    assert len(d) == 1
+    assert "(ratio 1.2e-06×/1.2e-06×/2.4e-06×)" in d[0].message, d[0].message

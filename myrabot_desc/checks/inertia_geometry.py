@@ -178,11 +178,11 @@ def inertia_vs_geometry(ctx):
 
 
 def _ratio(r: float) -> str:
+    """declared / computed: ``166×``, ``1.5×``, ``0.5×``, ``7e-06×`` (never ``1/x``: the ratios are
+    joined with ``/``)."""
     if math.isinf(r):
         return "∞"
-    x = r if r >= 1 else 1 / r
-    txt = f"{x:.0f}" if x >= 10 else f"{x:.2g}"
-    return f"{txt}×" if r >= 1 else f"1/{txt}"
+    return f"{r:.0f}×" if r >= 10 else f"{r:.2g}×"
 
 
 @rule("I007", "radius-of-gyration", "warning",

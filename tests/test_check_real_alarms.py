@@ -351,3 +351,22 @@ def test_i006_ratio_below_one_is_a_plain_number(tmp_path):
     d = [x for x in run_checks(load_robot(f), CheckOptions(inertia=True)) if x.code == "I006"]
     assert len(d) == 1
     assert "(ratio 1.2e-06×/1.2e-06×/2.4e-06×)" in d[0].message, d[0].message
+
+
+# ---------------------------------------------------------------- T011: a passive joint's effort 0
+def test_t011_leaves_a_passive_joints_effort_zero_alone(tmp_path):
+    """TurtleBot 4's wheel-drop joints (prismatic, effort 0 velocity 0, in no ros2_control block) are
+    passive: effort 0 says so; the commanded arm joint with effort 0 is still reported."""
+    inertial = '<inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>'
+    f = tmp_path / "r.urdf"
+    f.write_text(f'<robot name="r"><link name="base">{inertial}</link><link name="drop">{inertial}</link>'
+                 f'<link name="arm">{inertial}</link>'
+                 '<joint name="wheel_drop" type="prismatic"><parent link="base"/><child link="drop"/><axis xyz="0 0 1"/>'
+                 '<limit lower="0" upper="0.035" effort="0" velocity="0"/></joint>'
+                 '<joint name="shoulder" type="revolute"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/>'
+                 '<limit lower="-1" upper="1" effort="0" velocity="1"/></joint>'
+                 '<ros2_control name="s" type="system"><hardware><plugin>mock_components/GenericSystem</plugin>'
+                 '</hardware><joint name="shoulder"><command_interface name="position"/></joint></ros2_control></robot>')
+    t011 = {d.data["joint"]: d.message for d in run_checks(load_robot(f)) if d.code == "T011"}
+    assert t011 == {"wheel_drop": "joint wheel_drop: velocity 0 (must be > 0)",
+                    "shoulder": "joint shoulder: effort 0 (must be > 0)"}

@@ -242,13 +242,22 @@ def limits_positive(ctx):
 
     An effort of 0 means no actuator can move the joint in Gazebo (and ros2_control);
     a negative value is meaningless. A velocity of 0 freezes it in controllers that
-    honour limits. Fix: the actuator's rated torque/force and speed.
+    honour limits. Fix: the actuator's rated torque/force and speed. An effort of 0 on a
+    passive joint (a suspension that no transmission, ros2_control block or drive
+    commands, in a model that declares its actuators) says just that: not reported.
     """
+    from myrabot_desc.model.drive import commanded_joints
+
+    commanded = None
     for j in ctx.robot.joints.values():
         lim = j.limit
         if not lim or j.type == "fixed":
             continue
         bad = {k: getattr(lim, k) for k in ("effort", "velocity") if getattr(lim, k) is not None and getattr(lim, k) <= 0}
+        if bad.get("effort") == 0 and j.mimic is None:
+            commanded = commanded_joints(ctx.robot) if commanded is None else commanded
+            if commanded and j.name not in commanded:
+                del bad["effort"]
         if bad:
             yield Finding(f"joint {j.name}: " + ", ".join(f"{k} {v:g}" for k, v in bad.items()) + " (must be > 0)",
                           j.loc, {"joint": j.name, **bad},

@@ -333,6 +333,22 @@ def velocity_joints(robot) -> tuple[list[str], str | None]:
     return out, source
 
 
+def commanded_joints(robot) -> set[str]:
+    """Joints something commands: named in a transmission or with a command interface in a
+    ``<ros2_control>`` block, or turned by a declared drive. Empty when the model says nothing of
+    its actuators (then nobody can tell a passive joint from an actuated one)."""
+    out = {n for t in robot.transmissions for n in t.joints}
+    root = robot.root_element
+    if root is not None:
+        for block in root:
+            if _local(block.tag) == "ros2_control":
+                out |= {j.get("name") for j in block if _local(j.tag) == "joint" and j.get("name")
+                        and any(_local(c.tag) == "command_interface" for c in j)}
+    for d in find(robot):
+        out |= set(d.joints)
+    return {n for n in out if n in robot.joints}
+
+
 def position_joints(robot) -> list[str]:
     """Joints commanded in position by ros2_control (a ``position`` command interface), in file order."""
     out = []

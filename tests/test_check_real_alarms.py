@@ -370,3 +370,28 @@ def test_t011_leaves_a_passive_joints_effort_zero_alone(tmp_path):
     t011 = {d.data["joint"]: d.message for d in run_checks(load_robot(f)) if d.code == "T011"}
     assert t011 == {"wheel_drop": "joint wheel_drop: velocity 0 (must be > 0)",
                     "shoulder": "joint shoulder: effort 0 (must be > 0)"}
+
+
+# ---------------------------------------------------------------- G005: ros2_control wheels named against their side
+def test_g005_wheel_named_left_on_the_right(tmp_path):
+    """ros2_control_demos' DiffBot: left_wheel_joint sits at y -0.05 (both axes +y); its controller
+    is given left_wheel_names: [left_wheel_joint], so the real robot turns the wrong way."""
+    inertial = '<inertial><mass value="0.3"/><inertia ixx="3e-05" iyy="3e-05" izz="3e-05" ixy="0" ixz="0" iyz="0"/></inertial>'
+    wheel = ('<joint name="{n}_wheel_joint" type="continuous"><parent link="base_link"/><child link="{n}_wheel"/>'
+             '<origin xyz="0 {y} -0.025"/><axis xyz="0 1 0"/></joint><link name="{n}_wheel">' + inertial +
+             '<collision><origin rpy="1.5708 0 0"/><geometry><cylinder radius="0.015" length="0.02"/></geometry>'
+             '</collision></link>')
+    def diffbot(left_y):
+        f = tmp_path / f"diffbot{left_y}.urdf"
+        f.write_text('<robot name="diffbot"><link name="base_link"/>' + wheel.format(n="left", y=left_y)
+                     + wheel.format(n="right", y=-left_y) + '<ros2_control name="d" type="system"><hardware><plugin>'
+                     'mock_components/GenericSystem</plugin></hardware><joint name="left_wheel_joint"><command_interface '
+                     'name="velocity"/></joint><joint name="right_wheel_joint"><command_interface name="velocity"/>'
+                     '</joint></ros2_control></robot>')
+        return [d for d in run_checks(load_robot(f)) if d.code == "G005"]
+
+    g005 = diffbot(-0.05)
+    assert [(d.data["joint"], d.severity) for d in g005] == [("left_wheel_joint", "warning"),
+                                                            ("right_wheel_joint", "warning")]
+    assert "left_wheel_joint is named left but sits at y -0.05 (the right side" in g005[0].message
+    assert diffbot(0.05) == []

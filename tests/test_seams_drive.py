@@ -110,3 +110,35 @@ def test_sim_drive_refuses_wheels_that_mimic_one_joint(tmp_path):
     r = CliRunner().invoke(main, ["sim", "drive", str(f)])
     assert r.exit_code == 2 and "Traceback" not in r.output
     assert "turn together (<mimic> of 'virtual_rear_wheel_joint'): not a differential drive" in r.output
+
+
+def test_sim_drive_says_when_the_named_left_wheel_sits_on_the_right(tmp_path):
+    """--left-wheel names a joint at -y (DiffBot's left_wheel_joint): sim drives by the geometry and
+    says that a controller given these names turns the wrong way (it used to say nothing)."""
+    from click.testing import CliRunner
+
+    from myrabot_desc.cli import main
+
+    _two_wheels(tmp_path, "a_joint", "b_joint")            # a at +y, b at -y
+    f = str(tmp_path / "b.urdf")
+    r = CliRunner().invoke(main, ["sim", "drive", f, "--left-wheel", "b_joint", "--right-wheel", "a_joint"])
+    assert r.exit_code == 0, r.output
+    assert "the left wheel you named, b_joint, sits on the right (y -0.190 m" in r.output
+    r = CliRunner().invoke(main, ["sim", "drive", f, "--left-wheel", "a_joint", "--right-wheel", "b_joint"])
+    assert r.exit_code == 0 and "you named" not in r.output
+
+
+def test_sim_drive_refuses_a_limited_joint_as_a_wheel(tmp_path):
+    """`--wheels FR_calf_joint,FL_calf_joint` on a quadruped (limits [-2.697, -0.916]) drove the knees
+    12.6 rad round and passed; a wheel must turn freely."""
+    from click.testing import CliRunner
+
+    from myrabot_desc.cli import main
+
+    _two_wheels(tmp_path, "l_knee", "r_knee")
+    f = tmp_path / "b.urdf"
+    f.write_text(f.read_text().replace('<joint name="l_knee" type="continuous">', '<joint name="l_knee" type="revolute">'
+                                       '<limit lower="-2.697" upper="-0.916" effort="33" velocity="21"/>'))
+    r = CliRunner().invoke(main, ["sim", "drive", str(f), "--wheels", "l_knee,r_knee"])
+    assert r.exit_code == 2 and "Traceback" not in r.output
+    assert "wheel joint l_knee is revolute with limits [-2.697, -0.916]: a wheel turns freely" in r.output

@@ -171,9 +171,27 @@ def drive_axis(ctx):
 
     The base drives along its x axis (REP-103); a wheel whose axis is along x or z rolls
     sideways or spins like a turntable. A left wheel on the right (negative y) side
-    swaps the turning direction (warning). Fix: `<axis xyz="0 1 0"/>` (in the wheel
-    joint's frame) and the left wheel at +y.
+    swaps the turning direction (warning); for ros_control/ros2_control wheels, whose
+    sides the controller's configuration gives (outside the URDF), a wheel joint named
+    "left" on the right side (or "right" on the left) is reported the same way
+    (ros2_control_demos' DiffBot). Fix: `<axis xyz="0 1 0"/>` (in the wheel joint's frame)
+    and the left wheel at +y.
     """
+    import re
+
+    for d in D.find(ctx.robot):
+        if d.source not in ("ros_control", "ros2_control"):
+            continue
+        for w in _geometry(ctx, d).wheels:
+            words = set(re.split(r"[^a-z]+", w.joint.lower()))
+            y = w.origin[1]
+            named = "left" if "left" in words and "right" not in words else \
+                "right" if "right" in words and "left" not in words else None
+            if (named == "left" and y < -1e-3) or (named == "right" and y > 1e-3):
+                yield Finding(f"{d.label}: wheel joint {w.joint} is named {named} but sits at y {y:.3g} (the "
+                              f"{'right' if y < 0 else 'left'} side; +y is left, REP-103): a controller given it as "
+                              f"the {named} wheel turns the robot the wrong way", ctx.robot.joints[w.joint].loc,
+                              {"joint": w.joint, "y": float(y), "named": named}, severity="warning")
     r = ctx.robot
     for p, d in drives(ctx):
         spec = d.spec

@@ -122,6 +122,13 @@ def find_drive(robot, wheels: str = "plugin", left=(), right=()) -> Drive:
         raise InputError(f"diff-drive wheel joint {name!r} is not in the model", d.loc or robot.loc)
     if not d.left or not d.right:
         raise InputError(f"{d.label}: no left and right wheel joints given", d.loc or robot.loc)
+    for name in d.joints:
+        j = robot.joints[name]
+        lim = j.limit
+        if j.type not in ("continuous", "revolute") or (j.type == "revolute" and lim is not None and lim.lower is not None
+                                                        and lim.upper is not None and lim.upper - lim.lower < 2 * math.pi):
+            rng = f" with limits [{lim.lower:g}, {lim.upper:g}]" if lim is not None and lim.lower is not None else ""
+            raise InputError(f"wheel joint {name} is {j.type}{rng}: a wheel turns freely (a continuous joint)", j.loc)
     lead = {n: robot.joints[n].mimic.joint if robot.joints[n].mimic is not None else n for n in d.joints}
     shared = sorted({lead[n] for n in d.left} & {lead[n] for n in d.right})
     if shared:     # a car-like base: its rear wheels follow one joint, it steers instead
@@ -136,6 +143,9 @@ def find_drive(robot, wheels: str = "plugin", left=(), right=()) -> Drive:
                f"no drive plugin ({d.label}: {', '.join(d.joints)})")
         notes.append(f"{why}: cmd_vel is turned into wheel rates with the URDF's own wheel geometry")
         wheels = "urdf"
+    if d.source == "user" and urdf.left.joint != d.left[0]:
+        notes.append(f"the left wheel you named, {d.left[0]}, sits on the right (y {urdf.right.y:+.3f} m; +y is left, "
+                     "REP-103): driven as the geometry says; a controller given these names turns the wrong way")
     dr = Drive(urdf=urdf, plugin=plugin, wheels=wheels, notes=notes)
     if plugin is not None:
         mirrored = plugin.left_joint != urdf.left.joint

@@ -287,8 +287,9 @@ def lenient_dae(path: Path, notes):
         return None
     v = np.concatenate(parts)
     mesh = trimesh.Trimesh(vertices=v, faces=np.arange(len(v)).reshape(-1, 3), process=False)
-    notes.warn(f"mesh {path.name}: pycollada rejects it ({reason}) and trimesh then sees no triangles; its "
-               f"{len(mesh.faces)} triangles were read ignoring the broken part")
+    if notes is not None:
+        notes.warn(f"mesh {path.name}: pycollada rejects it ({reason}) and trimesh then sees no triangles; its "
+                   f"{len(mesh.faces)} triangles were read ignoring the broken part")
     return mesh
 
 
@@ -391,14 +392,27 @@ def facts(path: Path, scale=(1.0, 1.0, 1.0)) -> MeshFacts:
     return MeshFacts.from_trimesh(m)
 
 
-def triangles(path: Path):
+def triangles(path: Path, notes=None):
     """(vertices (n, 3), faces (m, 3)) of one mesh, equal to ``load(path)``'s, read by the lean STL
     and COLLADA readers when they understand the file (no trimesh import: ~0.6 s of a render),
-    else by trimesh; MeshError saying why not."""
+    else by trimesh, and a COLLADA file pycollada half-rejects by ``lenient_dae`` as convert reads
+    it (``notes.warn`` says so); MeshError saying why not."""
     import numpy as np
 
     path = Path(path)
     ext = path.suffix.lower()
+    try:
+        return _triangles(path, ext)
+    except MeshError as exc:
+        m = lenient_dae(path, notes) if ext == ".dae" and "holds no triangles" in str(exc) else None
+        if m is None:
+            raise
+    return np.asarray(m.vertices), np.asarray(m.faces)
+
+
+def _triangles(path: Path, ext: str):
+    import numpy as np
+
     readers = {".stl": _stl_parts, ".dae": _dae_parts}   # OBJ: same triangles, another face order
     if ext in readers:
         precheck(path)

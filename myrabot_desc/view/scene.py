@@ -149,6 +149,17 @@ def primitive_mesh(g):
     return np.asarray(v, dtype=np.float32), np.asarray(f, dtype=np.uint32)
 
 
+class _Problems:
+    """``notes.warn`` for the mesh readers: a warning line in the scene's problems."""
+
+    def __init__(self, problems: list, loc):
+        self.problems, self.loc = problems, loc
+
+    def warn(self, message: str, loc=None) -> None:
+        where = loc or self.loc
+        self.problems.append(f"{where}: warning: {message}" if where else f"warning: {message}")
+
+
 def build_scene(robot, collision: bool = True) -> Scene:
     """Parts of every visual (and collision, unless ``collision`` is False) element of ``robot``."""
     import numpy as np
@@ -175,7 +186,7 @@ def build_scene(robot, collision: bool = True) -> Scene:
         key = str(g.path)
         if key not in cache:
             try:
-                v, f = meshes.triangles(g.path)
+                v, f = meshes.triangles(g.path, _Problems(problems, loc))
                 cache[key] = (np.asarray(v, dtype=np.float32), np.asarray(f, dtype=np.uint32))
             except meshes.MeshError as exc:
                 problems.append(f"{loc}: warning: mesh {exc} (left out)" if loc else f"warning: mesh {exc}")

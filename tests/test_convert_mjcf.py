@@ -395,6 +395,27 @@ def test_bundled_robot_drives_in_mujoco(tmp_path):
     assert speed > 0.95 and 0.04 < moved < 0.2 and abs(dz) < 0.005, (speed, moved, dz)
 
 
+@pytest.mark.parametrize("rate", [0.5, 1.0, -1.0])
+def test_diffbot_light_wheels_drive_and_stay_down(tmp_path, rate):
+    """ros2_control_demos' DiffBot (tests/fixtures/convert, Apache-2.0): 1.1 kg on 0.3 kg wheels of
+    r 1.5 cm with effort 100 N·m, velocity 1 rad/s, damping 0.2. With gain 1000 it flew off for good
+    (x 69 m, z 72 m after 4 s); at gain 50 without an armature, settled and then commanded, it was
+    thrown 1.3 m up. Now: gain 50 (the effort limit at twice the velocity limit), armature ~0.01."""
+    f = Path(__file__).parent / "fixtures" / "convert" / "diffbot_ros2_control_demos.urdf"
+    out = tmp_path / "m" / "diffbot.xml"
+    r = CliRunner().invoke(main, ["convert", str(f), "--to", "mjcf", "-o", str(out)])
+    assert r.exit_code == 0, r.output
+    m, d, _ = stand(tmp_path / "m" / "scene.xml", 0.5)
+    free = [j for j in range(m.njnt) if m.jnt_type[j] == mujoco.mjtJoint.mjJNT_FREE]
+    kv = {m.actuator(i).name: float(m.actuator_gainprm[i][0]) for i in range(m.nu)}
+    assert kv == {"left_wheel_joint": 50.0, "right_wheel_joint": 50.0}
+    assert m.dof_armature[m.jnt_dofadr[m.joint("left_wheel_joint").id]] == pytest.approx(0.01, rel=0.01)
+    speed, moved, dz = drive_forward(m, d, m.jnt_qposadr[free[0]], rate=rate, seconds=3.0)
+    # 3 s at |rate| x r 1.5 cm would be 0.045 |rate| m; its two casters are fixed spheres that drag
+    # (friction 1, as in Gazebo without <mu1>), so it makes a little over half of that
+    assert speed > 0.99 and abs(dz) < 0.001 and 0.4 * abs(rate) * 0.045 < moved < abs(rate) * 0.045, (speed, moved, dz)
+
+
 def drive_forward(m, d, free_adr, rate: float = 1.0, seconds: float = 2.0):
     """Command every velocity actuator (wheel) to ``rate`` rad/s (within its range) and step: the
     slowest wheel's speed / command, how far the base went, how much it rose or sank."""
@@ -407,6 +428,6 @@ def drive_forward(m, d, free_adr, rate: float = 1.0, seconds: float = 2.0):
     for _ in range(int(round(seconds / m.opt.timestep))):
         mujoco.mj_step(m, d)
     assert np.isfinite(d.qpos).all()
-    speed = min(abs(d.qvel[m.jnt_dofadr[m.actuator_trnid[i][0]]]) / c for i, c in want.items())
+    speed = min(d.qvel[m.jnt_dofadr[m.actuator_trnid[i][0]]] / c for i, c in want.items())   # signed: tracks
     return (float(speed), float(np.linalg.norm(d.qpos[free_adr:free_adr + 2] - start[:2])),
             float(d.qpos[free_adr + 2] - start[2]))

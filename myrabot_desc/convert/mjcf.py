@@ -576,13 +576,17 @@ OMEGA_DT = 0.5
 # r 1.5 cm wheels, effort 100 N·m, gain 1000: gone to x 69 m, z 72 m). So with an effort limit
 # the gain reaches it only at WHEEL_CLAMP_AT times the velocity limit (no command inside
 # ctrlrange clamps, from rest), and at least ROLLING_CLAMPED x the rolling gain below, at which a
-# clamped step on a loaded wheel does not overshoot. (DiffBot still hops on a step command: gain
-# 50 against a 1.5 cm wheel on a 1.1 kg robot is stiffer than implicitfast holds there.)
+# clamped step on a loaded wheel does not overshoot.
 # Without one, nothing clamps, and the gain is stiff against what the wheel turns: itself and its
 # share of the robot rolling on it (m/n r²), plus WHEEL_OVER_DAMPING times its joint damping.
 WHEEL_CLAMP_AT = 2.0
 WHEEL_OVER_DAMPING = 50.0
 ROLLING_CLAMPED = 0.5
+# A stiff velocity servo on a light wheel rolling on the floor makes MuJoCo's contacts unstable
+# even unclamped (DiffBot, settled, then commanded 0.5 rad/s: thrown 1.3 m up). The wheel joint
+# gets an armature (a motor's rotor inertia, which URDF does not describe) so that one step of
+# the servo changes its speed by at most 1/WHEEL_SERVO_STEP of the error: kv dt / (I + armature).
+WHEEL_SERVO_STEP = 10.0
 
 
 def _joint_plan(robot, wheels):
@@ -769,6 +773,11 @@ def _make_ready(mujoco, spec, model, robot, notes, report, free):
             ctrl.append(0.0)
             n_vel += 1
             detail = f"velocity actuator (kv {num(kv)}{f', force {num(effort)}' if effort else ''})"
+            own = float(diag[dof]) - float(model.dof_armature[dof])
+            armature = float(f"{kv * dt / WHEEL_SERVO_STEP - own:.3g}")
+            if armature > 0:      # a light wheel under a stiff servo: the motor's rotor inertia (see WHEEL_SERVO_STEP)
+                spec.joint(name).armature = max(armature, float(model.dof_armature[dof]))
+                detail += f", armature {num(armature)} kg·m² (the motor's rotor, which the URDF does not give)"
         else:
             slide = model.jnt_type[jid] == mujoco.mjtJoint.mjJNT_SLIDE
             kp_max = inertia * (OMEGA_DT / dt) ** 2

@@ -172,6 +172,43 @@ def test_home_clamps_joints_whose_range_excludes_zero(tmp_path):
     assert home.ctrl[m.actuator("calf_joint").id] == pytest.approx(-0.9163)
 
 
+def test_uncommanded_joints_are_passive_with_their_gazebo_spring(tmp_path):
+    """TurtleBot 4's wheel drops: prismatic, effort 0, in no ros2_control block, with Gazebo springs
+    (450 N/m at 0.03 m). They got a position actuator (kp 15620, no force limit) in MJCF and a
+    JointPositionController in SDF; now they are passive joints with MuJoCo's stiffness/springref."""
+    inertial = '<inertial><mass value="0.2"/><inertia ixx="1e-4" iyy="1e-4" izz="1e-4" ixy="0" ixz="0" iyz="0"/></inertial>'
+    wheel = ('<joint name="drop_{s}" type="prismatic"><parent link="base_link"/><child link="drop_{s}_link"/>'
+             '<origin xyz="0 {y} 0.04"/><axis xyz="0 0 -1"/><limit lower="0" upper="0.035" effort="0" velocity="0"/>'
+             '</joint><link name="drop_{s}_link">' + inertial + '</link>'
+             '<joint name="{s}_wheel_joint" type="continuous"><parent link="drop_{s}_link"/><child link="{s}_wheel"/>'
+             '<axis xyz="0 1 0"/></joint><link name="{s}_wheel">' + inertial + '<collision><origin rpy="1.5708 0 0"/>'
+             '<geometry><cylinder radius="0.036" length="0.02"/></geometry></collision></link>'
+             '<gazebo reference="drop_{s}"><springStiffness>450</springStiffness><springReference>0.03'
+             '</springReference></gazebo>')
+    f = tmp_path / "tb.urdf"
+    f.write_text('<robot name="tb"><link name="base_link"><inertial><mass value="3"/><inertia ixx="0.03" iyy="0.03" '
+                 'izz="0.05" ixy="0" ixz="0" iyz="0"/></inertial><collision><origin xyz="0 0 0.06"/><geometry>'
+                 '<cylinder radius="0.17" length="0.05"/></geometry></collision></link>'
+                 + wheel.format(s="left", y=0.12) + wheel.format(s="right", y=-0.12)
+                 + '<ros2_control name="c" type="system"><hardware><plugin>gz_ros2_control/GazeboSimSystem</plugin>'
+                 '</hardware><joint name="left_wheel_joint"><command_interface name="velocity"/></joint>'
+                 '<joint name="right_wheel_joint"><command_interface name="velocity"/></joint></ros2_control>'
+                 '<gazebo><plugin filename="libgz_ros2_control-system.so" name="gz_ros2_control::GazeboSimROS2ControlPlugin">'
+                 '</plugin></gazebo></robot>')
+    out = tmp_path / "m" / "tb.xml"
+    res = convert_mjcf(load_robot(str(f)), str(out))
+    m = mujoco.MjModel.from_xml_path(str(out))
+    assert sorted(m.actuator(i).name for i in range(m.nu)) == ["left_wheel_joint", "right_wheel_joint"]
+    j = m.joint("drop_left").id
+    assert m.jnt_stiffness[j] == 450 and m.qpos_spring[m.jnt_qposadr[j]] == pytest.approx(0.03)
+    assert res.report.get("gazebo", "drop_left/springStiffness").fate == "translated"
+    assert "passive" in res.report.get("joint", "drop_left").detail
+    sdf = tmp_path / "tb.sdf"
+    assert CliRunner().invoke(main, ["convert", str(f), "--to", "sdf", "-o", str(sdf)]).exit_code == 0
+    text = sdf.read_text()
+    assert "joint-position-controller" not in text and "<spring_stiffness>450</spring_stiffness>" in text
+
+
 def test_touching_bodies_are_excluded_and_mimic_is_an_equality(tmp_path):
     """Two arms whose boxes overlap at rest get a contact exclusion (found by MuJoCo's collision
     pass); a mimic joint is an equality constraint with the URDF's multiplier and offset and no

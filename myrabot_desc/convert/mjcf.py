@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import contextlib
 import copy
+import math
 import shutil
 import tempfile
 from dataclasses import dataclass
@@ -589,9 +590,33 @@ ROLLING_CLAMPED = 0.5
 WHEEL_SERVO_STEP = 10.0
 
 
+SPRING_KEYS = ("springStiffness", "springReference")
+
+
+def joint_springs(robot) -> dict[str, tuple[float, float]]:
+    """joint -> (stiffness, reference) from Gazebo's ``<springStiffness>``/``<springReference>``
+    (a passive suspension or wheel drop): MuJoCo's joint ``stiffness`` and ``springref``."""
+    from myrabot_desc.convert.common import to_float
+
+    out = {}
+    for g in robot.gazebo:
+        if g.reference in robot.joints and any(k in g.properties for k in SPRING_KEYS):
+            k = to_float(g.properties.get("springStiffness"))
+            ref = to_float(g.properties.get("springReference"))
+            old = out.get(g.reference, (0.0, 0.0))
+            out[g.reference] = (k if k is not None else old[0], ref if ref is not None else old[1])
+    return {n: v for n, v in out.items() if v[0] > 0 and math.isfinite(v[0]) and math.isfinite(v[1])}
+
+
 def _joint_plan(robot, wheels):
-    """URDF joint name -> 'velocity' | 'position' | None (passive, with why)."""
+    """URDF joint name -> 'velocity' | 'position' | None (passive, with why). A model that says
+    which joints its transmissions, ros2_control blocks and drives command leaves the others
+    passive (a suspension, a caster, TurtleBot 4's wheel drops); one that says nothing gets a
+    position actuator on every limited joint."""
+    from myrabot_desc.model import drive as D
+
     with_transmission = {n for t in robot.transmissions for n in t.joints}
+    commanded = D.commanded_joints(robot)
     plan = {}
     for j in robot.joints.values():
         if j.type in ("fixed", "floating", "planar"):
@@ -600,6 +625,8 @@ def _joint_plan(robot, wheels):
             plan[j.name] = (None, f"mimics '{j.mimic.joint}' (an equality constraint)")
         elif j.name in wheels:
             plan[j.name] = ("velocity", "")
+        elif commanded and j.name not in commanded:
+            plan[j.name] = (None, "no transmission, ros2_control block or drive commands it: passive")
         elif j.type == "continuous" and j.limit is None and j.name not in with_transmission:
             plan[j.name] = (None, "continuous joint with no <limit> and no transmission: passive")
         else:
@@ -678,6 +705,11 @@ def _make_ready(mujoco, spec, model, robot, notes, report, free):
 
     spec.option.integrator = mujoco.mjtIntegrator.mjINT_IMPLICITFAST
     plan = _joint_plan(robot, wheel_joints(robot))
+    for name, (stiffness, reference) in joint_springs(robot).items():
+        js = spec.joint(name)
+        if js is not None:
+            js.stiffness = [stiffness, 0.0, 0.0]      # MuJoCo 4: (linear, and two higher-order terms)
+            js.springref = reference
     d = mujoco.MjData(model)
     # home: every joint at 0 clamped into its range, the free base lifted onto the floor
     qpos = home_qpos(mujoco, model)
@@ -989,8 +1021,13 @@ def _report_mjcf(robot, report, free, base):
                    "read for the joints' interfaces; MuJoCo actuators written from the joint limits")
     from myrabot_desc.model import drive as D
 
+    springs = joint_springs(robot)
     for g in robot.gazebo:
         for key in g.properties:
+            if key in SPRING_KEYS and g.reference in springs:
+                report.set("gazebo", f"{g.reference}/{key}", "translated",
+                           "joint " + ("stiffness" if key == "springStiffness" else "springref"), g.loc)
+                continue
             report.set("gazebo", f"{g.reference or 'model'}/{key}", "dropped", "Gazebo-only setting", g.loc)
         for p in g.plugins:
             drive = D.plugin_spec(p) is not None

@@ -74,7 +74,8 @@ class Systems:
                 self.wants_joint_states = True
                 self.has_control = True
                 self.elements.append(("comment", f"{p.library or p.name}: ros_control is replaced by gz-sim "
-                                                 "joint position controllers and the joint state publisher"))
+                                                 "systems for the joints it commands (below) and the joint state "
+                                                 "publisher"))
             elif kind == "gz":
                 self.elements.append(("comment", f"kept from the source ({p.loc})" if p.loc else "kept from the source"))
                 el = copy.deepcopy(p.element)
@@ -231,7 +232,7 @@ class Systems:
             joints.extend(j for j in t.joints if j not in joints)
         source = "transmission" if joints else "ros2_control"
         joints.extend(j for j in D.position_joints(r) if j not in joints)
-        if not joints and self.has_control:
+        if not joints and self.has_control and not D.commanded_joints(r):   # a model that names none
             source = "limits"
             joints = [j.name for j in r.joints.values()
                       if j.type in ("revolute", "prismatic") and j.limit is not None and j.mimic is None

@@ -338,6 +338,10 @@ def commanded_joints(robot) -> set[str]:
     ``<ros2_control>`` block, or turned by a declared drive. Empty when the model says nothing of
     its actuators (then nobody can tell a passive joint from an actuated one)."""
     out = {n for t in robot.transmissions for n in t.joints}
+    for t in robot.transmissions:      # PR2's wrist and gripper transmissions: <flexJoint>, <gap_joint>...
+        if t.element is not None:
+            out |= {e.get("name") for e in t.element.iter() if isinstance(e.tag, str)
+                    and _local(e.tag).lower().endswith("joint") and e.get("name")}
     root = robot.root_element
     if root is not None:
         for block in root:

@@ -78,5 +78,11 @@ SEVERITY_ORDER = {"error": 0, "warning": 1, "info": 2}
 
 
 def sort_diagnostics(diags) -> list:
-    """Errors, warnings, info; then by code, location and message (the report order)."""
-    return sorted(diags, key=lambda d: (SEVERITY_ORDER.get(d.severity, 3), d.code, str(d.loc or ""), d.message))
+    """Errors, warnings, info; then by code, file, line (as a number: 19 before 119) and message
+    (the report order)."""
+    def key(d):
+        loc = d.loc
+        line = getattr(loc, "line", None)
+        return (SEVERITY_ORDER.get(d.severity, 3), d.code, getattr(loc, "file", str(loc or "")),
+                line if line is not None else -1, d.message)
+    return sorted(diags, key=key)

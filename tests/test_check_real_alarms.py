@@ -409,3 +409,23 @@ def test_findings_of_one_code_are_in_line_order(tmp_path):
     f.write_text('<robot name="p">\n<link name="l0"/>\n' + inertial_free + "</robot>\n")
     lines = [d.loc.line for d in sort_diagnostics(run_checks(load_robot(f))) if d.code == "I001"]
     assert len(lines) == 12 and lines == sorted(lines) and lines[0] < 10 < lines[-1]
+
+
+# ---------------------------------------------------------------- I010: a collision that covers part of the link
+def test_i010_measures_the_visual_mesh_of_a_link_with_a_partial_collision(tmp_path):
+    """Unitree go1/go2 hips: the collision is a cylinder off to one side, the motor (and the centre
+    of mass) only in the visual mesh: not reported. A centre of mass outside both still is."""
+    import trimesh
+
+    trimesh.creation.box(extents=(0.2, 0.3, 0.1)).export(tmp_path / "hip.stl")
+    link = ('<link name="{n}"><inertial><origin xyz="{com} 0 0"/><mass value="1"/><inertia ixx="0.01" iyy="0.01" '
+            'izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial><visual><geometry><mesh filename="hip.stl"/></geometry>'
+            '</visual><collision><origin xyz="0 0.12 0" rpy="1.5708 0 0"/><geometry><cylinder radius="0.02" '
+            'length="0.04"/></geometry></collision></link>')
+    f = tmp_path / "r.urdf"
+    f.write_text('<robot name="r">' + link.format(n="hip", com=0) + link.format(n="far", com=1.0)
+                 + '<joint name="j" type="revolute"><parent link="hip"/><child link="far"/><axis xyz="1 0 0"/>'
+                 '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>')
+    i010 = [d for d in run_checks(load_robot(f), CheckOptions(inertia=True)) if d.code == "I010"]
+    assert [d.data["link"] for d in i010] == ["far"]
+    assert "outside the box bounding its geometry (-0.1 -0.15 -0.05 .. 0.1 0.15 0.05)" in i010[0].message

@@ -374,8 +374,10 @@ def origin_inside(ctx):
 
     A body's centre of mass is always inside its convex hull. An origin far outside
     the visual/collision shapes usually means the inertial was copied from another
-    link or written in the wrong frame. Fix: the geometry's centroid (given), or the
-    CAD's centre of mass.
+    link or written in the wrong frame. A link whose collision covers only part of it
+    (a quadruped's hip: a cylinder off to one side, the motor only in the visual mesh)
+    is measured with its visuals too before it is reported. Fix: the geometry's
+    centroid (given), or the CAD's centre of mass.
     """
     import numpy as np
 
@@ -395,7 +397,7 @@ def origin_inside(ctx):
     for name, s in solids(ctx).items():
         if name not in outside:
             continue
-        pts = pts_of[name]
+        pts = _with_visuals(ctx, s.link, pts_of[name])
         lo, hi = pts.min(0), pts.max(0)
         size = float((hi - lo).max())
         margin = 0.1 * size + 0.005
@@ -410,6 +412,34 @@ def origin_inside(ctx):
                           f"({' '.join(f'{v:.3g}' for v in centroid)})",
                           s.link.inertial.loc or s.link.loc,
                           {"link": name, "origin": p.tolist(), "distance": out, "centroid": centroid})
+
+
+def _with_visuals(ctx, link, pts):
+    """``pts`` (the shapes _hull_points measured) and the link's visual shapes, for a link whose
+    centre of mass fell outside the first: a partial collision (a quadruped's hip: a cylinder
+    off to one side, the motor by the joint only in the visual mesh) bounds only part of the body.
+    Visual meshes are read here only for such links (few), so I010 stays cheap."""
+    import numpy as np
+
+    extra = []
+    for it in link.visuals:
+        g = it.geometry
+        if g is None:
+            continue
+        if g.kind == "mesh":
+            mesh = ctx.mesh(g) if ctx.opts.load_meshes else None
+            if mesh is None or isinstance(mesh, str):
+                continue
+            local = np.asarray(mesh.vertices, dtype=float)
+        else:
+            local = np.asarray(G.surface_points(g, 32), dtype=float)
+        if not len(local):
+            continue
+        from myrabot_desc.model.kinematics import pose_matrix
+
+        T = pose_matrix(it.origin)
+        extra.append(local @ T[:3, :3].T + T[:3, 3])
+    return np.vstack([pts, *extra]) if extra else pts
 
 
 @rule("I011", "inertia-not-measurable", "info", needs="meshes", options=("inertia",),

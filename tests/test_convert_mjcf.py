@@ -20,6 +20,7 @@ mujoco = pytest.importorskip("mujoco")
 np = pytest.importorskip("numpy")
 
 ERD = Path(sysconfig.get_paths()["purelib"]) / "cmeel.prefix/share/example-robot-data/robots"
+CORPUS = Path(__file__).parent / "corpus"
 
 
 def step_one_second(path: Path):
@@ -209,6 +210,31 @@ def test_uncommanded_joints_are_passive_with_their_gazebo_spring(tmp_path):
     assert "joint-position-controller" not in text and "<spring_stiffness>450</spring_stiffness>" in text
 
 
+@pytest.mark.skipif(not (CORPUS / "robots.yaml").is_file(), reason="the real-robot corpus is not here")
+def test_gazebo_friction_lets_kobukis_casters_slide(tmp_path):
+    """Kobuki's casters have <mu1>0</mu1> (they slide in Gazebo), its wheels mu 1: in MuJoCo the
+    casters dragged with the floor's friction 1. The rosbuild Kobuki's wheels say mu 10, which
+    would make MuJoCo's contacts sink: they keep the floor's 1 (reported as approximated)."""
+    out = tmp_path / "k" / "kobuki.xml"
+    top = CORPUS / "kobuki_description/urdf/kobuki_standalone.urdf.xacro"
+    res = convert_mjcf(load_robot(str(top), package_paths=[str(CORPUS)]), str(out))
+    m = mujoco.MjModel.from_xml_path(str(tmp_path / "k" / "scene.xml"))
+    caster = m.geom("caster_front_link_collision")
+    assert caster.condim[0] == 1 and caster.priority[0] == 1 and caster.friction[0] == 0
+    wheel = m.geom("wheel_left_link_collision")                # mu 1: the floor's own, nothing to change
+    assert wheel.priority[0] == 0 and wheel.friction[0] == 1
+    assert res.report.get("gazebo", "caster_front_link/mu1").fate == "translated"
+    assert res.report.get("gazebo", "wheel_left_link/mu1").fate == "translated"
+    d = mujoco.MjData(m)
+    mujoco.mj_resetDataKeyframe(m, d, m.key("home").id)
+    free = m.jnt_qposadr[[j for j in range(m.njnt) if m.jnt_type[j] == mujoco.mjtJoint.mjJNT_FREE][0]]
+    speed, moved, dz = drive_forward(m, d, free, rate=2.0, seconds=3.0)
+    assert speed > 0.99 and moved == pytest.approx(2.0 * 0.035 * 3.0, rel=0.03) and abs(dz) < 0.001, (speed, moved)
+    ros = convert_mjcf(load_robot(str(CORPUS / "rosbuild/kobuki_description/urdf/kobuki_standalone.urdf.xacro"),
+                                  package_paths=[str(CORPUS / "rosbuild")]), str(tmp_path / "r" / "kobuki.xml"))
+    assert ros.report.get("gazebo", "wheel_left_link/mu1").fate == "approximated"
+
+
 def test_touching_bodies_are_excluded_and_mimic_is_an_equality(tmp_path):
     """Two arms whose boxes overlap at rest get a contact exclusion (found by MuJoCo's collision
     pass); a mimic joint is an equality constraint with the URDF's multiplier and offset and no
@@ -380,7 +406,6 @@ def test_warnings_name_links_not_mesh_files(tmp_path):
 
 
 # ------------------------------------------------------------------ the real-robot corpus
-CORPUS = Path(__file__).parent / "corpus"
 
 
 def _corpus_robots():

@@ -608,6 +608,31 @@ def joint_springs(robot) -> dict[str, tuple[float, float]]:
     return {n: v for n, v in out.items() if v[0] > 0 and math.isfinite(v[0]) and math.isfinite(v[1])}
 
 
+FRICTION_KEYS = ("mu1", "mu2")
+# MuJoCo's floor has friction 1 and a contact takes the larger of its two geoms' unless one has
+# priority. Gazebo's mu above 1 (Kobuki's wheels: 10) would make MuJoCo's soft contacts sink and
+# stick (the rosbuild Kobuki sank 1 cm and stopped): those parts keep the floor's 1.
+MAX_FRICTION = 1.0
+
+
+def link_friction(robot) -> dict[str, float]:
+    """link -> sliding friction from Gazebo's ``<mu1>``/``<mu2>`` (the smaller: MuJoCo's is
+    isotropic). Gazebo takes the smaller of two surfaces' mu and its ground plane has 100, so the
+    robot's value is the contact's; in MuJoCo its geoms get that friction and priority over the
+    floor. A caster with mu 0 slides (Kobuki's); without it, it drags with the floor's 1."""
+    from myrabot_desc.convert.common import to_float
+
+    out = {}
+    for g in robot.gazebo:
+        if g.reference not in robot.links:
+            continue
+        mus = [to_float(g.properties.get(k)) for k in FRICTION_KEYS]
+        mus = [m for m in mus if m is not None and math.isfinite(m) and m >= 0]
+        if mus:
+            out[g.reference] = min(mus + ([out[g.reference]] if g.reference in out else []))
+    return out
+
+
 def _joint_plan(robot, wheels):
     """URDF joint name -> 'velocity' | 'position' | None (passive, with why). A model that says
     which joints its transmissions, ros2_control blocks and drives command leaves the others
@@ -705,6 +730,15 @@ def _make_ready(mujoco, spec, model, robot, notes, report, free):
 
     spec.option.integrator = mujoco.mjtIntegrator.mjINT_IMPLICITFAST
     plan = _joint_plan(robot, wheel_joints(robot))
+    for link, mu in link_friction(robot).items():
+        if mu >= MAX_FRICTION:
+            continue
+        for gs in spec.geoms:
+            if gs.name == f"{link}_collision" or gs.name.startswith(f"{link}_collision_"):
+                gs.friction = [mu, float(gs.friction[1]), float(gs.friction[2])]
+                gs.priority = 1        # Gazebo's ground has mu 100: the robot's own mu decides
+                if mu == 0:
+                    gs.condim = 1      # frictionless (a caster Gazebo lets slide)
     for name, (stiffness, reference) in joint_springs(robot).items():
         js = spec.joint(name)
         if js is not None:
@@ -1021,9 +1055,19 @@ def _report_mjcf(robot, report, free, base):
                    "read for the joints' interfaces; MuJoCo actuators written from the joint limits")
     from myrabot_desc.model import drive as D
 
-    springs = joint_springs(robot)
+    springs, friction = joint_springs(robot), link_friction(robot)
     for g in robot.gazebo:
         for key in g.properties:
+            if key in FRICTION_KEYS and g.reference in friction:
+                mu = friction[g.reference]
+                if mu <= MAX_FRICTION:
+                    report.set("gazebo", f"{g.reference}/{key}", "translated", f"collision friction {num(mu)}"
+                               + (" (over the floor's)" if mu < MAX_FRICTION else " (the floor's)"), g.loc)
+                else:
+                    report.set("gazebo", f"{g.reference}/{key}", "approximated",
+                               f"mu {num(mu)}: the floor's friction {num(MAX_FRICTION)} (more makes MuJoCo's "
+                               "contacts sink)", g.loc)
+                continue
             if key in SPRING_KEYS and g.reference in springs:
                 report.set("gazebo", f"{g.reference}/{key}", "translated",
                            "joint " + ("stiffness" if key == "springStiffness" else "springref"), g.loc)

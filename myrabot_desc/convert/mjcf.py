@@ -20,7 +20,10 @@ bodies), listed in a warning and the report.
 MuJoCo compiles it; then, on the compiled spec, we add what MuJoCo Menagerie's models
 have: the ``implicitfast`` integrator, position actuators for joints (full effort at
 0.05 rad / 5 mm of error, bounded for stability by the joint-space inertia, critically
-damped), velocity actuators for wheels, a ``home`` keyframe (joints at 0 clamped into
+damped; none on a joint that nothing commands when the model says what it commands),
+velocity actuators for wheels (sized against the robot they roll, with an armature when the
+wheel is light), Gazebo's joint springs and its friction below the floor's (a sliding
+caster), a ``home`` keyframe (joints at 0 clamped into
 their range, the free base raised so that its lowest collision point touches z = 0; a
 welded robot's weld moved the same way), and contact exclusions for the body pairs
 MuJoCo's own collision pass finds touching at home. Mimic joints become equality

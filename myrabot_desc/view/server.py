@@ -255,9 +255,10 @@ class Viewer:
         gui.add_markdown(f"**{r.name}** · {len(r.links)} links · {len(self.scene.joints)} movable joints")
         self._gui["status"] = gui.add_markdown(self._status_text(), visible=bool(self.scene.problems or self.error))
         with gui.add_folder("Joints"):
+            rest = self.scene.rest()
             for name, rng in self.scene.joints.items():
                 step = 0.001 if rng.type == "prismatic" else 0.005
-                v = min(max(self.q.get(name, self.scene.rest()[name]), rng.lower), rng.upper)
+                v = min(max(self.q.get(name, rest[name]), rng.lower), rng.upper)
                 self.q[name] = v
                 s = gui.add_slider(name, min=round(rng.lower, 6), max=round(rng.upper, 6), step=step,
                                    initial_value=round(v, 6), hint=f"{rng.type} joint, "

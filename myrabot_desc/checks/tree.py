@@ -70,6 +70,19 @@ def no_links(ctx):
                       "includes): nothing to check", r.loc)
 
 
+def _repeats(pairs) -> dict:
+    """key -> its values in order, for the keys of (key, value) ``pairs`` met more than once
+    (one pass: no list per key for the keys met once, 20,000 links of a star)."""
+    first: dict = {}
+    dups: dict = {}
+    for key, value in pairs:
+        if key in first:
+            dups.setdefault(key, [first[key]]).append(value)
+        else:
+            first[key] = value
+    return dups
+
+
 @rule("T002", "no-cycle", "error",
       bad='<link name="a"/>\n<link name="b"/>\n'
           '<joint name="base_a" type="fixed"><parent link="base_link"/><child link="a"/></joint>\n'
@@ -89,25 +102,18 @@ def no_cycle(ctx):
     """
     r = ctx.robot
     raw = r.root_element.findall("joint")
-    first_child: dict = {}               # child link -> the name of its first joint
-    by_child: dict[str, list] = {}       # child link -> its joints' names, in document order, when more than one
     first_named: dict = {}               # joint name -> its first element
+    children = []                        # (child link, joint name), in document order
     for j in raw:
         name = j.get("name")
         first_named.setdefault(name, j)
         c = next(j.iterchildren("child"), None)          # = j.find("child"), without parsing a path
-        link = c.get("link") if c is not None else None
-        if link is None:
-            continue
-        if link in first_child:
-            by_child.setdefault(link, [first_child[link]]).append(name)
-        else:
-            first_child[link] = name
-    for link, js in sorted(by_child.items()):
-        if len(js) > 1:
-            names = ", ".join(n if n is not None else "(unnamed)" for n in js)
-            yield Finding(f"link {link} is the child of {len(js)} joints ({names}): a link has one parent",
-                          ctx.loc_of(first_named[js[1]]), {"link": link, "joints": js})
+        if c is not None and c.get("link") is not None:
+            children.append((c.get("link"), name))
+    for link, js in sorted(_repeats(children).items()):
+        names = ", ".join(n if n is not None else "(unnamed)" for n in js)
+        yield Finding(f"link {link} is the child of {len(js)} joints ({names}): a link has one parent",
+                      ctx.loc_of(first_named[js[1]]), {"link": link, "joints": js})
     # cycles: each link walked once (model/tree.py; the walk per link was cubic in a chain's length)
     from myrabot_desc.model.tree import cycles
 
@@ -154,20 +160,10 @@ def unique_names(ctx):
     """
     root = ctx.robot.root_element
     for tag in ("link", "joint", "material"):
-        first: dict = {}                     # name -> its first element
-        dups: dict[str, list] = {}           # name -> its elements, in document order, when more than one
-        for e in root.iterchildren(tag):
-            name = e.get("name")
-            if name is None:
-                continue
-            if name in first:
-                dups.setdefault(name, [first[name]]).append(e)
-            else:
-                first[name] = e
-        for name, els in sorted(dups.items()):
-            if len(els) > 1:
-                yield Finding(f"{len(els)} top-level <{tag}> elements are named '{name}'", ctx.loc_of(els[1]),
-                              {"kind": tag, "name": name, "count": len(els)})
+        named = ((e.get("name"), e) for e in root.iterchildren(tag) if e.get("name") is not None)
+        for name, els in sorted(_repeats(named).items()):
+            yield Finding(f"{len(els)} top-level <{tag}> elements are named '{name}'", ctx.loc_of(els[1]),
+                          {"kind": tag, "name": name, "count": len(els)})
 
 
 def _is_limited(j) -> bool:

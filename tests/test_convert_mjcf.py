@@ -153,7 +153,8 @@ def test_actuators_keyframe_and_exclusions(tmp_path):
 
 def test_home_clamps_joints_whose_range_excludes_zero(tmp_path):
     """A quadruped's knee (Unitree A1: calf limit [-2.697, -0.916]) is at its nearer limit in `home`,
-    and so is its position actuator's target (they were left at 0, outside the range)."""
+    and so is its position actuator's target (they were left at 0, outside the range); a joint that
+    mimics it starts where its equality constraint puts it."""
     f = tmp_path / "knee.urdf"
     inertial = ('<inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/>'
                 '</inertial>')
@@ -163,13 +164,17 @@ def test_home_clamps_joints_whose_range_excludes_zero(tmp_path):
                  '<limit effort="33.5" lower="-2.6965" upper="-0.9163" velocity="21"/></joint>'
                  '<joint name="slide" type="prismatic"><parent link="calf"/><child link="foot"/><axis xyz="0 0 1"/>'
                  f'<limit effort="10" lower="0.1" upper="0.2" velocity="1"/></joint><link name="foot">{inertial}</link>'
-                 '</robot>')
+                 '<joint name="toe" type="revolute"><parent link="foot"/><child link="toe_link"/><axis xyz="0 1 0"/>'
+                 '<limit effort="1" lower="-3" upper="3" velocity="1"/><mimic joint="calf_joint" multiplier="-2" '
+                 f'offset="0.1"/></joint><link name="toe_link">{inertial}</link></robot>')
     out = tmp_path / "k" / "knee.xml"
     assert CliRunner().invoke(main, ["convert", str(f), "--to", "mjcf", "--base", "fixed", "-o", str(out)]).exit_code == 0
     m = mujoco.MjModel.from_xml_path(str(out))
     home = m.key("home")
     knee, slide = m.jnt_qposadr[m.joint("calf_joint").id], m.jnt_qposadr[m.joint("slide").id]
     assert home.qpos[knee] == pytest.approx(-0.9163) and home.qpos[slide] == pytest.approx(0.1)
+    toe = m.jnt_qposadr[m.joint("toe").id]                       # where its equality constraint puts it
+    assert home.qpos[toe] == pytest.approx(0.1 + 2 * 0.9163)
     assert home.ctrl[m.actuator("calf_joint").id] == pytest.approx(-0.9163)
 
 

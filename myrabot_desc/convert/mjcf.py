@@ -698,14 +698,17 @@ def _lowest_point(mujoco, np, m, d, geoms) -> float:
     return float(low)
 
 
-def home_qpos(mujoco, model):
-    """Every joint at 0, clamped into its range."""
+def home_qpos(mujoco, model, robot):
+    """The robot's rest pose (``Robot.rest_pose``: 0, or the nearer limit) as MuJoCo's qpos."""
     qpos = model.qpos0.copy()
-    moving = (int(mujoco.mjtJoint.mjJNT_HINGE), int(mujoco.mjtJoint.mjJNT_SLIDE))   # ints: `np.int32 in (enum,)` is False
-    for j in range(model.njnt):
-        if int(model.jnt_type[j]) in moving and model.jnt_limited[j]:
-            a = model.jnt_qposadr[j]
-            qpos[a] = min(max(qpos[a], model.jnt_range[j][0]), model.jnt_range[j][1])
+    rest = robot.rest_pose()
+    for j in robot.joints.values():       # a mimic joint where its equality constraint puts it
+        if j.mimic is not None and j.mimic.joint in rest:
+            rest[j.name] = j.mimic.offset + j.mimic.multiplier * rest[j.mimic.joint]
+    for name, value in rest.items():
+        jid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, name)
+        if jid >= 0:
+            qpos[model.jnt_qposadr[jid]] = value
     return qpos
 
 
@@ -717,12 +720,12 @@ def _lift_to_floor(mujoco, np, model, d, moving_only: bool) -> float:
     return -low if np.isfinite(low) else 0.0
 
 
-def fixed_base_lift(mujoco, model) -> float:
+def fixed_base_lift(mujoco, model, robot) -> float:
     """A welded robot's lift so that it stands on the floor at home (its root's weld moves)."""
     import numpy as np
 
     d = mujoco.MjData(model)
-    d.qpos[:] = home_qpos(mujoco, model)
+    d.qpos[:] = home_qpos(mujoco, model, robot)
     mujoco.mj_forward(model, d)
     return _lift_to_floor(mujoco, np, model, d, moving_only=False)
 
@@ -748,8 +751,8 @@ def _make_ready(mujoco, spec, model, robot, notes, report, free):
             js.stiffness = [stiffness, 0.0, 0.0]      # MuJoCo 4: (linear, and two higher-order terms)
             js.springref = reference
     d = mujoco.MjData(model)
-    # home: every joint at 0 clamped into its range, the free base lifted onto the floor
-    qpos = home_qpos(mujoco, model)
+    # home: the rest pose (0, or the nearer limit), the free base lifted onto the floor
+    qpos = home_qpos(mujoco, model, robot)
     d.qpos[:] = qpos
     mujoco.mj_forward(model, d)
     lift = 0.0
@@ -964,7 +967,7 @@ def convert_mjcf(robot, output: str, base: str = "auto", scene: str | None = "sc
                 spec = mujoco.MjSpec.from_file(str(tmp_urdf))
                 model = _compile(mujoco, spec, notes)
                 if not free and scene:
-                    lift = fixed_base_lift(mujoco, model)
+                    lift = fixed_base_lift(mujoco, model, robot)
                     if abs(lift) > 1e-9:     # weld the root higher (or lower) so the robot stands on the floor
                         tmp_urdf.write_text(etree.tostring(_weld_at(urdf_root, robot, lift), encoding="unicode"),
                                             encoding="utf-8")

@@ -280,6 +280,20 @@ class Robot:
             return list(dict.fromkeys(loc.file for loc in self.element_locs.values() if loc is not None))
         return [self.element_locs.file]
 
+    def rest_pose(self) -> dict[str, float]:
+        """Every moving, non-mimic joint at 0, or at its nearer limit when its finite range leaves
+        0 out (a quadruped's knee): the pose render, the viewer and the MJCF ``home`` start from."""
+        import math
+
+        out = {}
+        for j in self.joints.values():
+            if j.type not in ("revolute", "continuous", "prismatic") or j.mimic is not None:
+                continue
+            lo, hi = (j.limit.lower, j.limit.upper) if j.limit is not None and j.type != "continuous" else (None, None)
+            ok = lo is not None and hi is not None and math.isfinite(lo) and math.isfinite(hi) and lo <= hi
+            out[j.name] = min(max(0.0, float(lo)), float(hi)) if ok else 0.0
+        return out
+
     # -------------------------------------------------------- tree helpers
     def child_joints(self, link: str) -> list[Joint]:
         from myrabot_desc.model.tree import maps   # one map for the robot: a star of 20,000 links stays linear

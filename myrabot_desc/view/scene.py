@@ -57,9 +57,9 @@ class Scene:
         return world_transforms(self.robot, self.pose(q))
 
     def rest(self) -> dict:
-        """Every joint at 0, or at its nearer limit when 0 is outside its range (a quadruped's knee):
-        the pose render and the viewer start from, as the MJCF ``home`` keyframe does."""
-        return {name: min(max(0.0, r.lower), r.upper) for name, r in self.joints.items()}
+        """The slider joints at the robot's rest pose (``Robot.rest_pose``)."""
+        pose = self.robot.rest_pose()
+        return {name: pose.get(name, 0.0) for name in self.joints}
 
     def pose(self, q: dict | None) -> dict:
         """The rest pose with ``q``'s joints (clamped) set."""

@@ -39,7 +39,7 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--repeat", type=int, default=20, help="runs per command (best is kept) [20]")
     a = ap.parse_args(argv)
-    from myrabot_desc.build.packages import data_root
+    from myrabot_desc.expand.packages import data_root
 
     py, cli = str(BIN / "python"), str(BIN / "myrabot-desc")
     small = str(ROOT / "tests" / "fixtures" / "xacro" / "math_yaml.urdf.xacro")

@@ -15,7 +15,7 @@ from myrabot_desc.safety import limits_help
 
 # name -> (module, attribute, one-line help shown by --help without importing)
 COMMANDS = {
-    "build": ("myrabot_desc.build.cli", "build_cmd", "Expand a xacro file (legacy syntax too) into URDF, without ROS."),
+    "build": ("myrabot_desc.expand.cli", "build_cmd", "Expand a xacro file (legacy syntax too) into URDF, without ROS."),
     "check": ("myrabot_desc.checks.cli", "check_cmd", "Lint a robot model: tree, inertia, sensors, plugins, meshes, physics."),
     "convert": ("myrabot_desc.convert.cli", "convert_cmd", "Convert a model to SDF (gz-sim), an SDF world, or MJCF (MuJoCo)."),
     "materials": ("myrabot_desc.materials.cli", "materials_cmd", "Read an OGRE .material script; print SDF <material> blocks or JSON."),

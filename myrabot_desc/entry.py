@@ -20,7 +20,7 @@ def main(argv=None) -> int:
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     args = sys.argv[1:] if argv is None else list(argv)
     if args[:1] == ["build"]:
-        from myrabot_desc.build.run import fast_build
+        from myrabot_desc.expand.run import fast_build
 
         code = fast_build(args[1:])
         if code is not None:

@@ -317,10 +317,10 @@ def parse_size(text: str) -> tuple[int, int]:
 def read_pose(path: str, scene) -> dict[str, float]:
     """Joint values from a YAML file: ``NAME: VALUE`` lines, optionally under ``joints:``.
 
-    The file is untrusted: read by the one YAML loader (build/yaml_load.py: safety.read_checked,
+    The file is untrusted: read by the one YAML loader (expand/yaml_load.py: safety.read_checked,
     so regular files only and the input size limit; no tags but xacro's units, no alias bombs),
     never by PyYAML's shared loaders, which a build's ``load_yaml`` may have extended."""
-    from myrabot_desc.build.yaml_load import load_path
+    from myrabot_desc.expand.yaml_load import load_path
     from myrabot_desc.diagnostics import Loc
     from myrabot_desc.errors import InputError
     from myrabot_desc.safety import limit

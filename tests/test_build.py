@@ -10,7 +10,7 @@ import pytest
 from click.testing import CliRunner
 from lxml import etree
 
-from myrabot_desc.build.driver import build_file
+from myrabot_desc.expand.driver import build_file
 from myrabot_desc.cli import main
 from myrabot_desc.errors import InputError
 
@@ -299,7 +299,7 @@ def _plain_xacro(path: Path, resolver_paths=()) -> str:
     import xacro.substitution_args as sa
 
     import xacro
-    from myrabot_desc.build.packages import PackageResolver
+    from myrabot_desc.expand.packages import PackageResolver
 
     resolver = PackageResolver(package_paths=resolver_paths, input_file=path)
     saved = sa._eval_find

@@ -15,8 +15,8 @@ from pathlib import Path
 
 import pytest
 
-from myrabot_desc.build.cli import build_cmd
-from myrabot_desc.build.run import BUILD_OPTS, fast_build
+from myrabot_desc.expand.cli import build_cmd
+from myrabot_desc.expand.run import BUILD_OPTS, fast_build
 from myrabot_desc.cli_common import INPUT_OPTS, parse_plain
 
 HERE = Path(__file__).resolve().parent

@@ -14,7 +14,7 @@ import pytest
 from click.testing import CliRunner
 from lxml import etree
 
-from myrabot_desc.build.packages import data_root
+from myrabot_desc.expand.packages import data_root
 from myrabot_desc.cli import main
 from myrabot_desc.convert.sdf import SdfOptions, to_sdf
 from myrabot_desc.model.loader import load_robot

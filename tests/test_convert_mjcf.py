@@ -322,7 +322,7 @@ def test_stdout_without_meshes_and_errors(tmp_path):
 def test_textured_can_gets_its_texture_colour(tmp_path):
     """MuJoCo gets one rgba per geom: the Amstel can's body takes its texture's mean colour (red),
     not the script's white diffuse."""
-    from myrabot_desc.build.packages import data_root
+    from myrabot_desc.expand.packages import data_root
 
     out = tmp_path / "can.xml"
     r = CliRunner().invoke(main, ["convert", str(data_root() / "xacro/lata_cerveza.urdf.xacro"), "--to", "mjcf",

@@ -283,7 +283,7 @@ def test_a_model_from_stdin_gets_no_root_beyond_its_packages(tmp_path):
     assert "outside the allowed folders" in p.stderr
     copied = [f.name for f in tmp_path.rglob("*") if f.is_file() and f.name != "x.xml"]
     assert not [n for n in copied if "passwd" in n or "hostname" in n], copied
-    from myrabot_desc.build.packages import resource_roots
+    from myrabot_desc.expand.packages import resource_roots
 
     assert Path("/") not in resource_roots(Path("/dev"), {})
     assert Path("/") not in resource_roots(Path("/tmp"), {})

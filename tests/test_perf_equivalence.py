@@ -18,8 +18,8 @@ from pathlib import Path
 
 import pytest
 
-from myrabot_desc.build.driver import build_file
-from myrabot_desc.build.packages import data_root
+from myrabot_desc.expand.driver import build_file
+from myrabot_desc.expand.packages import data_root
 from myrabot_desc.errors import InputError
 
 HERE = Path(__file__).parent
@@ -38,7 +38,7 @@ def plain_xacro(path: Path, package_paths=()) -> str:
     import xacro.substitution_args as sa
 
     import xacro
-    from myrabot_desc.build.packages import PackageResolver
+    from myrabot_desc.expand.packages import PackageResolver
 
     resolver = PackageResolver(package_paths=package_paths, input_file=path)
 
@@ -164,7 +164,7 @@ SHAPE_CASES = ["0.1 + 17 * 0.001", "-3.5e-2 * 2", "(1 + 2) / 4.0", "sin(0.5) * 2
 @pytest.mark.parametrize("expr", SHAPE_CASES)
 def test_vetting_by_shape_agrees_with_the_full_vetting(expr):
     """The shape shortcut (numbers -> 1) gives the same value, or the same refusal, as the full path."""
-    from myrabot_desc.build import safe_eval as S
+    from myrabot_desc.expand import safe_eval as S
 
     def outcome(use_shapes):
         refusals = []

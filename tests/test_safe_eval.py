@@ -15,7 +15,7 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
-from myrabot_desc.build.driver import build_file
+from myrabot_desc.expand.driver import build_file
 from myrabot_desc.cli import main
 from myrabot_desc.errors import InputError
 
@@ -118,7 +118,7 @@ def test_yaml_tags_never_run_code_even_after_xacro_registered_its_own(tmp_path):
 
 
 def test_yaml_python_tags_and_alias_bombs_are_refused(tmp_path):
-    from myrabot_desc.build import yaml_load
+    from myrabot_desc.expand import yaml_load
 
     with pytest.raises(InputError, match="not allowed"):
         yaml_load.loads("!!python/object/apply:os.system ['true']\n", "x.yaml")
@@ -150,7 +150,7 @@ def test_one_model_cannot_change_the_next(tmp_path):
     assert "pi" in xacro._global_symbols and "pop" not in xacro._global_symbols["python"]
     # two builds never share a namespace object
     seen = []
-    from myrabot_desc.build import safe_eval
+    from myrabot_desc.expand import safe_eval
 
     orig = safe_eval.fresh_namespace
 

@@ -1,11 +1,11 @@
-"""A bare ``${name}`` skips the tree walk (build/safe_eval._plain_name): it must take that path
+"""A bare ``${name}`` skips the tree walk (expand/safe_eval._plain_name): it must take that path
 exactly when the full vetting would accept it as one plain name with nothing to rewrite."""
 
 import ast
 
 import pytest
 
-from myrabot_desc.build.safe_eval import RefusedExpression, _calls_of, _needs_bound, _plain_name, check_expression
+from myrabot_desc.expand.safe_eval import RefusedExpression, _calls_of, _needs_bound, _plain_name, check_expression
 
 CASES = ["a", "ur_type", "wheel_radius", "_", "x1", "match", "case", "type", "print", "open", "é", "Ω2",
          "__x", "__import__", "_md_call", "_md_", "True", "False", "None", "lambda", "import", "not",

@@ -273,7 +273,7 @@ def test_vuelta_switched_off_mid_swing_hits_the_webcam():
 
 @pytest.fixture(scope="module")
 def arm_and_colliders():
-    from myrabot_desc.build.packages import data_root
+    from myrabot_desc.expand.packages import data_root
     from myrabot_desc.model.loader import load_robot
     from myrabot_desc.sim import collide, scene
     from myrabot_desc.sim.arm import Arm

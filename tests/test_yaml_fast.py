@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 import yaml
 
-from myrabot_desc.build import yaml_load
+from myrabot_desc.expand import yaml_load
 from myrabot_desc.errors import InputError
 
 ROOT = Path(__file__).resolve().parent
@@ -70,9 +70,9 @@ def test_unit_tags():
 _DEFERRED_PROBE = r"""
 import re, sys
 compile_ = re.compile
-from myrabot_desc.build import driver
+from myrabot_desc.expand import driver
 driver._lazy_yaml()                      # what a build does before xacro imports PyYAML
-from myrabot_desc.build import yaml_load
+from myrabot_desc.expand import yaml_load
 import yaml.reader
 p = yaml.reader.Reader.NON_PRINTABLE
 print(type(p).__name__, re.compile is compile_)

@@ -76,7 +76,7 @@ def _entry_path(task) -> Path:
 
 
 def _roots(task, robot) -> list[str]:
-    from myrabot_desc.build.packages import bundled_path
+    from myrabot_desc.expand.packages import bundled_path
 
     src = Path(task.path) if task.path else bundled_path()
     roots = {str(src.resolve().parent)}

@@ -36,7 +36,7 @@ def mesh_resolves(ctx):
     MuJoCo refuse to load the geometry). Fix: pass the package with `-p NAME=PATH` or
     `--package-path`, correct the path, or ship the file (the message says which part failed).
     """
-    from myrabot_desc.build.packages import split_package_uri
+    from myrabot_desc.expand.packages import split_package_uri
 
     r = ctx.robot
     reported = set()

@@ -206,7 +206,7 @@ def _input(r) -> str:
 
 
 def _bundled_name() -> str:
-    from myrabot_desc.build.packages import bundled_path
+    from myrabot_desc.expand.packages import bundled_path
 
     return rel(str(bundled_path()))
 

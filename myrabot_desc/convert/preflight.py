@@ -79,7 +79,7 @@ def mesh_problems(robot) -> list[Problem]:
             if getattr(g, "kind", None) != "mesh":
                 continue
             if g.path is None:
-                from myrabot_desc.build.packages import unresolved_reason
+                from myrabot_desc.expand.packages import unresolved_reason
 
                 base = robot.source.parent if robot.source else Path.cwd()
                 why = unresolved_reason(g.filename, robot.package_roots, base) or "cannot be found"

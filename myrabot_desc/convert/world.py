@@ -36,7 +36,7 @@ SENSOR_SYSTEMS = {
 def read_layout(name: str) -> dict:
     import yaml
 
-    from myrabot_desc.build.packages import data_root
+    from myrabot_desc.expand.packages import data_root
 
     path = data_root() / "layouts" / f"{name}.yaml"
     if not path.is_file():
@@ -99,7 +99,7 @@ def to_world(robot, layout: str, opts: SdfOptions | None = None, load=None, repo
     """``robot`` is placed where the layout puts its robot; the layout's objects are built from the
     bundled package (``load(path)`` builds one, default ``load_robot``). ``report`` gets the robot's
     conversion report (the objects are the bundled demo's)."""
-    from myrabot_desc.build.packages import data_root
+    from myrabot_desc.expand.packages import data_root
     from myrabot_desc.model.loader import load_robot
 
     opts = opts or SdfOptions()

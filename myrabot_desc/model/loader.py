@@ -10,7 +10,7 @@ import math
 import re
 from pathlib import Path
 
-from myrabot_desc.build.packages import BUNDLED_ASSEMBLY, bundled_path, data_root  # noqa: F401  (library API)
+from myrabot_desc.expand.packages import BUNDLED_ASSEMBLY, bundled_path, data_root  # noqa: F401  (library API)
 from myrabot_desc.diagnostics import Diagnostic, Loc
 from myrabot_desc.errors import InputError
 from myrabot_desc.model.parts import (
@@ -86,7 +86,7 @@ def load_robot(path=None, **build_options) -> Robot:
             raise InputError(f"{src} is {size} bytes, over the {limit}-byte limit")
         data = read_input(src, limit)       # bounded: /dev/zero or an endless pipe stops at the limit
     if data is None or is_xacro(src, data):
-        from myrabot_desc.build.driver import build_file
+        from myrabot_desc.expand.driver import build_file
 
         result = build_file(src, build_options.pop("mappings", None), **build_options)
         return read_urdf_text(result.text, src, locations=result.locations, package_roots=result.package_roots,
@@ -228,7 +228,7 @@ class _Reader:
             fn = shape.get("filename", "")
             path = resolve(fn) if fn else None
             if fn and path is None:
-                from myrabot_desc.build.packages import outside_roots
+                from myrabot_desc.expand.packages import outside_roots
 
                 if outside_roots(fn, package_roots, robot_src_dir) is not None:
                     self.issue(shape, f"mesh {fn} lies outside the allowed folders (the model's package and folder): not read "
@@ -290,7 +290,7 @@ def _read(*args) -> Robot:
 
 def _read_model(root, text, src: Path, locations, package_roots, build_warnings, from_xacro, packages,
                 package_paths) -> Robot:
-    from myrabot_desc.build.packages import (
+    from myrabot_desc.expand.packages import (
         PackageResolver,
         resolve_resource_uri,
         split_package_uri,

@@ -340,7 +340,7 @@ class Robot:
 
     def resolve_uri(self, uri: str) -> Path | None:
         """package://, file:// or a relative path -> a file on disk, or None."""
-        from myrabot_desc.build.packages import resolve_resource_uri
+        from myrabot_desc.expand.packages import resolve_resource_uri
 
         base = self.source.parent if self.source else Path.cwd()
         return resolve_resource_uri(uri, self.package_roots, base)

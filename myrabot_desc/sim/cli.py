@@ -262,7 +262,7 @@ def _pointing_options(f):
 def _layout(name, path):
     from pathlib import Path
 
-    from myrabot_desc.build.packages import data_root
+    from myrabot_desc.expand.packages import data_root
     from myrabot_desc.sim.scene import load_layout
 
     return load_layout(Path(path) if path else data_root() / "layouts" / f"{name}.yaml")

@@ -98,11 +98,11 @@ class SceneObject:
 def load_layout(path: Path, robot_pose=None) -> list[SceneObject]:
     import numpy as np
 
-    from myrabot_desc.build.packages import data_root
+    from myrabot_desc.expand.packages import data_root
     from myrabot_desc.model.kinematics import pose_matrix, world_transforms
     from myrabot_desc.model.loader import load_robot
 
-    from myrabot_desc.build.yaml_load import load_path
+    from myrabot_desc.expand.yaml_load import load_path
     from myrabot_desc.safety import check_path, limit
 
     path = Path(path)

@@ -67,8 +67,8 @@ def bundled_urdf() -> Path:
 
     dest = Path(tempfile.gettempdir()) / "myrabot_fuzz_seed" / "myrabot.urdf"
     if not dest.is_file():
-        from myrabot_desc.build.driver import build_file
-        from myrabot_desc.build.packages import bundled_path
+        from myrabot_desc.expand.driver import build_file
+        from myrabot_desc.expand.packages import bundled_path
 
         dest.parent.mkdir(parents=True, exist_ok=True)
         dest.write_text(build_file(bundled_path()).text)

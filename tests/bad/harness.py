@@ -105,7 +105,7 @@ def prepare_worker(memory_cap: bool = False):
     for mod in ("numpy", "lxml.etree", "xacro", "yaml", "trimesh", "trimesh.exchange.dae", "collada", "yourdfpy",
                 "pinocchio", "mujoco", "PIL.Image", "PIL.ImageDraw", "PIL.ImageFont", "scipy.optimize",
                 "scipy.spatial", "coal", "networkx",
-                "myrabot_desc.cli", "myrabot_desc.build.cli", "myrabot_desc.checks.cli", "myrabot_desc.convert.cli",
+                "myrabot_desc.cli", "myrabot_desc.expand.cli", "myrabot_desc.checks.cli", "myrabot_desc.convert.cli",
                 "myrabot_desc.convert.sdf", "myrabot_desc.convert.mjcf", "myrabot_desc.materials.cli",
                 "myrabot_desc.sim.cli", "myrabot_desc.sim.drive", "myrabot_desc.sim.diffdrive",
                 "myrabot_desc.sim.plot", "myrabot_desc.info", "myrabot_desc.checks", "myrabot_desc.model.pin_model",
@@ -191,7 +191,7 @@ def _clip(text: str, n: int = 3000) -> str:
 
 
 def allowed_roots(case_dir: Path, out_dir: Path) -> list[Path]:
-    from myrabot_desc.build.packages import data_root
+    from myrabot_desc.expand.packages import data_root
 
     roots = [case_dir, out_dir, Path(sys.prefix), Path(sys.base_prefix), Path(sys.exec_prefix),
              Path(os.__file__).resolve().parent, data_root(), Path("/dev/null"), Path("/dev/urandom")]

@@ -58,7 +58,7 @@ def run_build(inputs, output=None, deps=False, resolve_uris=False, allow_errors=
     # build's document.
     if one_shot:
         gc.disable()
-    from myrabot_desc.build.driver import build_file
+    from myrabot_desc.expand.driver import build_file
     from myrabot_desc.output import write_output
     from myrabot_desc.safety import Limits
 
@@ -98,7 +98,7 @@ def _resolve_uris(result) -> str:
     """package://pkg/x -> file:///abs/x for every resolvable URI (others stay)."""
     import re
 
-    from myrabot_desc.build.packages import resolve_resource_uri
+    from myrabot_desc.expand.packages import resolve_resource_uri
 
     def sub(m):
         uri = m.group(2)

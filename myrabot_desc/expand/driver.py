@@ -30,8 +30,8 @@ import sys
 import _thread
 from pathlib import Path
 
-from myrabot_desc.build import domread
-from myrabot_desc.build.domread import SRC_ATTR, XSRC_ATTR
+from myrabot_desc.expand import domread
+from myrabot_desc.expand.domread import SRC_ATTR, XSRC_ATTR
 from myrabot_desc.diagnostics import Diagnostic, Loc
 from myrabot_desc.errors import InputError
 from myrabot_desc.safety import Limits, _short, display
@@ -124,7 +124,7 @@ def build_file(path, mappings: dict | None = None, *, packages: dict | None = No
 class _Build:
     def __init__(self, src, mappings, packages, package_paths, legacy, unsafe_eval, no_env, allow_paths,
                  limits, resolve_uris):
-        from myrabot_desc.build.packages import PackageResolver
+        from myrabot_desc.expand.packages import PackageResolver
 
         if legacy not in ("auto", "on", "off"):
             raise InputError(f"--legacy must be auto, on or off, not {legacy!r}")
@@ -227,7 +227,7 @@ class _Build:
             parsed = self.read_parsed(path)
         except InputError:
             return  # reported properly when xacro reaches the include
-        from myrabot_desc.build import legacy as lg
+        from myrabot_desc.expand import legacy as lg
 
         root = parsed.doc.documentElement
         for name in lg.macro_names(root, parsed.noted):
@@ -261,7 +261,7 @@ class _Build:
     def load_dom(self, path: Path, asked_at: Loc | None):
         """The file's document for xacro, its elements annotated with their source lines (by
         domread while parsing), legacy syntax upgraded when that is asked for."""
-        from myrabot_desc.build import legacy as lg
+        from myrabot_desc.expand import legacy as lg
 
         parsed = self.take_parsed(path, asked_at)
         doc = parsed.doc
@@ -271,7 +271,7 @@ class _Build:
         return doc
 
     def _upgrade(self, root, path: Path) -> None:
-        from myrabot_desc.build import legacy as lg
+        from myrabot_desc.expand import legacy as lg
 
         els = lg.elements(root)
         locs = self.locs
@@ -428,7 +428,7 @@ class _Build:
         The annotations are read off and left out while writing (xacro_fast.pretty_xml)."""
         import xml.dom.minidom
 
-        from myrabot_desc.build.fast import pretty_xml
+        from myrabot_desc.expand.fast import pretty_xml
 
         banner = [xml.dom.minidom.Comment(c) for c in [
             " %s " % ("=" * 83),
@@ -500,7 +500,7 @@ class _Build:
             self.diagnostics.append(Diagnostic(
                 "X003", "warning", f"this file defines {len(names)} macro(s) ({shown}) and instantiates none: "
                 "the URDF has no links", Loc(display(self.src), 1)))
-        from myrabot_desc.build.packages import split_package_uri
+        from myrabot_desc.expand.packages import split_package_uri
 
         seen = set()
         for el, *_ in walk:
@@ -712,8 +712,8 @@ class _Hooks:
         import xacro.substitution_args as sa
 
         import xacro
-        from myrabot_desc.build import fast as xacro_fast
-        from myrabot_desc.build import safe_eval
+        from myrabot_desc.expand import fast as xacro_fast
+        from myrabot_desc.expand import safe_eval
 
         b = self.b
         self.saved = {
@@ -798,7 +798,7 @@ class _Hooks:
             if uri and not Path(filename).is_file():
                 # xacro (ROS 1 and 2) includes paths, not URIs (it joins this one to the including
                 # file's folder): a common slip from mesh filenames
-                from myrabot_desc.build.packages import split_package_uri
+                from myrabot_desc.expand.packages import split_package_uri
 
                 pkg, rest = split_package_uri(uri) or ("PKG", "")
                 xacro.filestack.pop()
@@ -851,7 +851,7 @@ class _Hooks:
         def load_yaml(filename):
             """xacro's load_yaml through our YAML loader and path check (xacro's own registers
             unsandboxed tag constructors on PyYAML's shared SafeLoader)."""
-            from myrabot_desc.build import yaml_load
+            from myrabot_desc.expand import yaml_load
             from myrabot_desc.safety import read_checked
 
             spec = xacro.abs_filename_spec(filename)
@@ -917,7 +917,7 @@ class _Hooks:
         import xacro
 
         _restore_messages(self.saved_messages)
-        from myrabot_desc.build import fast as xacro_fast
+        from myrabot_desc.expand import fast as xacro_fast
 
         for (mod, name), value in self.saved.items():
             setattr(mod, name, value)
@@ -925,7 +925,7 @@ class _Hooks:
         sa._eval_dict.update(self.saved_dict)
         xacro._global_symbols = self.saved_globals
         if "yaml.constructor" in sys.modules:   # PyYAML was loaded (not just its lazy placeholder)
-            from myrabot_desc.build import yaml_load
+            from myrabot_desc.expand import yaml_load
 
             yaml_load.scrub_globals()
         sys.setrecursionlimit(self.saved_recursion)

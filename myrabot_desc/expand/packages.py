@@ -145,7 +145,7 @@ class PackageResolver:
                 for marker in sorted(index.iterdir()):
                     if (share / marker.name).is_dir():
                         found.setdefault(marker.name, share / marker.name)
-        from myrabot_desc.build.packages import data_root
+        from myrabot_desc.expand.packages import data_root
 
         found.setdefault("myrabot_description", data_root())
         return found
@@ -189,7 +189,7 @@ def resource_roots(base: Path, package_roots: dict[str, Path]) -> list[Path]:
 
 @functools.lru_cache(maxsize=256)
 def _base_roots(base: Path) -> tuple[Path, ...]:
-    from myrabot_desc.build.packages import data_root
+    from myrabot_desc.expand.packages import data_root
 
     from myrabot_desc.safety import is_pseudo_folder
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from myrabot_desc.build.run import BUILD_OPTS, run_build
+from myrabot_desc.expand.run import BUILD_OPTS, run_build
 from myrabot_desc.cli_common import input_options
 
 

@@ -25,7 +25,7 @@ START = ("click", "lxml", "yaml.reader")     # what a plain build no longer impo
 
 
 def imported_by(args: list[str]) -> list[str]:
-    code = ("import sys, json, contextlib, io\nfrom myrabot_desc.entry import main\n"
+    code = ("import sys, json, contextlib, io\nfrom myrabot_desc.commands.entry import main\n"
             "with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):\n"
             f"    try:\n        main({args!r})\n    except SystemExit:\n        pass\n"
             f"print(json.dumps([m for m in {HEAVY + START!r} if m in sys.modules]))")

@@ -11,7 +11,7 @@ from click.testing import CliRunner
 from lxml import etree
 
 from myrabot_desc.expand.driver import build_file
-from myrabot_desc.cli import main
+from myrabot_desc.commands.main import main
 from myrabot_desc.errors import InputError
 
 HERE = Path(__file__).parent
@@ -330,7 +330,7 @@ def test_output_is_byte_identical_to_plain_xacro_on_test_files(rel):
 
 
 def test_help_imports_nothing_heavy():
-    code = ("import sys; from myrabot_desc.cli import main\n"
+    code = ("import sys; from myrabot_desc.commands.main import main\n"
             "try:\n    main(['--help'])\nexcept SystemExit:\n    pass\n"
             "heavy = [m for m in ('trimesh', 'yourdfpy', 'pinocchio', 'mujoco', 'numpy') if m in sys.modules]\n"
             "print('HEAVY', heavy)")
@@ -339,7 +339,7 @@ def test_help_imports_nothing_heavy():
 
 
 def test_build_command_imports_nothing_heavy():
-    code = ("import sys; from myrabot_desc.cli import main\n"
+    code = ("import sys; from myrabot_desc.commands.main import main\n"
             f"try:\n    main(['build', {str(XFIX / 'math_yaml.urdf.xacro')!r}, '-o', '/dev/null'])\n"
             "except SystemExit:\n    pass\n"
             "heavy = [m for m in ('trimesh', 'yourdfpy', 'pinocchio', 'mujoco') if m in sys.modules]\n"

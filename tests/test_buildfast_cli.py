@@ -15,9 +15,9 @@ from pathlib import Path
 
 import pytest
 
-from myrabot_desc.expand.cli import build_cmd
-from myrabot_desc.expand.run import BUILD_OPTS, fast_build
-from myrabot_desc.cli_common import INPUT_OPTS, parse_plain
+from myrabot_desc.commands.build import build_cmd
+from myrabot_desc.commands.fastbuild import BUILD_OPTS, fast_build
+from myrabot_desc.commands.options import INPUT_OPTS, parse_plain
 
 HERE = Path(__file__).resolve().parent
 MATH = HERE / "fixtures" / "xacro" / "math_yaml.urdf.xacro"
@@ -99,26 +99,26 @@ def _run(path: str, argv, cwd: Path):
 def test_same_result_on_both_paths(argv, tmp_path):
     (tmp_path / "fast").mkdir()
     (tmp_path / "click").mkdir()
-    fast = _run("entry", argv, tmp_path / "fast")            # the console script's entry
-    slow = _run("cli", argv, tmp_path / "click")             # the click group, always
+    fast = _run("commands.entry", argv, tmp_path / "fast")            # the console script's entry
+    slow = _run("commands.main", argv, tmp_path / "click")             # the click group, always
     assert fast == slow
     assert b"Traceback" not in fast[2]
 
 
 def test_outcomes_are_the_expected_ones(tmp_path):
     """Not only equal on both paths: right (so the parity above cannot hold by both failing)."""
-    rc, out, err, written = _run("entry", [str(MATH), "-o", "out.urdf"], tmp_path)
+    rc, out, err, written = _run("commands.entry", [str(MATH), "-o", "out.urdf"], tmp_path)
     assert (rc, err) == (0, b"wrote out.urdf\n") and written.count(b"<link ") == 4
-    rc, out, err, _ = _run("entry", ["{LEG}", "--legacy", "off"], tmp_path)
+    rc, out, err, _ = _run("commands.entry", ["{LEG}", "--legacy", "off"], tmp_path)
     assert rc == 1 and b"error: X002" in err and err.endswith(b"nothing written (use --allow-errors to write anyway)\n")
-    rc, out, err, _ = _run("entry", ["--max-macro-calls", "1", str(MATH)], tmp_path)
+    rc, out, err, _ = _run("commands.entry", ["--max-macro-calls", "1", str(MATH)], tmp_path)
     assert rc == 2 and b"over 1 macro calls" in err and out == b""
-    rc, out, err, _ = _run("entry", ["--legacy", "maybe", str(MATH)], tmp_path)
+    rc, out, err, _ = _run("commands.entry", ["--legacy", "maybe", str(MATH)], tmp_path)
     assert rc == 2 and b"Invalid value for '--legacy'" in err
 
 
 def test_a_plain_build_imports_no_click_lxml_yaml(tmp_path):
-    code = ("import sys; from myrabot_desc.entry import main; code = main(); "
+    code = ("import sys; from myrabot_desc.commands.entry import main; code = main(); "
             "heavy = ['click', 'lxml', 'yaml.reader', 'dataclasses', 'typing', 'inspect']; "
             "print([m for m in heavy if m in sys.modules], file=sys.stderr); sys.exit(code)")
     argv = ["build", str(D435), "--package-path", str(CORPUS), "-o", str(tmp_path / "d435.urdf")]

@@ -17,7 +17,7 @@ from click.testing import CliRunner
 from lxml import etree
 
 from myrabot_desc.expand.packages import data_root
-from myrabot_desc.cli import main as cli
+from myrabot_desc.commands.main import main as cli
 from myrabot_desc.model.kinematics import pose_matrix, world_transforms
 from myrabot_desc.model.loader import load_robot
 

@@ -9,7 +9,7 @@ from pathlib import Path
 
 from click.testing import CliRunner
 
-from myrabot_desc.cli import main
+from myrabot_desc.commands.main import main
 
 FIX = Path(__file__).parent / "fixtures"
 WANDER = FIX / "wander_bot" / "urdf" / "robot.xacro"
@@ -138,7 +138,7 @@ def test_list_rules_and_help():
 
 
 def test_no_trimesh_without_inertia():
-    code = ("import sys; from click.testing import CliRunner; from myrabot_desc.cli import main;"
+    code = ("import sys; from click.testing import CliRunner; from myrabot_desc.commands.main import main;"
             f"r = CliRunner().invoke(main, ['check', {str(WANDER)!r}]);"
             "print(r.exit_code, 'trimesh' in sys.modules)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.split()

@@ -17,7 +17,7 @@ from click.testing import CliRunner
 
 from myrabot_desc.checks import CheckOptions, run_checks
 from myrabot_desc.diagnostics import sort_diagnostics
-from myrabot_desc.cli import main
+from myrabot_desc.commands.main import main
 from myrabot_desc.model.loader import is_xacro, load_robot
 
 HEAD = '<?xml version="1.0"?>\n<robot name="{name}" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'

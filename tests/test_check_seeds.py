@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
-from myrabot_desc.cli import main
+from myrabot_desc.commands.main import main
 
 FIX = Path(__file__).parent / "fixtures"
 WANDER = FIX / "wander_bot" / "urdf" / "robot.xacro"

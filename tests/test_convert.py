@@ -15,7 +15,7 @@ from click.testing import CliRunner
 from lxml import etree
 
 from myrabot_desc.expand.packages import data_root
-from myrabot_desc.cli import main
+from myrabot_desc.commands.main import main
 from myrabot_desc.convert.sdf import SdfOptions, to_sdf
 from myrabot_desc.model.loader import load_robot
 

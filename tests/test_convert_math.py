@@ -115,7 +115,7 @@ def test_repaired_is_loadable_and_never_lowers_a_moment(w, rpy):
 
 
 def test_convert_to_sdf_does_not_import_numpy(tmp_path):
-    code = ("import sys\nfrom myrabot_desc.cli import main\n"
+    code = ("import sys\nfrom myrabot_desc.commands.main import main\n"
             f"sys.argv = ['myrabot-desc', 'convert', '-q', '-o', {str(tmp_path / 'r.sdf')!r}]\n"
             "try:\n    main()\nexcept SystemExit as e:\n    assert not e.code, e.code\n"
             "print('HEAVY', [m for m in ('numpy', 'trimesh', 'pinocchio', 'mujoco') if m in sys.modules])")

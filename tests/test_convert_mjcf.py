@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
-from myrabot_desc.cli import main
+from myrabot_desc.commands.main import main
 from myrabot_desc.convert.mjcf import convert_mjcf
 from myrabot_desc.model.loader import load_robot
 

@@ -13,7 +13,7 @@ import pytest
 from click.testing import CliRunner
 from lxml import etree
 
-from myrabot_desc.cli import main
+from myrabot_desc.commands.main import main
 from myrabot_desc.convert.report import Report
 from myrabot_desc.convert.sdf import SdfOptions, to_sdf
 from myrabot_desc.model.loader import load_robot

@@ -23,7 +23,7 @@ import pytest
 import yaml
 from click.testing import CliRunner
 
-from myrabot_desc.cli import main
+from myrabot_desc.commands.main import main
 
 HERE = Path(__file__).resolve().parent
 CORPUS = HERE / "corpus"

@@ -17,7 +17,7 @@ import pytest
 from click.testing import CliRunner
 from lxml import etree
 
-from myrabot_desc.cli import main
+from myrabot_desc.commands.main import main
 from myrabot_desc.model import drive as D
 from myrabot_desc.model.loader import load_robot
 

@@ -122,7 +122,7 @@ def test_reject_messages_name_the_file_and_line(corpus, tmp_path):
     }
     from click.testing import CliRunner
 
-    from myrabot_desc.cli import main
+    from myrabot_desc.commands.main import main
 
     for rel, pattern in expect.items():
         r = CliRunner().invoke(main, ["build", str(corpus / rel), "-o", str(harness_out / "x.urdf")])
@@ -175,7 +175,7 @@ def test_no_file_outside_the_roots_is_opened_even_from_c(corpus, tmp_path):
             for rel in cases if rel.endswith(".urdf")] + \
            [["build", str(corpus / rel), "-o", str(tmp_path / "out" / "b.urdf")] for rel in cases]
     script.write_text(
-        "import sys\nfrom click.testing import CliRunner\nfrom myrabot_desc.cli import main\n"
+        "import sys\nfrom click.testing import CliRunner\nfrom myrabot_desc.commands.main import main\n"
         f"runs = {runs!r}\n"
         "for argv in runs:\n    CliRunner().invoke(main, argv)\n")
     p = subprocess.run(["strace", "-f", "-qq", "-e", "trace=open,openat,openat2,connect,execve", "-o", str(log),
@@ -197,7 +197,7 @@ def test_fifos_devices_and_bombs_are_refused_by_the_path_check(corpus):
 
     from click.testing import CliRunner
 
-    from myrabot_desc.cli import main
+    from myrabot_desc.commands.main import main
 
     for rel, why in [("meshes/fifo_mesh.urdf", "fifo.stl"), ("meshes/zero_mesh.urdf", "zero.stl"),
                      ("meshes/zip_bomb.urdf", "bomb.zip inflates to 62914560 bytes"),
@@ -213,7 +213,7 @@ def test_fifos_devices_and_bombs_are_refused_by_the_path_check(corpus):
 def _run(argv, env=None):
     from click.testing import CliRunner
 
-    from myrabot_desc.cli import main
+    from myrabot_desc.commands.main import main
 
     return CliRunner().invoke(main, argv, env=env or {})
 

@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
-from myrabot_desc.cli import main
+from myrabot_desc.commands.main import main
 from myrabot_desc.errors import InputError
 from myrabot_desc.model.loader import load_robot
 

@@ -14,7 +14,7 @@ from lxml import etree
 
 from myrabot_desc.errors import InputError
 from myrabot_desc.materials import ogre, scripts, stock
-from myrabot_desc.materials.cli import materials_cmd
+from myrabot_desc.commands.materials import materials_cmd
 from myrabot_desc.materials.resolve import (
     MaterialResolver,
     resolver_for,
@@ -350,7 +350,7 @@ def test_cli_help_has_example():
 
 
 def test_cli_through_the_main_group():
-    from myrabot_desc.cli import main
+    from myrabot_desc.commands.main import main
 
     res = CliRunner().invoke(main, ["materials", str(BRAZO_FER), "--to", "json"])
     assert res.exit_code == 0, res.output

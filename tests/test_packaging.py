@@ -29,7 +29,7 @@ def installed(tmp_path_factory):
 def test_installed_wheel_builds_the_bundled_robot_from_another_folder(installed, tmp_path):
     env = dict(os.environ, PYTHONPATH=str(installed))
     code = ("import sys; from myrabot_desc.model.loader import data_root; print(data_root()); "
-            "from myrabot_desc.cli import main; main(['build', '-o', 'm.urdf'])")
+            "from myrabot_desc.commands.main import main; main(['build', '-o', 'm.urdf'])")
     r = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, env=env, capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
     assert r.stdout.strip().startswith(str(installed))

@@ -17,7 +17,7 @@ from myrabot_desc.checks import CheckOptions, check_robot
 from myrabot_desc.checks.external import EXTERNAL_RULES
 from myrabot_desc.checks.registry import RULES
 from myrabot_desc.checks.rule import document
-from myrabot_desc.cli import main
+from myrabot_desc.commands.main import main
 from myrabot_desc.errors import InputError
 from myrabot_desc.model.loader import load_robot
 

@@ -16,7 +16,7 @@ import pytest
 from click.testing import CliRunner
 
 from myrabot_desc.expand.driver import build_file
-from myrabot_desc.cli import main
+from myrabot_desc.commands.main import main
 from myrabot_desc.errors import InputError
 
 HEAD = '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'

@@ -83,7 +83,7 @@ def test_sim_drive_on_a_fetch_like_base(tmp_path):
     (Fetch's names): it drives on the URDF's wheel geometry (separation 0.38 m, radius 0.06 m)."""
     from click.testing import CliRunner
 
-    from myrabot_desc.cli import main
+    from myrabot_desc.commands.main import main
 
     _two_wheels(tmp_path, "l_wheel_joint", "r_wheel_joint")
     r = CliRunner().invoke(main, ["sim", "drive", str(tmp_path / "b.urdf")])
@@ -97,7 +97,7 @@ def test_sim_drive_refuses_wheels_that_mimic_one_joint(tmp_path):
     so they cannot turn at different speeds; sim drive used to pass it turning on the spot."""
     from click.testing import CliRunner
 
-    from myrabot_desc.cli import main
+    from myrabot_desc.commands.main import main
 
     _two_wheels(tmp_path, "rear_left_wheel_joint", "rear_right_wheel_joint", caster="virtual_rear_wheel_joint")
     f = tmp_path / "b.urdf"
@@ -117,7 +117,7 @@ def test_sim_drive_says_when_the_named_left_wheel_sits_on_the_right(tmp_path):
     says that a controller given these names turns the wrong way (it used to say nothing)."""
     from click.testing import CliRunner
 
-    from myrabot_desc.cli import main
+    from myrabot_desc.commands.main import main
 
     _two_wheels(tmp_path, "a_joint", "b_joint")            # a at +y, b at -y
     f = str(tmp_path / "b.urdf")
@@ -133,7 +133,7 @@ def test_sim_drive_refuses_a_limited_joint_as_a_wheel(tmp_path):
     12.6 rad round and passed; a wheel must turn freely."""
     from click.testing import CliRunner
 
-    from myrabot_desc.cli import main
+    from myrabot_desc.commands.main import main
 
     _two_wheels(tmp_path, "l_knee", "r_knee")
     f = tmp_path / "b.urdf"

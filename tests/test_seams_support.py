@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
-from myrabot_desc.cli import main
+from myrabot_desc.commands.main import main
 from myrabot_desc.model.loader import load_robot
 from myrabot_desc.model.support import CONTACT_TOL, ground_support, signed_distance, signed_distances
 

@@ -10,7 +10,7 @@ from click.testing import CliRunner
 from lxml import etree
 
 from myrabot_desc.checks import run_checks
-from myrabot_desc.cli import main
+from myrabot_desc.commands.main import main
 from myrabot_desc.model import plugins as P
 from myrabot_desc.model.loader import load_robot
 

@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
-from myrabot_desc.cli import main
+from myrabot_desc.commands.main import main
 
 ROOT = Path(__file__).resolve().parents[1]
 WANDER = ROOT / "tests" / "fixtures" / "wander_bot"

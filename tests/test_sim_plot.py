@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 from click.testing import CliRunner
 
-from myrabot_desc.cli import main
+from myrabot_desc.commands.main import main
 
 
 @pytest.fixture(scope="module")

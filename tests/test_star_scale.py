@@ -20,7 +20,7 @@ from click.testing import CliRunner
 from myrabot_desc.checks import check_robot
 from myrabot_desc.checks import inertia_geometry as IG
 from myrabot_desc.checks.context import Context
-from myrabot_desc.cli import main
+from myrabot_desc.commands.main import main
 from myrabot_desc.model import kinematics as K
 from myrabot_desc.model.loader import load_robot
 

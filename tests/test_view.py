@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from myrabot_desc.cli_common import Inputs
+from myrabot_desc.commands.common import ModelInputs as Inputs
 
 ROOT = Path(__file__).resolve().parents[1]
 FIX = ROOT / "tests" / "fixtures"
@@ -154,7 +154,7 @@ def test_help_has_an_example():
     p = subprocess.run([sys.executable, "-m", "myrabot_desc", "view", "--help"], capture_output=True, text=True)
     assert p.returncode == 0 and "myrabot-desc view robot.urdf.xacro" in p.stdout
     # --help imports no viser
-    code = "import sys; from myrabot_desc.cli import main; import myrabot_desc.view.server; " \
+    code = "import sys; from myrabot_desc.commands.main import main; import myrabot_desc.commands.view; " \
            "print('viser' in sys.modules, 'mujoco' in sys.modules, 'matplotlib' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True).stdout.strip()
     assert out == "False False False"

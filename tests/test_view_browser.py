@@ -34,7 +34,7 @@ def wait_for(cond, timeout=30.0, every=0.1, what="condition"):
 
 @pytest.fixture(scope="module")
 def viewer():
-    from myrabot_desc.cli_common import Inputs
+    from myrabot_desc.commands.common import ModelInputs as Inputs
     from myrabot_desc.view.server import Viewer
 
     v = Viewer(Inputs().load, port=0)

@@ -101,7 +101,7 @@ def test_rest_pose_puts_a_joint_at_its_nearer_limit_when_zero_is_outside(tmp_pat
     nearer limit (Unitree A1's knee: [-2.697, -0.916] -> -0.916; it was drawn at 0)."""
     from click.testing import CliRunner
 
-    from myrabot_desc.cli import main
+    from myrabot_desc.commands.main import main
     from myrabot_desc.view.scene import build_scene
 
     inertial = '<inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>'

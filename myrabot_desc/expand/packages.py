@@ -268,3 +268,17 @@ def _resolve_any(uri: str, package_roots: dict[str, Path], base: Path) -> Path |
     else:
         path = (base / uri)
     return path if path.is_file() else None
+
+
+_PACKAGE_FILENAME = re.compile(r'(filename=)"(package://[^"]+)"')
+
+
+def file_uris(text: str, package_roots: dict[str, Path], base: Path) -> str:
+    """``filename="package://pkg/x"`` -> ``filename="file:///abs/x"`` for every resolvable URI of a
+    built document (``build --resolve-uris``); the others stay as they are."""
+
+    def sub(m):
+        p = resolve_resource_uri(m.group(2), package_roots, base)
+        return f'{m.group(1)}"file://{p}"' if p else m.group(0)
+
+    return _PACKAGE_FILENAME.sub(sub, text)

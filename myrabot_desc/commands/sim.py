@@ -4,10 +4,17 @@ from __future__ import annotations
 
 import functools
 import sys
+from pathlib import Path
 
 import click
 
-from myrabot_desc.cli_common import guarded, input_options
+from myrabot_desc.commands.common import input_options
+from myrabot_desc.commands.console import guarded
+from myrabot_desc.expand.packages import data_root
+from myrabot_desc.model.kinematics import require_tree
+from myrabot_desc.output import write_outputs
+from myrabot_desc.sim import drive, plot, pointing, vuelta
+from myrabot_desc.sim.scene import load_layout
 
 
 def _outputs(f):
@@ -77,13 +84,9 @@ def _wheel_names(wheels, left_wheels, right_wheels):
 
 
 def _finish(res, as_json, csv_path, plot_path):
-    from myrabot_desc.output import write_outputs
-
     outputs = []
     if plot_path:
-        from myrabot_desc.sim.plot import render
-
-        outputs.append((plot_path, render(res)))
+        outputs.append((plot_path, plot.render(res)))
     if csv_path:
         outputs.append((csv_path, res.csv_bytes()))
     write_outputs(outputs)          # both or neither
@@ -94,8 +97,6 @@ def _finish(res, as_json, csv_path, plot_path):
 
 def _load(inputs):
     """The model, which must be one tree to move (a broken one fails here with file:line, not deep inside)."""
-    from myrabot_desc.model.kinematics import require_tree
-
     robot = inputs.load()
     require_tree(robot)
     return robot
@@ -168,8 +169,6 @@ def vuelta_cmd(inputs, duration, rate, as_json, csv_path, plot_path, progress, w
       myrabot-desc sim vuelta --duration 60 --plot out/vuelta.png --csv out/vuelta.csv
       myrabot-desc sim vuelta --press 1 --press 12    # on, then off (the base keeps turning)
     """
-    from myrabot_desc.sim import vuelta
-
     duration = 25.0 if duration is None else duration
     with guarded():
         robot = _load(inputs)
@@ -214,8 +213,6 @@ def drive_cmd(inputs, duration, rate, as_json, csv_path, plot_path, progress, wh
       myrabot-desc sim drive robot.urdf --wheels l_wheel_joint,r_wheel_joint
       myrabot-desc sim drive --twist 0.1,0.3,21 --plot out/circle.png     # the bundled MYRAbot
     """
-    from myrabot_desc.sim import drive
-
     wheels, left, right = _wheel_names(wheels, left_wheels, right_wheels)
 
     try:
@@ -260,11 +257,6 @@ def _pointing_options(f):
 
 
 def _layout(name, path):
-    from pathlib import Path
-
-    from myrabot_desc.expand.packages import data_root
-    from myrabot_desc.sim.scene import load_layout
-
     return load_layout(Path(path) if path else data_root() / "layouts" / f"{name}.yaml")
 
 
@@ -292,8 +284,6 @@ def escoja_cmd(inputs, duration, rate, as_json, csv_path, plot_path, progress, l
       myrabot-desc sim escoja --object lata_amstel --units lab --json
       myrabot-desc sim escoja --plot out/escoja.png
     """
-    from myrabot_desc.sim import pointing
-
     with guarded():
         robot = _load(inputs)
         objects = _layout("escoja", layout_path)
@@ -335,8 +325,6 @@ def seguir_cmd(inputs, duration, rate, as_json, csv_path, plot_path, progress, l
       myrabot-desc sim seguir --keys 'C*20 A*10 B*10 D*20' --csv out/seguir.csv
       myrabot-desc sim seguir --track-rate 2 --plot out/seguir.png
     """
-    from myrabot_desc.sim import pointing
-
     try:
         if keys is not None:
             pointing.parse_keys(keys)

@@ -4,7 +4,14 @@ from __future__ import annotations
 
 import click
 
-from myrabot_desc.cli_common import guarded, input_options
+from myrabot_desc.commands.common import input_options
+from myrabot_desc.commands.console import guarded
+from myrabot_desc.convert.mjcf import convert_mjcf
+from myrabot_desc.convert.preflight import problems, refuse_or_record
+from myrabot_desc.convert.report import Report
+from myrabot_desc.convert.sdf import SdfOptions, to_sdf
+from myrabot_desc.convert.world import to_world
+from myrabot_desc.output import write_output
 
 
 @click.command("convert")
@@ -72,10 +79,6 @@ def convert_cmd(inputs, target, output, lump, uri_style, layout, base, scene, re
     0 converted; 2 the input could not be processed or has errors (a
     file:line line for each, nothing written).
     """
-    from myrabot_desc.convert.preflight import problems, refuse_or_record
-    from myrabot_desc.convert.report import Report
-    from myrabot_desc.output import write_output
-
     with guarded():
         robot = inputs.load()
         report = Report(target, str(robot.source) if robot.source else "")
@@ -83,8 +86,6 @@ def convert_cmd(inputs, target, output, lump, uri_style, layout, base, scene, re
         if not allow_errors:
             refuse_or_record(found, False)
         if target == "mjcf":
-            from myrabot_desc.convert.mjcf import convert_mjcf
-
             result = convert_mjcf(robot, output, base=base, scene="scene.xml" if scene else None, report=report,
                                   allow_errors=allow_errors)
             refuse_or_record(found, True, report, result.notes)
@@ -93,12 +94,8 @@ def convert_cmd(inputs, target, output, lump, uri_style, layout, base, scene, re
             if output != "-":
                 click.echo(f"wrote {output} ({result.summary})", err=True)
             return
-        from myrabot_desc.convert.sdf import SdfOptions, to_sdf
-
         opts = SdfOptions(lump=lump, uri_style=uri_style)
         if target == "world":
-            from myrabot_desc.convert.world import to_world
-
             text, res = to_world(robot, layout, opts, load=inputs.load, report=report)
         else:
             text, res = to_sdf(robot, opts, report=report)
@@ -121,8 +118,6 @@ def _report(notes, quiet):
 
 
 def _write_report(report, path, quiet):
-    from myrabot_desc.output import write_output
-
     if path:
         write_output(path, report.render(path))
     if not quiet and report.entries:

@@ -1,16 +1,22 @@
 """What ``myrabot-desc build`` does, and its options (one table), without click.
 
-build/cli.py makes the click command from these; the console entry (entry.py) runs a plain
-``build ...`` command line straight from here, with parse_plain over the same tables, so a
-build does not pay for importing click (~25 ms, a third of a small robot's build).
+commands/build.py makes the click command from these; the console entry (commands/entry.py) runs a
+plain ``build ...`` command line straight from here, with parse_plain over the same tables, so a
+build does not pay for importing click (~25 ms, a third of a small robot's build). Nothing this
+module imports loads click, lxml, dataclasses, typing or inspect (tests/expand/test_plain_command_line.py).
 """
 
 from __future__ import annotations
 
+import gc
 import sys
 
-from myrabot_desc.cli_common import INPUT_OPTS, Opt, UsageProblem, echo, guarded, make_inputs, parse_plain
-from myrabot_desc.safety import LIMITS
+from myrabot_desc.commands.console import echo, guarded
+from myrabot_desc.commands.options import INPUT_OPTS, Opt, UsageProblem, make_inputs, parse_plain
+from myrabot_desc.expand.driver import build_file
+from myrabot_desc.expand.packages import bundled_path, file_uris
+from myrabot_desc.output import write_output
+from myrabot_desc.safety import LIMITS, Limits
 
 BUILD_OPTS = (
     Opt(("-o", "--output"), "output", "value", "Write the URDF here ('-' for stdout). Default: stdout.",
@@ -48,8 +54,6 @@ def fast_build(argv) -> int | None:
 def run_build(inputs, output=None, deps=False, resolve_uris=False, allow_errors=False, one_shot=False,
               **limit_flags) -> None:
     """The build command itself (click's and the fast path's); exits 1 or 2 on errors."""
-    import gc
-
     # A one-shot process (the console script's fast path): the cyclic GC would only rescan the
     # millions of DOM objects of a big expansion once build_file re-enables it (~0.4 s at 4,000
     # macro calls), and the interpreter's final collection at exit would free them one by one
@@ -58,18 +62,10 @@ def run_build(inputs, output=None, deps=False, resolve_uris=False, allow_errors=
     # build's document.
     if one_shot:
         gc.disable()
-    from myrabot_desc.expand.driver import build_file
-    from myrabot_desc.output import write_output
-    from myrabot_desc.safety import Limits
-
     with guarded():
         limits = Limits(**{lim.field: limit_flags[lim.flag[2:].replace("-", "_")] for lim in LIMITS if lim.flag})
         src = inputs.file
         if src is None:
-            from myrabot_desc.model.loader import (
-                bundled_path,  # imports the model classes (~25 ms): only when needed
-            )
-
             src = str(bundled_path())
         result = build_file(src, inputs.mappings, packages=inputs.packages, package_paths=inputs.package_paths,
                             legacy=inputs.legacy, unsafe_eval=inputs.unsafe_eval, no_env=inputs.no_env,
@@ -86,23 +82,10 @@ def run_build(inputs, output=None, deps=False, resolve_uris=False, allow_errors=
             sys.exit(1)
         text = result.text
         if resolve_uris:
-            text = _resolve_uris(result)
+            text = file_uris(result.text, result.package_roots, result.source.parent)
         write_output(output or "-", text, protect=result.deps)   # never over its own input
         if output and output != "-":
             echo(f"wrote {output}")
         if result.errors:
             sys.exit(1)
 
-
-def _resolve_uris(result) -> str:
-    """package://pkg/x -> file:///abs/x for every resolvable URI (others stay)."""
-    import re
-
-    from myrabot_desc.expand.packages import resolve_resource_uri
-
-    def sub(m):
-        uri = m.group(2)
-        p = resolve_resource_uri(uri, result.package_roots, result.source.parent)
-        return f'{m.group(1)}"file://{p}"' if p else m.group(0)
-
-    return re.sub(r'(filename=)"(package://[^"]+)"', sub, result.text)

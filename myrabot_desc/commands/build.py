@@ -4,12 +4,12 @@ from __future__ import annotations
 
 import click
 
-from myrabot_desc.expand.run import BUILD_OPTS, run_build
-from myrabot_desc.cli_common import input_options
+from myrabot_desc.commands.common import input_options
+from myrabot_desc.commands.fastbuild import BUILD_OPTS, run_build
 
 
 def build_options(func):
-    """click's options of the one table (build/run.py BUILD_OPTS)."""
+    """click's options of the one table (commands/fastbuild.py BUILD_OPTS)."""
     for o in reversed(BUILD_OPTS):
         func = o.click_option()(func)
     return func

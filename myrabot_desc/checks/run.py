@@ -1,15 +1,29 @@
-"""``myrabot-desc check``: the command line of the rule registry."""
+"""Running ``check`` over many files: the inputs expanded (folders, -r), the configuration applied
+per file, the shard taken, each file checked in a worker (cache first), results in input order.
+
+commands/check.py is the command line of this; nothing here imports click (a progress bar is
+handed in by the caller, see :func:`run_tasks`).
+"""
 
 from __future__ import annotations
 
+import gc
+import importlib
+import os
 import re
-import sys
+from contextlib import nullcontext
 from pathlib import Path
 from typing import NamedTuple
 
-import click
-
-from myrabot_desc.cli_common import guarded, input_options
+from myrabot_desc.checks import CheckOptions, cache, check_robot
+from myrabot_desc.checks.codes import known_codes, split_codes, unknown_code_message
+from myrabot_desc.checks.config import Finder
+from myrabot_desc.checks.registry import load_all
+from myrabot_desc.checks.report import FileResult
+from myrabot_desc.diagnostics import Loc
+from myrabot_desc.errors import InputError, UsageProblem
+from myrabot_desc.model.loader import load_robot
+from myrabot_desc.safety import LIMIT_ENV, SKIP_DIRS, included_names, walk_models
 
 MODEL_SUFFIXES = (".urdf", ".xacro")
 
@@ -27,8 +41,6 @@ def expand_inputs(files: list[str], recursive: bool = False) -> list[str]:
         if not p.is_dir():
             out.append(f)
             continue
-        from myrabot_desc.safety import SKIP_DIRS, included_names, walk_models
-
         # the walk checks every file against the folder (no symlink out, no FIFO or device) and is
         # bounded; the include scan is linear (model files are untrusted)
         models = sorted(walk_models(p, recursive, MODEL_SUFFIXES, SKIP_DIRS))
@@ -39,7 +51,7 @@ def expand_inputs(files: list[str], recursive: bool = False) -> list[str]:
         picked = [str(c) for c in models if c.name not in included or c.name.endswith(".urdf")]
         if not picked:
             hint = "" if recursive else " (-r looks in its subfolders too)"
-            raise click.UsageError(f"{f}: no .urdf or .xacro model files in this folder{hint}")
+            raise UsageProblem(f"{f}: no .urdf or .xacro model files in this folder{hint}")
         out.extend(picked)
     return out
 
@@ -59,14 +71,6 @@ class Task(NamedTuple):
 
 def check_one(task: Task):
     """FileResult for one input (never raises for bad input: failure holds the one line)."""
-    import os
-
-    from myrabot_desc.checks.report import FileResult
-    from myrabot_desc.diagnostics import Loc
-    from myrabot_desc.errors import InputError
-
-    import gc
-
     path = task.path
     res = FileResult(file=path or "", strict=task.strict)
     saved = {k: os.environ.get(k) for k, _v in task.limits}
@@ -79,14 +83,9 @@ def check_one(task: Task):
     try:
         cached = None
         if task.cache_dir:
-            from myrabot_desc.checks import cache
-
             cached = cache.lookup(task)
         if cached is not None:
             return cached
-        from myrabot_desc.checks import check_robot
-        from myrabot_desc.model.loader import load_robot
-
         robot = load_robot(path, **task.build)
         diags, ctx = check_robot(robot, task.options, task.select, task.ignore, unused=False)
         res.diagnostics = diags
@@ -118,7 +117,7 @@ def parse_shard(value: str | None) -> tuple[int, int] | None:
         return None
     m = re.fullmatch(r"\s*(\d+)\s*/\s*(\d+)\s*", value)
     if not m or not (1 <= int(m.group(1)) <= int(m.group(2))):
-        raise click.BadParameter(f"expected K/N with 1 <= K <= N (e.g. 2/4), got {value!r}", param_hint="--shard")
+        raise UsageProblem(f"expected K/N with 1 <= K <= N (e.g. 2/4), got {value!r}", param_hint="--shard")
     return int(m.group(1)), int(m.group(2))
 
 
@@ -130,28 +129,23 @@ def shard(paths: list, k: int, n: int) -> list:
 
 
 def default_jobs() -> int:
-    import os
-
     try:
         return max(1, len(os.sched_getaffinity(0)))
     except (AttributeError, OSError):
         return max(1, os.cpu_count() or 1)
 
 
-def run_tasks(tasks: list, jobs: int, progress: bool) -> list:
+def run_tasks(tasks: list, jobs: int, progressbar=None) -> list:
     """Results in task order; ``jobs`` worker processes when there is more than one file.
-    A progress bar on stderr when asked (it shows only when stderr is a terminal)."""
-    import gc
-
+    ``progressbar(results, length)``, when given, is a context manager that yields the results
+    while it draws them (the command hands in click's progress bar)."""
     try:
-        return _run_tasks(tasks, jobs, progress)
+        return _run_tasks(tasks, jobs, progressbar)
     finally:
         gc.unfreeze()       # what _preload froze for the workers is the collector's again here
 
 
-def _run_tasks(tasks: list, jobs: int, progress: bool) -> list:
-    from contextlib import nullcontext
-
+def _run_tasks(tasks: list, jobs: int, progressbar) -> list:
     jobs = max(1, min(jobs, len(tasks)))
     pool = nullcontext()
     if jobs > 1:
@@ -168,11 +162,10 @@ def _run_tasks(tasks: list, jobs: int, progress: bool) -> list:
             it = map(check_one, tasks)
         else:
             it = _balanced(ex, tasks)
-        if not progress:
+        if progressbar is None:
             return list(it)
         out = []
-        with click.progressbar(it, length=len(tasks), label="checking", file=sys.stderr,
-                               item_show_func=lambda r: (Path(r.file).name if r and r.file else "")) as bar:
+        with progressbar(it, len(tasks)) as bar:
             for r in bar:
                 out.append(r)
         return out
@@ -188,8 +181,6 @@ def _balanced(ex, tasks: list):
     of one robot, sharing meshes) stay together; folders go largest first, one at a time, so no
     worker is left with a big robot at the end while the others wait (longest-processing-time order).
     The size of a folder's model files stands in for its work."""
-    import os
-
     groups: list[list[int]] = []
     for i, t in enumerate(tasks):
         folder = os.path.dirname(t.path or "")
@@ -214,9 +205,6 @@ def _preload(tasks) -> None:
     """Import what every worker needs once, before forking: the workers share those pages
     (numpy, lxml, xacro and their imports, which each would otherwise hold) and skip the imports.
     gc.freeze() keeps the collector from touching (and so copying) them."""
-    import gc
-    import importlib
-
     names = ["lxml.etree", "xacro", "numpy", "myrabot_desc.model.loader", "myrabot_desc.checks.registry"]
     if any(t.options.load_meshes for t in tasks):
         # the lean mesh readers (STL, COLLADA, OBJ) need numpy and, for COLLADA materials, pycollada;
@@ -227,111 +215,8 @@ def _preload(tasks) -> None:
             importlib.import_module(name)
         except ImportError:
             pass
-    from myrabot_desc.checks.registry import load_all
-
     load_all()
     gc.freeze()
-
-
-@click.command("check")
-@input_options(multiple=True)
-@click.option("--inertia", is_flag=True,
-              help="Load collision meshes and compare every inertia with the solid body of its collision geometry.")
-@click.option("--suggest", is_flag=True, help="With --inertia: print a ready <inertia .../> line per link.")
-@click.option("--meshes", is_flag=True, help="Load every mesh (visual too) to check scale, watertightness and normals.")
-@click.option("--format", "fmt", type=click.Choice(["text", "json", "github", "sarif"]), default="text",
-              show_default=True, help="Report format.")
-@click.option("--select", "select", multiple=True, metavar="CODES",
-              help="Only these codes or prefixes (comma-separated or repeated), e.g. I,G001. Replaces the "
-                   "configuration's select.")
-@click.option("--ignore", "ignore", multiple=True, metavar="CODES",
-              help="Skip these codes or prefixes (added to the configuration's ignore).")
-@click.option("--strict", is_flag=True, help="Warnings fail too (exit 1).")
-@click.option("-o", "--output", type=click.Path(dir_okay=False), default="-", show_default=True,
-              help="Write the report to a file instead of stdout.")
-@click.option("-r", "--recursive", is_flag=True,
-              help="Folders: look for models in their subfolders too (hidden and build folders skipped).")
-@click.option("--config", "config_file", type=click.Path(dir_okay=False), metavar="FILE",
-              help="Use this configuration for every file (pyproject.toml or myrabot-desc.toml) instead of the "
-                   "nearest one.")
-@click.option("--isolated", is_flag=True, help="Ignore every configuration file.")
-@click.option("-j", "--jobs", type=click.IntRange(min=1), default=None, metavar="N",
-              help="Worker processes (default: the CPUs available). The report is the same for any N.")
-@click.option("--shard", "shard_spec", metavar="K/N",
-              help="Check only the K-th of N deterministic parts of the file list (a CI matrix job each).")
-@click.option("-q", "--quiet", is_flag=True, help="No progress bar; text reports only the findings.")
-@click.option("--no-cache", is_flag=True,
-              help="Do not read or write the result cache (.myrabot-desc-cache/ next to the configuration "
-                   "file, or MYRABOT_DESC_CACHE_DIR).")
-@click.option("--merge-sarif", is_flag=True,
-              help="The FILEs are SARIF reports (from --shard jobs): merge them into one report.")
-@click.option("--list-rules", is_flag=True, help="List every rule code and exit.")
-def check_cmd(inputs, inertia, suggest, meshes, fmt, select, ignore, strict, output, recursive, config_file,
-              isolated, jobs, shard_spec, quiet, no_cache, merge_sarif, list_rules):
-    """Lint robot models: tree, inertia, sensors and frames, Gazebo plugins, meshes, physics.
-
-    Each finding has a stable code (X build, T tree, I inertia, S sensors/frames,
-    G Gazebo/plugins, M meshes, P physics), a severity, the numbers that matter and the
-    xacro file:line it comes from. docs/rules.md explains every rule and its fix.
-
-    \b
-    Settings come from the nearest pyproject.toml [tool.myrabot-desc] or myrabot-desc.toml
-    (walking up from each file); a finding is silenced in the model with
-      <!-- myrabot-desc: ignore[I008] why -->
-    on the line before the element (or inside it); see docs/check.md.
-
-    \b
-    Examples:
-      myrabot-desc check                              # the bundled MYRAbot
-      myrabot-desc check robot.urdf.xacro -p my_pkg=../my_pkg
-      myrabot-desc check --inertia --suggest robot.urdf
-      myrabot-desc check urdf/ --format github        # every top-level model in a folder
-      myrabot-desc check -r . --strict                # every model of a repository (CI)
-      myrabot-desc check -r . --shard 2/4 --format sarif -o part2.sarif
-      myrabot-desc check --merge-sarif part*.sarif -o check.sarif
-      myrabot-desc check robot.urdf --select I,P --strict
-
-    \b
-    Exit codes: 0 no errors (no warnings either with --strict), 1 errors found,
-    2 a file could not be processed (one line each, the other files are still checked)
-    or the command line / configuration is wrong.
-    """
-    from myrabot_desc import __version__
-    from myrabot_desc.checks.report import render, rule_table
-    from myrabot_desc.output import write_output
-
-    with guarded():
-        if list_rules:
-            for code, name, sev, summary, _doc in rule_table():
-                click.echo(f"{code}  {sev:<7}  {name:<28} {summary}")
-            return
-        if merge_sarif:
-            from myrabot_desc.checks.report import merge_sarif_files
-
-            text = merge_sarif_files(inputs.files)
-            if output == "-":
-                click.echo(text, nl=False)
-            else:
-                write_output(output, text)
-            return
-        tasks, help_url = plan(inputs, inertia, suggest, meshes, select, ignore, strict, recursive, config_file,
-                               isolated, shard_spec, no_cache)
-        progress = not quiet and sys.stderr.isatty()
-        results = run_tasks(tasks, jobs or default_jobs(), progress)
-        from myrabot_desc.checks.suppress import unused_findings
-
-        unused_findings(results)
-        code = exit_code(results)
-        text = render(fmt, results, __version__, exit_code=code, quiet=quiet, help_url=help_url,
-                      shard=shard_spec)
-        if output == "-":
-            click.echo(text, nl=False)
-        else:
-            write_output(output, click.unstyle(text))
-        for r in results:
-            if r.failure and (fmt != "text" or output != "-"):
-                click.echo(r.failure, err=True)
-    sys.exit(code)
 
 
 def exit_code(results) -> int:
@@ -344,23 +229,15 @@ def exit_code(results) -> int:
 
 def plan(inputs, inertia, suggest, meshes, select, ignore, strict, recursive, config_file, isolated, shard_spec,
          no_cache):
-    """The task list: inputs expanded, configuration applied per file, the shard taken."""
-    import os
-
-    from myrabot_desc.checks import CheckOptions
-    from myrabot_desc.checks.codes import known_codes, split_codes, unknown_code_message
-    from myrabot_desc.checks.config import Finder
-    from myrabot_desc.safety import LIMIT_ENV
-
-    from myrabot_desc.checks import cache
-
+    """The task list: inputs expanded, configuration applied per file, the shard taken
+    (UsageProblem for a code, shard or folder that does not fit)."""
     cache.reset()
     sel, ign = split_codes(select), split_codes(ignore)
     for flag, codes in (("--select", sel), ("--ignore", ign)):
         for c in codes:
             msg = unknown_code_message(c, known_codes())
             if msg:
-                raise click.BadParameter(msg, param_hint=flag)
+                raise UsageProblem(msg, param_hint=flag)
     part = parse_shard(shard_spec)
     finder = Finder(known_codes, config_file, isolated)
     paths = expand_inputs(inputs.files, recursive) if inputs.files else [None]

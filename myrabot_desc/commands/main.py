@@ -1,7 +1,8 @@
-"""Command-line entry point.
+"""The click group: ``myrabot-desc`` and its subcommands.
 
-Subcommands live in their own modules and are imported only when invoked, so
-``myrabot-desc --help`` stays fast (no trimesh, yourdfpy, pinocchio or mujoco).
+Subcommands live in their own modules (commands/<name>.py) and are imported only when invoked,
+so ``myrabot-desc --help`` stays fast: it imports no subcommand module and no heavy library
+(no trimesh, yourdfpy, pinocchio or mujoco).
 """
 
 from __future__ import annotations
@@ -15,14 +16,14 @@ from myrabot_desc.safety import limits_help
 
 # name -> (module, attribute, one-line help shown by --help without importing)
 COMMANDS = {
-    "build": ("myrabot_desc.expand.cli", "build_cmd", "Expand a xacro file (legacy syntax too) into URDF, without ROS."),
-    "check": ("myrabot_desc.checks.cli", "check_cmd", "Lint a robot model: tree, inertia, sensors, plugins, meshes, physics."),
-    "convert": ("myrabot_desc.convert.cli", "convert_cmd", "Convert a model to SDF (gz-sim), an SDF world, or MJCF (MuJoCo)."),
-    "materials": ("myrabot_desc.materials.cli", "materials_cmd", "Read an OGRE .material script; print SDF <material> blocks or JSON."),
-    "sim": ("myrabot_desc.sim.cli", "sim_cmd", "Run the seed's programs in a built-in kinematic/diff-drive simulator."),
-    "info": ("myrabot_desc.info", "info_cmd", "Show the robot: tree, DOF, limits, mass, centre of mass, frames."),
-    "view": ("myrabot_desc.view.server", "view_cmd", "Open the robot in a web viewer: joint sliders, frames, inertia, findings."),
-    "render": ("myrabot_desc.render", "render_cmd", "Render the robot to a PNG with no display (iso/front/side/top)."),
+    "build": ("myrabot_desc.commands.build", "build_cmd", "Expand a xacro file (legacy syntax too) into URDF, without ROS."),
+    "check": ("myrabot_desc.commands.check", "check_cmd", "Lint a robot model: tree, inertia, sensors, plugins, meshes, physics."),
+    "convert": ("myrabot_desc.commands.convert", "convert_cmd", "Convert a model to SDF (gz-sim), an SDF world, or MJCF (MuJoCo)."),
+    "materials": ("myrabot_desc.commands.materials", "materials_cmd", "Read an OGRE .material script; print SDF <material> blocks or JSON."),
+    "sim": ("myrabot_desc.commands.sim", "sim_cmd", "Run the seed's programs in a built-in kinematic/diff-drive simulator."),
+    "info": ("myrabot_desc.commands.info", "info_cmd", "Show the robot: tree, DOF, limits, mass, centre of mass, frames."),
+    "view": ("myrabot_desc.commands.view", "view_cmd", "Open the robot in a web viewer: joint sliders, frames, inertia, findings."),
+    "render": ("myrabot_desc.commands.render", "render_cmd", "Render the robot to a PNG with no display (iso/front/side/top)."),
 }
 
 

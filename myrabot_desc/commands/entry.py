@@ -1,10 +1,14 @@
 """The console entry point (``myrabot-desc``).
 
-A plain ``build ...`` command line runs straight from build/run.py, parsed from the same option
-tables as the click command, without importing click (issue 13: ``build`` must start faster
+A plain ``build ...`` command line runs straight from commands/fastbuild.py, parsed from the same
+option tables as the click command, without importing click (issue 13: ``build`` must start faster
 than the xacro CLI). Everything else, including ``--help`` and any command line the plain
-parser does not take (unusual forms, errors), goes to the click group in cli.py, which gives
-its usual output and exit codes.
+parser does not take (unusual forms, errors), goes to the click group in commands/main.py, which
+gives its usual output and exit codes.
+
+The two imports inside main() are the point of this module: it picks which of the two to load,
+so that neither path pays for the other's imports (the layer contract's one exception for our own
+modules, with commands/main.py's lazy subcommand table; tests/model/test_layers.py).
 """
 
 from __future__ import annotations
@@ -20,12 +24,12 @@ def main(argv=None) -> int:
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     args = sys.argv[1:] if argv is None else list(argv)
     if args[:1] == ["build"]:
-        from myrabot_desc.expand.run import fast_build
+        from myrabot_desc.commands.fastbuild import fast_build
 
         code = fast_build(args[1:])
         if code is not None:
             return code
-    from myrabot_desc.cli import main as cli
+    from myrabot_desc.commands.main import main as cli
 
     return cli(args=args)
 

@@ -1,24 +1,19 @@
-"""Options and error handling shared by every command that reads a model.
+"""The option tables every command shares, and the command line parsed without click.
 
-Use::
-
-    @click.command()
-    @input_options            # FILE argument, -p, --package-path, NAME:=VALUE, ...
-    @click.pass_context
-    def my_cmd(ctx, inputs, ...):
-        with guarded():
-            robot = inputs.load()         # builds xacro, or reads .urdf
+One definition per option (:class:`Opt`): click's option (``Opt.click_option``, commands/common.py)
+and the plain parser (:func:`parse_plain`, the fast ``build`` path in commands/fastbuild.py) both
+come from it. :class:`Inputs` is what the user asked to read (FILE, NAME:=VALUE, packages, safety
+options). Nothing here imports click (only ``click_option`` does, when called), lxml or the model:
+a plain ``build`` imports this module and must start fast (bench/bench_start.py).
 """
 
 from __future__ import annotations
 
-import sys
 from collections import namedtuple
 
-from myrabot_desc.errors import InputError
+from myrabot_desc.errors import UsageProblem
 
-# click is imported inside the functions that build click options: `build`'s plain-argv fast
-# path (build/run.py) parses the same option tables without it (click costs ~25 ms of start-up).
+__all__ = ["INPUT_OPTS", "Inputs", "Opt", "UsageProblem", "make_inputs", "parse_plain"]
 
 
 class Opt(namedtuple("Opt", "decls dest kind help metavar choices")):
@@ -30,7 +25,7 @@ class Opt(namedtuple("Opt", "decls dest kind help metavar choices")):
     __slots__ = ()
 
     def click_option(self):
-        import click
+        import click      # here, not at the top: the plain build path must not pay for click
 
         kw = {"help": self.help}
         if self.kind == "flag":
@@ -112,7 +107,7 @@ def parse_plain(argv, opts) -> dict | None:
 
 
 class Inputs:
-    """What the user asked to read, and how to build it."""
+    """What the user asked to read, and how to build it (commands/common.ModelInputs also loads it)."""
 
     def __init__(self, files=None, packages=None, package_paths=None, mappings=None, legacy: str = "auto",
                  unsafe_eval: bool = False, no_env: bool = False, allow_paths=None):
@@ -140,20 +135,6 @@ class Inputs:
                     legacy=self.legacy, unsafe_eval=self.unsafe_eval, no_env=self.no_env,
                     allow_paths=self.allow_paths)
 
-    def load(self, path: str | None = None):
-        """Load one model (the first FILE, or the bundled MYRAbot) into a Robot."""
-        from myrabot_desc.model.loader import load_robot
-
-        return load_robot(path if path is not None else self.file, **self.build_options())
-
-
-class UsageProblem(Exception):
-    """Options that parse but do not make sense (click shows it as a usage error)."""
-
-    def __init__(self, message: str, param_hint: str | None = None):
-        super().__init__(message)
-        self.param_hint = param_hint
-
 
 def _split_args(args: tuple[str, ...]) -> tuple[list[str], dict[str, str]]:
     files, mappings = [], {}
@@ -176,114 +157,13 @@ def _parse_packages(values: tuple[str, ...]) -> dict[str, str]:
     return out
 
 
-def make_inputs(values: dict, multiple: bool = False) -> Inputs:
-    """The Inputs of parsed option values (click's or parse_plain's); UsageProblem if they do not fit."""
+def make_inputs(values: dict, multiple: bool = False, cls: type = Inputs) -> Inputs:
+    """The Inputs (of class ``cls``) of parsed option values (click's or parse_plain's); UsageProblem
+    if they do not fit."""
     files, mappings = _split_args(values.get("args", ()))
     if len(files) > 1 and not multiple:
         raise UsageProblem(f"expected one FILE, got {len(files)}: {' '.join(files)}")
-    return Inputs(files=files, packages=_parse_packages(values.get("packages", ())),
+    return cls(files=files, packages=_parse_packages(values.get("packages", ())),
                   package_paths=list(values.get("package_paths", ())), mappings=mappings,
                   legacy=values.get("legacy", "auto"), unsafe_eval=values.get("unsafe_eval", False),
                   no_env=values.get("no_env", False), allow_paths=list(values.get("allow_paths", ())))
-
-
-def input_options(multiple: bool = False):
-    """Decorator: FILE [NAME:=VALUE ...] plus the package and safety options.
-
-    With ``multiple=True`` several FILEs are accepted (``check`` lints a folder's models).
-    Passes ``inputs`` (an :class:`Inputs`) to the command.
-    """
-    import functools
-
-    import click
-
-    def deco(f):
-        opts = [click.argument("args", nargs=-1, metavar="[FILE]..." if multiple else "[FILE] [NAME:=VALUE]...")]
-        opts += [o.click_option() for o in INPUT_OPTS]
-        for o in reversed(opts):
-            f = o(f)
-        names = ("args",) + tuple(o.dest for o in INPUT_OPTS)
-
-        @functools.wraps(f)
-        def wrapper(*a, **kw):
-            values = {k: kw.pop(k) for k in names if k in kw}
-            try:
-                inputs = make_inputs(values, multiple)
-            except UsageProblem as exc:
-                if exc.param_hint:
-                    raise click.BadParameter(str(exc), param_hint=exc.param_hint) from None
-                raise click.UsageError(str(exc)) from None
-            return f(*a, inputs=inputs, **kw)
-
-        return wrapper
-
-    return deco
-
-
-_ANSI = None
-
-
-def echo(message: str, err: bool = True) -> None:
-    """click.echo of one line, without click: a newline added, ANSI styles stripped when the
-    stream is not a terminal, flushed."""
-    global _ANSI
-    stream = sys.stderr if err else sys.stdout
-    if stream is None:
-        return
-    out = message + "\n"
-    try:
-        tty = stream.isatty()
-    except Exception:
-        tty = False
-    if not tty and "\033" in out:
-        if _ANSI is None:
-            import re
-
-            _ANSI = re.compile(r"\033\[[0-?]*[ -/]*[@-~]")   # click's own pattern (click._compat)
-        out = _ANSI.sub("", out)
-    stream.write(out)
-    stream.flush()
-
-
-def _is_click_exception(exc) -> bool:
-    click = sys.modules.get("click")      # not imported: it cannot be one of its exceptions
-    return click is not None and isinstance(exc, (click.exceptions.Exit, click.exceptions.Abort,
-                                                  click.ClickException))
-
-
-class guarded:
-    """``with guarded():`` turns InputError (and any unexpected error) into one clear line and
-    exit code 2. Never prints a traceback; set MYRABOT_DESC_DEBUG=1 to see one.
-    (A class, not contextlib.contextmanager: contextlib costs ``build``'s start ~1 ms.)"""
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, exc_type, exc, tb):
-        import os
-
-        if exc_type is None or issubclass(exc_type, (SystemExit, KeyboardInterrupt)):
-            return False
-        if issubclass(exc_type, InputError):
-            echo(str(exc))
-            sys.exit(2)
-        if issubclass(exc_type, BrokenPipeError):  # `... | head` closed the pipe: not an error of ours
-            try:
-                devnull = os.open(os.devnull, os.O_WRONLY)
-                os.dup2(devnull, sys.stdout.fileno())
-            except OSError:
-                pass
-            sys.exit(0)
-        if issubclass(exc_type, RecursionError):
-            echo("error: input nests too deeply (recursion limit reached)")
-            sys.exit(2)
-        if issubclass(exc_type, MemoryError):
-            echo("error: input too large (out of memory)")
-            sys.exit(2)
-        if issubclass(exc_type, Exception):  # a bug of ours: still one line, still exit 2
-            if os.environ.get("MYRABOT_DESC_DEBUG") or _is_click_exception(exc):
-                return False
-            echo(f"error: internal error ({type(exc).__name__}: {exc}); "
-                 "set MYRABOT_DESC_DEBUG=1 for a traceback and please report it")
-            sys.exit(2)
-        return False

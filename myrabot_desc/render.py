@@ -16,6 +16,14 @@ import math
 import os
 from typing import NamedTuple
 
+from myrabot_desc.diagnostics import Loc
+from myrabot_desc.errors import InputError
+from myrabot_desc.expand.yaml_load import load_path
+from myrabot_desc.model.kinematics import center_of_mass
+from myrabot_desc.safety import limit
+from myrabot_desc.view.facts import inertia_box
+from myrabot_desc.view.scene import parse_joint_values
+
 # (azimuth, elevation) in degrees, MuJoCo's convention: the camera looks along
 # (cos el cos az, cos el sin az, sin el).
 VIEWS = {
@@ -51,8 +59,6 @@ class Camera(NamedTuple):
 def choose_gl() -> str:
     """Set MUJOCO_GL (before mujoco is imported) to a backend whose library exists; say what is missing."""
     import ctypes.util
-
-    from myrabot_desc.errors import InputError
 
     want = os.environ.get("MUJOCO_GL", "").strip().lower()
     libs = {"egl": "EGL", "osmesa": "OSMesa"}
@@ -115,8 +121,6 @@ def build_model(scene, q: dict, layers: Layers):
     import mujoco
     import numpy as np
 
-    from myrabot_desc.view.facts import inertia_box
-
     T = scene.transforms(q)
     spec = mujoco.MjSpec()
     spec.modelname = "render"
@@ -172,8 +176,6 @@ def build_model(scene, q: dict, layers: Layers):
                                contype=0, conaffinity=0, group=2)
                 extra.append(b)
     if layers.inertia:
-        from myrabot_desc.model.kinematics import center_of_mass
-
         for link in scene.robot.links.values():
             if link.name not in T:
                 continue
@@ -244,8 +246,6 @@ def open_renderer(mujoco, model, height: int, width: int):
     """mujoco.Renderer, or InputError saying which GL backend failed and what it needs."""
     import warnings
 
-    from myrabot_desc.errors import InputError
-
     try:
         with warnings.catch_warnings():        # glfw warns on stderr before it fails without a display
             warnings.simplefilter("ignore")
@@ -298,8 +298,6 @@ def png_bytes(img) -> bytes:
 
 # ------------------------------------------------------------------ inputs
 def parse_size(text: str) -> tuple[int, int]:
-    from myrabot_desc.errors import InputError
-
     w, sep, h = text.lower().partition("x")
     try:
         W, H = int(w), int(h)
@@ -316,11 +314,6 @@ def read_pose(path: str, scene) -> dict[str, float]:
     The file is untrusted: read by the one YAML loader (expand/yaml_load.py: safety.read_checked,
     so regular files only and the input size limit; no tags but xacro's units, no alias bombs),
     never by PyYAML's shared loaders, which a build's ``load_yaml`` may have extended."""
-    from myrabot_desc.expand.yaml_load import load_path
-    from myrabot_desc.diagnostics import Loc
-    from myrabot_desc.errors import InputError
-    from myrabot_desc.safety import limit
-    from myrabot_desc.view.scene import parse_joint_values
 
     doc = load_path(path, limit("max_input_bytes"), name=str(path))
     if isinstance(doc, dict) and set(doc) == {"joints"}:

@@ -12,6 +12,10 @@ import os
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from myrabot_desc.checks.registry import EXTERNAL, RULES, load_all
+from myrabot_desc.diagnostics import Loc
+from myrabot_desc.errors import InputError
+from myrabot_desc.expand.packages import bundled_path
 
 JSON_SCHEMA = "myrabot-desc/check-report/1"
 SARIF_LEVEL = {"error": "error", "warning": "warning", "info": "note"}
@@ -213,14 +217,10 @@ def _input(r) -> str:
 
 
 def _bundled_name() -> str:
-    from myrabot_desc.expand.packages import bundled_path
-
     return rel(str(bundled_path()))
 
 
 def _rule_name(code: str) -> str:
-    from myrabot_desc.checks.registry import EXTERNAL, RULES
-
     if code in RULES:
         return RULES[code].name
     return EXTERNAL.get(code, (code.lower(),))[0]
@@ -228,7 +228,6 @@ def _rule_name(code: str) -> str:
 
 def rule_table():
     """[(code, name, severity, summary, full doc)] for every known code, sorted."""
-    from myrabot_desc.checks.registry import EXTERNAL, load_all
 
     rows = [(c, r.name, r.severity, r.summary, r.doc) for c, r in load_all().items()]
     rows += [(c, n, s, summ, summ) for c, (n, s, summ) in EXTERNAL.items()]
@@ -335,9 +334,6 @@ def merge_sarif(docs: list[dict]) -> dict:
 
 
 def merge_sarif_files(files: list[str]) -> str:
-    from myrabot_desc.diagnostics import Loc
-    from myrabot_desc.errors import InputError
-
     if not files:
         raise InputError("--merge-sarif: give the SARIF files to merge")
     docs = []

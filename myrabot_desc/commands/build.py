@@ -4,12 +4,11 @@ from __future__ import annotations
 
 import click
 
-from myrabot_desc.commands.common import input_options
-from myrabot_desc.commands.fastbuild import BUILD_OPTS, run_build
+from myrabot_desc.commands.options import BUILD_OPTS, input_options
 
 
 def build_options(func):
-    """click's options of the one table (commands/fastbuild.py BUILD_OPTS)."""
+    """click's options of the one table (options.BUILD_OPTS)."""
     for o in reversed(BUILD_OPTS):
         func = o.click_option()(func)
     return func
@@ -43,4 +42,9 @@ def build_cmd(inputs, **options):
     Exit codes: 0 built; 1 built with errors (e.g. X002, nothing written);
     2 the input could not be processed (one line with file:line).
     """
+    # the build engine is loaded when a build runs, not for `build --help` or a usage error
+    # (start-up, bench/bench_start.py; one of the three function-level imports of our own
+    # modules, all in commands/: tests/model/test_layers.py)
+    from myrabot_desc.commands.fastbuild import run_build
+
     run_build(inputs, **options)

@@ -11,8 +11,9 @@ from myrabot_desc import __version__
 from myrabot_desc.checks.report import merge_sarif_files, render, rule_table
 from myrabot_desc.checks.run import default_jobs, exit_code, plan, run_tasks
 from myrabot_desc.checks.suppress import unused_findings
-from myrabot_desc.commands.common import input_options, usage_error
+from myrabot_desc.commands.common import input_options
 from myrabot_desc.commands.console import guarded
+from myrabot_desc.commands.options import usage_error
 from myrabot_desc.errors import UsageProblem
 from myrabot_desc.output import write_output
 

@@ -7,14 +7,18 @@ parser does not take (unusual forms, errors), goes to the click group in command
 gives its usual output and exit codes.
 
 The two imports inside main() are the point of this module: it picks which of the two to load,
-so that neither path pays for the other's imports (the layer contract's one exception for our own
-modules, with commands/main.py's lazy subcommand table; tests/model/test_layers.py).
+so that neither path pays for the other's imports, and the build engine is loaded only for a
+command line the plain path takes (not for ``build --help``). With commands/build.py's and
+commands/main.py's lazy subcommand table they are the only function-level imports of our own
+modules (tests/model/test_layers.py).
 """
 
 from __future__ import annotations
 
 import os
 import sys
+
+from myrabot_desc.commands.options import BUILD_OPTS, INPUT_OPTS, parse_plain
 
 
 def main(argv=None) -> int:
@@ -23,7 +27,7 @@ def main(argv=None) -> int:
     # sim), more in each `check -j N` worker. The user's own setting wins.
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     args = sys.argv[1:] if argv is None else list(argv)
-    if args[:1] == ["build"]:
+    if args[:1] == ["build"] and parse_plain(args[1:], INPUT_OPTS + BUILD_OPTS) is not None:
         from myrabot_desc.commands.fastbuild import fast_build
 
         code = fast_build(args[1:])

@@ -12,24 +12,11 @@ import gc
 import sys
 
 from myrabot_desc.commands.console import echo, guarded
-from myrabot_desc.commands.options import INPUT_OPTS, Opt, UsageProblem, make_inputs, parse_plain
+from myrabot_desc.commands.options import BUILD_OPTS, INPUT_OPTS, UsageProblem, make_inputs, parse_plain
 from myrabot_desc.expand.driver import build_file
 from myrabot_desc.expand.packages import bundled_path, file_uris
 from myrabot_desc.output import write_output
 from myrabot_desc.safety import LIMITS, Limits
-
-BUILD_OPTS = (
-    Opt(("-o", "--output"), "output", "value", "Write the URDF here ('-' for stdout). Default: stdout.",
-        "OUT.urdf", None),
-    Opt(("--deps",), "deps", "flag", "List the files the build reads (input, includes, YAML), one per line.",
-        None, None),
-    Opt(("--resolve-uris",), "resolve_uris", "flag", "Rewrite package:// URIs into absolute file:// paths.",
-        None, None),
-    Opt(("--allow-errors",), "allow_errors", "flag",
-        "Write the URDF even when the build reports errors (X002).", None, None),
-) + tuple(   # a --max-* flag for every limit of the table that has one
-    Opt((lim.flag,), lim.flag[2:].replace("-", "_"), "count", f"{lim.help[0].upper()}{lim.help[1:]} [{lim.default}].",
-        None, None) for lim in LIMITS if lim.flag)
 
 
 def fast_build(argv) -> int | None:

@@ -1,10 +1,11 @@
 """The option tables every command shares, and the command line parsed without click.
 
-One definition per option (:class:`Opt`): click's option (``Opt.click_option``, commands/common.py)
+One definition per option (:class:`Opt`): click's option (``Opt.click_option``, :func:`input_options`)
 and the plain parser (:func:`parse_plain`, the fast ``build`` path in commands/fastbuild.py) both
 come from it. :class:`Inputs` is what the user asked to read (FILE, NAME:=VALUE, packages, safety
-options). Nothing here imports click (only ``click_option`` does, when called), lxml or the model:
-a plain ``build`` imports this module and must start fast (bench/bench_start.py).
+options); commands/common.py adds loading the model. Nothing here imports click at its top (the
+functions that make click's options import it when called), lxml or the model: a plain ``build``
+and ``build --help`` import this module and must start fast (bench/bench_start.py).
 """
 
 from __future__ import annotations
@@ -12,8 +13,10 @@ from __future__ import annotations
 from collections import namedtuple
 
 from myrabot_desc.errors import UsageProblem
+from myrabot_desc.safety import LIMITS
 
-__all__ = ["INPUT_OPTS", "Inputs", "Opt", "UsageProblem", "make_inputs", "parse_plain"]
+__all__ = ["BUILD_OPTS", "INPUT_OPTS", "Inputs", "Opt", "UsageProblem", "input_options", "make_inputs", "parse_plain",
+           "usage_error"]
 
 
 class Opt(namedtuple("Opt", "decls dest kind help metavar choices")):
@@ -57,6 +60,21 @@ INPUT_OPTS = (
     Opt(("--allow-path",), "allow_paths", "multi",
         "Also allow includes and load_yaml under DIR. Repeatable.", "DIR", None),
 )
+
+
+# build's own options (commands/fastbuild.py runs them; commands/build.py is their click command).
+BUILD_OPTS = (
+    Opt(("-o", "--output"), "output", "value", "Write the URDF here ('-' for stdout). Default: stdout.",
+        "OUT.urdf", None),
+    Opt(("--deps",), "deps", "flag", "List the files the build reads (input, includes, YAML), one per line.",
+        None, None),
+    Opt(("--resolve-uris",), "resolve_uris", "flag", "Rewrite package:// URIs into absolute file:// paths.",
+        None, None),
+    Opt(("--allow-errors",), "allow_errors", "flag",
+        "Write the URDF even when the build reports errors (X002).", None, None),
+) + tuple(   # a --max-* flag for every limit of the table that has one
+    Opt((lim.flag,), lim.flag[2:].replace("-", "_"), "count", f"{lim.help[0].upper()}{lim.help[1:]} [{lim.default}].",
+        None, None) for lim in LIMITS if lim.flag)
 
 
 def parse_plain(argv, opts) -> dict | None:
@@ -167,3 +185,43 @@ def make_inputs(values: dict, multiple: bool = False, cls: type = Inputs) -> Inp
                   package_paths=list(values.get("package_paths", ())), mappings=mappings,
                   legacy=values.get("legacy", "auto"), unsafe_eval=values.get("unsafe_eval", False),
                   no_env=values.get("no_env", False), allow_paths=list(values.get("allow_paths", ())))
+
+
+def usage_error(exc: UsageProblem):
+    """click's error for a UsageProblem: BadParameter when it names the option, else UsageError."""
+    import click
+
+    if exc.param_hint:
+        return click.BadParameter(str(exc), param_hint=exc.param_hint)
+    return click.UsageError(str(exc))
+
+
+def input_options(multiple: bool = False, cls: type = Inputs):
+    """Decorator: FILE [NAME:=VALUE ...] plus the package and safety options.
+
+    With ``multiple=True`` several FILEs are accepted (``check`` lints a folder's models).
+    Passes ``inputs`` (a ``cls``) to the command.
+    """
+    import functools
+
+    import click
+
+    def deco(f):
+        opts = [click.argument("args", nargs=-1, metavar="[FILE]..." if multiple else "[FILE] [NAME:=VALUE]...")]
+        opts += [o.click_option() for o in INPUT_OPTS]
+        for o in reversed(opts):
+            f = o(f)
+        names = ("args",) + tuple(o.dest for o in INPUT_OPTS)
+
+        @functools.wraps(f)
+        def wrapper(*a, **kw):
+            values = {k: kw.pop(k) for k in names if k in kw}
+            try:
+                inputs = make_inputs(values, multiple, cls)
+            except UsageProblem as exc:
+                raise usage_error(exc) from None
+            return f(*a, inputs=inputs, **kw)
+
+        return wrapper
+
+    return deco

@@ -19,6 +19,7 @@ from xml.dom import expatbuilder, minidom
 from xml.parsers import expat
 
 from myrabot_desc.diagnostics import Loc
+from myrabot_desc.safety import check_xml_bytes, parse_xml_bytes
 
 # libxml2 refuses elements nested deeper than 256 and text nodes over 10 MB (no huge_tree):
 # past these, lxml gives the verdict.
@@ -123,7 +124,6 @@ def parse(data: bytes, name: str, locs: list) -> Parsed:
     """A model file's bytes, parsed; each element's Loc appended to ``locs`` (its annotation
     is the index there). InputError (``name:line: error: ...``) for a file that may not or
     cannot be read."""
-    from myrabot_desc.safety import check_xml_bytes
 
     check_xml_bytes(data, name)
     if len(data) <= MAX_EXPAT_BYTES:
@@ -138,8 +138,6 @@ def parse(data: bytes, name: str, locs: list) -> Parsed:
 def _via_lxml(data: bytes, name: str, locs: list) -> Parsed:
     """lxml's verdict (and message) on the file; when it reads it, its text for expat."""
     from lxml import etree
-
-    from myrabot_desc.safety import parse_xml_bytes
 
     root = parse_xml_bytes(data, name)
     # comments and PIs around the root element belong to the document too (xacro keeps them)

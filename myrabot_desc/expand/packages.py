@@ -20,6 +20,7 @@ from pathlib import Path
 from urllib.parse import unquote
 
 from myrabot_desc.errors import InputError
+from myrabot_desc.safety import PSEUDO_FOLDERS, check_path, is_pseudo_folder, may_open, real_root
 
 _NAME_RE = re.compile(r"<name>\s*([^<\s]+)\s*</name>")
 MAX_SCAN_DEPTH = 6  # how deep --package-path folders are searched
@@ -54,7 +55,6 @@ MAX_SCAN_FOLDERS = 5_000  # folders one search path may make us look at (``--pac
 def _scan(root: Path, found: dict[str, Path], depth: int = 0, budget: list | None = None) -> None:
     """Collect packages under ``root`` (a package folder is not descended into). Bounded in depth
     and in folders visited; /proc, /sys and /dev are never entered; symlinked folders are not followed."""
-    from myrabot_desc.safety import PSEUDO_FOLDERS
 
     budget = [MAX_SCAN_FOLDERS] if budget is None else budget
     if depth > MAX_SCAN_DEPTH or budget[0] <= 0 or not root.is_dir():
@@ -145,8 +145,6 @@ class PackageResolver:
                 for marker in sorted(index.iterdir()):
                     if (share / marker.name).is_dir():
                         found.setdefault(marker.name, share / marker.name)
-        from myrabot_desc.expand.packages import data_root
-
         found.setdefault("myrabot_description", data_root())
         return found
 
@@ -182,17 +180,12 @@ def resource_roots(base: Path, package_roots: dict[str, Path]) -> list[Path]:
     folder above the model, for the common urdf/ + meshes/ layout), the packages its URIs
     name, and the bundled package. A model from a stranger cannot make us read /etc/passwd
     or ~/.ssh through ``file://``, an absolute path, ``../..`` or a symlink."""
-    from myrabot_desc.safety import real_root
 
     return list(_base_roots(real_root(base))) + [real_root(r) for r in package_roots.values()]
 
 
 @functools.lru_cache(maxsize=256)
 def _base_roots(base: Path) -> tuple[Path, ...]:
-    from myrabot_desc.expand.packages import data_root
-
-    from myrabot_desc.safety import is_pseudo_folder
-
     if is_pseudo_folder(base):      # a model from /dev/stdin: no folder of its own, nothing "above" it
         return (data_root().resolve(),)
     own = own_package(base)
@@ -207,7 +200,6 @@ def _locate(uri: str, package_roots: dict[str, Path], base: Path) -> tuple[Path 
         path = _resolve_any(uri, package_roots, base)
         if path is None:
             return None, False
-        from myrabot_desc.safety import may_open
 
         return path, may_open(path, resource_roots(base, package_roots))   # symlinks resolved, regular files
     except (OSError, ValueError):   # a 5000-character name (ENAMETOOLONG), a NUL byte: no such file
@@ -223,7 +215,6 @@ def outside_roots(uri: str, package_roots: dict[str, Path], base: Path) -> Path 
 def unresolved_reason(uri: str, package_roots: dict[str, Path], base: Path) -> str | None:
     """Why a URI that does not resolve does not (for messages): "outside the allowed folders",
     "not a regular file", or None when it simply names no file."""
-    from myrabot_desc.safety import InputError, check_path
 
     path, inside = _locate(uri, package_roots, base)
     if path is not None and not inside:
@@ -242,7 +233,6 @@ def resolve_resource_uri(uri: str, package_roots: dict[str, Path], base: Path) -
 
 def _resolve_any(uri: str, package_roots: dict[str, Path], base: Path) -> Path | None:
     """Resolve a mesh/texture URI to a file. Never leaves the package root it names."""
-    from myrabot_desc.safety import real_root
 
     uri = uri.strip()
     if uri.startswith("package://"):

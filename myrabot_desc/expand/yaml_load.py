@@ -8,6 +8,9 @@ is a SafeLoader subclass with its own constructor table, started from PyYAML's s
 simple arithmetic with :func:`arith` (no names but ``pi``/``e``/``tau``, no calls), every other
 tag is refused, and aliases may not expand past a size limit (a "billion laughs" is small on
 disk). :func:`scrub_globals` removes what xacro left on PyYAML's loaders.
+
+PyYAML is imported when a document is first parsed, not with this module: a build that calls no
+``load_yaml`` does not load it (bench/bench_start.py).
 """
 
 from __future__ import annotations
@@ -16,11 +19,9 @@ import ast
 import math
 import operator
 
-import yaml
-from yaml.constructor import ConstructorError, SafeConstructor
-
 from myrabot_desc.diagnostics import Loc
 from myrabot_desc.errors import InputError
+from myrabot_desc.safety import display, read_checked
 
 MAX_NODES = 1_000_000          # items a document may expand to (aliases counted each time used)
 
@@ -64,6 +65,8 @@ def arith(text: str) -> float:
 
 
 def _unit_constructor(factor):
+    from yaml.constructor import ConstructorError
+
     def construct(loader, node):
         value = loader.construct_scalar(node)
         try:
@@ -74,23 +77,37 @@ def _unit_constructor(factor):
 
 
 def _refuse_tag(loader, suffix, node):
+    from yaml.constructor import ConstructorError
+
     raise ConstructorError(None, None, f"the YAML tag {node.tag!r} is not allowed", node.start_mark)
 
 
-class Loader(yaml.SafeLoader):
-    """SafeLoader with a constructor table of its own (see the module docstring)."""
+def _safe_loader():
+    """The Loader: a SafeLoader subclass with a constructor table of its own (see the module
+    docstring), made on first use."""
+    global _LOADER
+    if _LOADER is None:
+        import yaml
+        from yaml.constructor import SafeConstructor
 
-    yaml_constructors = dict(SafeConstructor.yaml_constructors)
-    yaml_multi_constructors = {"!": _refuse_tag, "tag:": _refuse_tag}
+        class Loader(yaml.SafeLoader):
+            yaml_constructors = dict(SafeConstructor.yaml_constructors)
+            yaml_multi_constructors = {"!": _refuse_tag, "tag:": _refuse_tag}
+
+        for tag, factor in UNITS.items():
+            Loader.yaml_constructors[tag] = _unit_constructor(factor)
+        Loader.yaml_constructors[None] = SafeConstructor.construct_undefined
+        _LOADER = Loader
+    return _LOADER
 
 
-for _tag, _factor in UNITS.items():
-    Loader.yaml_constructors[_tag] = _unit_constructor(_factor)
-Loader.yaml_constructors[None] = SafeConstructor.construct_undefined
+_LOADER = None
 
 
 def _too_big(node) -> bool:
     """Items the composed document expands to (an alias counts as its whole target, each time)."""
+    import yaml
+
     memo: dict[int, int] = {}
     stack = [(node, False)]
     while stack:              # iterative post-order: no recursion on deep documents
@@ -118,11 +135,16 @@ def _fast_loader():
     RecursionError; libyaml's parser keeps its nesting on the heap. None without libyaml."""
     global _FAST
     if _FAST is None:
+        import yaml
+
         _FAST = False
         if getattr(yaml, "__with_libyaml__", False):
             from yaml._yaml import CParser
             from yaml.composer import Composer
+            from yaml.constructor import SafeConstructor
             from yaml.resolver import Resolver
+
+            Loader = _safe_loader()
 
             class FastLoader(Composer, SafeConstructor, Resolver, CParser):
                 yaml_constructors = Loader.yaml_constructors
@@ -149,10 +171,12 @@ def loads(text: str, name: str):
             return _load(fast, text, name)
         except InputError:
             pass        # PyYAML's pure-Python reader words the error (the same on every machine)
-    return _load(Loader, text, name)
+    return _load(_safe_loader(), text, name)
 
 
 def _load(loader_class, text: str, name: str):
+    import yaml
+
     try:
         loader = loader_class(text)     # the pure-Python reader refuses control characters here
     except yaml.reader.ReaderError as exc:
@@ -177,14 +201,14 @@ def _load(loader_class, text: str, name: str):
 
 def load_path(path, max_bytes: int, roots=None, name: str | None = None):
     """Read and parse a YAML file (through safety.open_checked when ``roots`` are given)."""
-    from myrabot_desc.safety import display, read_checked
-
     data = read_checked(path, roots, max_bytes, what="YAML file")
     return loads(data.decode("utf-8", errors="replace"), name or display(path))
 
 
 def scrub_globals() -> None:
     """Take xacro's unit constructors off PyYAML's shared loaders (xacro puts them there)."""
+    import yaml
+
     for cls in (yaml.SafeLoader, yaml.Loader, yaml.FullLoader, yaml.UnsafeLoader,
                 getattr(yaml, "CSafeLoader", None)):
         table = cls.__dict__.get("yaml_constructors") if cls is not None else None

@@ -10,9 +10,18 @@ import math
 import re
 from pathlib import Path
 
-from myrabot_desc.expand.packages import BUNDLED_ASSEMBLY, bundled_path, data_root  # noqa: F401  (library API)
 from myrabot_desc.diagnostics import Diagnostic, Loc
 from myrabot_desc.errors import InputError
+from myrabot_desc.expand.driver import build_file
+from myrabot_desc.expand.packages import (  # noqa: F401  (BUNDLED_ASSEMBLY, bundled_path, data_root: library API)
+    BUNDLED_ASSEMBLY,
+    PackageResolver,
+    bundled_path,
+    data_root,
+    outside_roots,
+    resolve_resource_uri,
+    split_package_uri,
+)
 from myrabot_desc.model.parts import (
     Box,
     Collision,
@@ -30,10 +39,12 @@ from myrabot_desc.model.parts import (
     Pose,
     Robot,
     Sensor,
+    SourceLines,
     Sphere,
     Transmission,
     Visual,
 )
+from myrabot_desc.safety import Limits, parse_xml_bytes, read_input
 
 # Sizes, offsets, masses and inertias beyond this (SI units) are typing errors or attacks: 1e300
 # overflows volumes and inertias downstream. Joint limits and dynamics are exempt (1e16 is a
@@ -73,10 +84,6 @@ def load_robot(path=None, **build_options) -> Robot:
         raise InputError(f"{src} is a folder; give a .urdf or .xacro file")
     data = None
     if not is_xacro(src):
-        from myrabot_desc.safety import Limits
-
-        from myrabot_desc.safety import read_input
-
         limit = (build_options.get("limits") or Limits()).max_input_bytes
         try:
             size = src.stat().st_size
@@ -86,8 +93,6 @@ def load_robot(path=None, **build_options) -> Robot:
             raise InputError(f"{src} is {size} bytes, over the {limit}-byte limit")
         data = read_input(src, limit)       # bounded: /dev/zero or an endless pipe stops at the limit
     if data is None or is_xacro(src, data):
-        from myrabot_desc.expand.driver import build_file
-
         result = build_file(src, build_options.pop("mappings", None), **build_options)
         return read_urdf_text(result.text, src, locations=result.locations, package_roots=result.package_roots,
                               root=result.root,
@@ -99,8 +104,6 @@ def load_robot(path=None, **build_options) -> Robot:
 
 
 def read_urdf_bytes(data: bytes, src: Path, packages=None, package_paths=()) -> Robot:
-    from myrabot_desc.safety import parse_xml_bytes
-
     root = parse_xml_bytes(data, str(src))
     text = data.decode("utf-8", errors="replace")
     return _read(root, text, src, None, {}, [], False, packages, package_paths)
@@ -109,7 +112,6 @@ def read_urdf_bytes(data: bytes, src: Path, packages=None, package_paths=()) -> 
 def read_urdf_text(text: str, src: Path, locations=None, package_roots=None, build_warnings=None,
                    from_xacro=False, packages=None, package_paths=(), root=None) -> Robot:
     """Read URDF text into a Robot; ``root`` is the text already parsed (the build hands it over)."""
-    from myrabot_desc.safety import parse_xml_bytes
 
     if root is None:
         root = parse_xml_bytes(text.encode("utf-8"), str(src))
@@ -135,8 +137,6 @@ def what_document(tag: str) -> str:
 # ---------------------------------------------------------------- reading
 class _Reader:
     def __init__(self, root, src: Path, locations):
-        from myrabot_desc.model.parts import SourceLines
-
         self.src = src
         self.issues: list[Diagnostic] = []
         elements = [el for el in root.iter() if isinstance(el.tag, str)] if locations is not None else ()
@@ -228,8 +228,6 @@ class _Reader:
             fn = shape.get("filename", "")
             path = resolve(fn) if fn else None
             if fn and path is None:
-                from myrabot_desc.expand.packages import outside_roots
-
                 if outside_roots(fn, package_roots, robot_src_dir) is not None:
                     self.issue(shape, f"mesh {fn} lies outside the allowed folders (the model's package and folder): not read "
                                "(a model may only use files of its own package or of the packages it names)",
@@ -290,12 +288,6 @@ def _read(*args) -> Robot:
 
 def _read_model(root, text, src: Path, locations, package_roots, build_warnings, from_xacro, packages,
                 package_paths) -> Robot:
-    from myrabot_desc.expand.packages import (
-        PackageResolver,
-        resolve_resource_uri,
-        split_package_uri,
-    )
-
     if root.tag != "robot":
         loc = locations[0] if locations and locations[0] is not None else Loc(str(src), root.sourceline)
         raise InputError(f"{what_document(root.tag)}: check, convert, info and sim read URDF robots; "

@@ -21,6 +21,9 @@ from pathlib import Path
 from typing import Any, NamedTuple
 
 from myrabot_desc.diagnostics import Loc
+from myrabot_desc.expand.packages import resolve_resource_uri
+from myrabot_desc.model.pin_model import build_model
+from myrabot_desc.model.tree import maps
 
 Vec3 = tuple[float, float, float]
 
@@ -296,8 +299,6 @@ class Robot:
 
     # -------------------------------------------------------- tree helpers
     def child_joints(self, link: str) -> list[Joint]:
-        from myrabot_desc.model.tree import maps   # one map for the robot: a star of 20,000 links stays linear
-
         return list(maps(self).child_joints.get(link, ()))
 
     def joints_by_parent(self) -> dict[str, list[Joint]]:
@@ -308,8 +309,6 @@ class Robot:
         return out
 
     def parent_joint(self, link: str) -> Joint | None:
-        from myrabot_desc.model.tree import maps
-
         return maps(self).parent_joint.get(link)
 
     @property
@@ -340,14 +339,12 @@ class Robot:
 
     def resolve_uri(self, uri: str) -> Path | None:
         """package://, file:// or a relative path -> a file on disk, or None."""
-        from myrabot_desc.expand.packages import resolve_resource_uri
 
         base = self.source.parent if self.source else Path.cwd()
         return resolve_resource_uri(uri, self.package_roots, base)
 
     def pinocchio(self, floating: bool = False):
         """A Pinocchio model of this robot (built on demand; see pin_bridge)."""
-        from myrabot_desc.model.pin_model import build_model
 
         return build_model(self, floating=floating)
 

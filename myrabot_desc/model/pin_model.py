@@ -11,6 +11,7 @@ import os
 import tempfile
 
 from myrabot_desc.errors import InputError
+from myrabot_desc.model.tree import MAX_TREE_DEPTH, depth
 
 
 def capture_fd2(fn, *args, **kwargs):
@@ -56,8 +57,6 @@ _DOF = {"fixed": 0, "floating": 6, "planar": 3}
 def build_model(robot, floating: bool = False):
     """pinocchio.Model of ``robot`` (free-flyer root when ``floating``)."""
     import pinocchio as pin
-
-    from myrabot_desc.model.tree import MAX_TREE_DEPTH, depth
 
     d = depth(robot)
     if d > MAX_TREE_DEPTH:      # Pinocchio's parser recurses per joint: SIGSEGV near 4,000

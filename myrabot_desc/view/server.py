@@ -14,6 +14,13 @@ from __future__ import annotations
 import threading
 import time
 
+from myrabot_desc.checks import CheckOptions, check_robot
+from myrabot_desc.errors import InputError
+from myrabot_desc.model.kinematics import require_tree
+from myrabot_desc.view import overlays
+from myrabot_desc.view.overlays import finding_links
+from myrabot_desc.view.scene import build_scene
+
 HIGHLIGHT = (255, 0, 200)
 TOGGLES = {            # name -> (label, default)
     "visual": ("visual geometry", True),
@@ -77,8 +84,6 @@ class Viewer:
     # ------------------------------------------------------------ loading
     def _read(self):
         """(robot, scene) of the model, or InputError."""
-        from myrabot_desc.model.kinematics import require_tree
-        from myrabot_desc.view.scene import build_scene
 
         robot = self._load()
         require_tree(robot)
@@ -86,7 +91,6 @@ class Viewer:
 
     def reload(self, loaded=None) -> bool:
         """(Re)load the model and rebuild scene and GUI; on a load error keep what is shown."""
-        from myrabot_desc.errors import InputError
 
         try:
             robot, scene = loaded or self._read()
@@ -148,8 +152,6 @@ class Viewer:
 
     # ------------------------------------------------------------ scene
     def _build(self) -> None:
-        from myrabot_desc.view import overlays
-
         sc = self.server.scene
         gui = self.server.gui
         sc.reset()
@@ -181,11 +183,8 @@ class Viewer:
 
     def _place(self) -> None:
         """Send the link poses for the current joint values (and what depends on them)."""
-        import viser.transforms as vtf
-
-        from myrabot_desc.view import overlays
-
         import numpy as np
+        import viser.transforms as vtf
 
         T = self.scene.transforms(self.q)
         prev = self.link_poses if self._sent_generation == self.generation else {}
@@ -227,8 +226,6 @@ class Viewer:
             for h in self._nodes.get(name, ()):
                 h.visible = bool(on)
             if name in ("support", "com"):
-                from myrabot_desc.view import overlays
-
                 overlays.update_dynamic(self, self.link_poses)
 
     def highlight(self, links) -> None:
@@ -325,9 +322,6 @@ class Viewer:
 
     # ------------------------------------------------------------ findings
     def _run_checks(self, generation: int) -> None:
-        from myrabot_desc.checks import CheckOptions, check_robot
-        from myrabot_desc.view.overlays import finding_links
-
         robot = self.robot
         try:
             diags, _ = check_robot(robot, CheckOptions(inertia=True))

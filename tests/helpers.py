@@ -27,3 +27,25 @@ WANDER = FIXTURES / "wander_bot"
 def invoke(*args, **kwargs):
     """``myrabot-desc ARGS`` in this process (click's CliRunner); the Result."""
     return CliRunner().invoke(main, [str(a) for a in args], **kwargs)
+
+
+def corpus_robots() -> list[dict]:
+    """The entries of tests/corpus/robots.yaml (see its header)."""
+    import yaml
+
+    return yaml.safe_load((CORPUS / "robots.yaml").read_text())["robots"]
+
+
+def corpus_package_path(robot: dict) -> Path:
+    return CORPUS / robot.get("package_path", ".")
+
+
+def corpus_args(robot: dict) -> list[str]:
+    """The command-line arguments that read a corpus robot: its top file, its xacro args, --package-path."""
+    return [str(CORPUS / robot["top"]), *robot.get("args", "").split(), "--package-path",
+            str(corpus_package_path(robot))]
+
+
+def corpus_env(robot: dict) -> dict[str, str]:
+    """The environment a corpus robot is read with (the $(optenv) accessories its launch files set)."""
+    return {k: str(v) for k, v in robot.get("env", {}).items()}

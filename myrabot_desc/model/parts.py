@@ -24,6 +24,7 @@ from myrabot_desc.diagnostics import Loc
 from myrabot_desc.expand.packages import resolve_resource_uri
 from myrabot_desc.model.pin_model import build_model
 from myrabot_desc.model.tree import maps
+from myrabot_desc.safety import parse_xml_bytes
 
 Vec3 = tuple[float, float, float]
 
@@ -347,6 +348,29 @@ class Robot:
         """A Pinocchio model of this robot (built on demand; see pin_bridge)."""
 
         return build_model(self, floating=floating)
+
+    def to_yourdfpy(self, load_meshes: bool = False, build_scene_graph: bool = True):
+        """This robot as a ``yourdfpy.URDF``, for Python users of yourdfpy (the tests use it as an
+        independent check of our kinematics).
+
+        Built from ``urdf_text`` read by our own parser (no DTD, entities or network) and cleaned as
+        ``yourdfpy.URDF.load`` cleans a file; mesh file names go through :meth:`resolve_uri`, so only
+        files under the input's folder and the package roots can be opened, and one that does not
+        resolve is left out, as yourdfpy leaves out a file it cannot find. Meshes are loaded (by
+        trimesh, through yourdfpy) only with ``load_meshes``."""
+        import yourdfpy
+        from lxml import etree
+
+        root = parse_xml_bytes(self.urdf_text.encode("utf-8"), str(self.source or "<urdf>"))
+        etree.strip_tags(root, etree.Comment)
+        etree.cleanup_namespaces(root)
+
+        def filename(fname: str) -> str:
+            path = self.resolve_uri(fname)
+            return str(path) if path is not None else ""
+
+        return yourdfpy.URDF(robot=yourdfpy.URDF._parse_robot(xml_element=root), build_scene_graph=build_scene_graph,
+                             load_meshes=load_meshes, filename_handler=filename)
 
 
 def _local(tag) -> str:

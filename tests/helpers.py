@@ -49,3 +49,16 @@ def corpus_args(robot: dict) -> list[str]:
 def corpus_env(robot: dict) -> dict[str, str]:
     """The environment a corpus robot is read with (the $(optenv) accessories its launch files set)."""
     return {k: str(v) for k, v in robot.get("env", {}).items()}
+
+
+def corpus_robot(robot_id: str) -> dict:
+    return next(r for r in corpus_robots() if r["id"] == robot_id)
+
+
+def corpus_model(robot: dict):
+    """The Robot of a corpus entry, read with its xacro args and package path (its environment, for
+    the few entries that have one, is the caller's: monkeypatch corpus_env(robot))."""
+    from myrabot_desc.model.loader import load_robot
+
+    mappings = dict(a.split(":=", 1) for a in robot.get("args", "").split())
+    return load_robot(CORPUS / robot["top"], mappings=mappings, package_paths=[corpus_package_path(robot)])

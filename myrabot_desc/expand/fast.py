@@ -7,7 +7,7 @@
 * ``pretty_xml``: ``toprettyxml(indent="  ")`` as xacro writes it, reading our source
   annotations off in the same pass.
 
-Each one gives exactly xacro's result; tests/test_perf_equivalence.py compares the
+Each one gives exactly xacro's result; tests/expand/test_fast_expansion_equivalence.py compares the
 output byte for byte with plain xacro on a generated corpus and on every test xacro.
 
 xacro 2.1.1 replaces every macro call with ``parent.insertBefore(child, node)``

@@ -9,7 +9,7 @@ sitting between its mounting plates; they are left out and listed, as an SRDF
 
 Every distinct pose goes through a broadphase (bounding boxes) before the exact
 test; the closest approach is searched in the order of bounding-box lower bounds.
-Both report what testing every pair would (tests/test_sim.py checks that).
+Both report what testing every pair would (tests/sim/test_programs.py checks that).
 """
 
 from __future__ import annotations

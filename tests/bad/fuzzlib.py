@@ -1,4 +1,4 @@
-"""Mutation fuzzing of URDF, xacro and OGRE material files (tests/test_fuzz.py, bench/fuzz_long.py).
+"""Mutation fuzzing of URDF, xacro and OGRE material files (tests/hardening/test_fuzz.py, bench/fuzz_long.py).
 
 A case is an integer: it picks a seed file, a few mutations (delete, duplicate, swap, move and
 rename elements; delete, duplicate and corrupt attributes and numbers; truncate, splice bytes;

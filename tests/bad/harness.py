@@ -1,6 +1,6 @@
 """Run myrabot-desc commands in-process on hostile input and watch what they do.
 
-Used by tests/test_hardening.py, tests/test_fuzz.py and bench/fuzz_long.py. Each run happens in a
+Used by tests/hardening/test_hostile_inputs.py, tests/hardening/test_fuzz.py and bench/fuzz_long.py. Each run happens in a
 worker process (forked, so the heavy imports are paid once) with:
 
 * a Python audit hook recording every ``open`` (path), ``socket.connect``, ``subprocess.Popen``,

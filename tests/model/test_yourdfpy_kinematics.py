@@ -9,7 +9,7 @@ import math
 import numpy as np
 import pytest
 
-from helpers import corpus_args, corpus_env, corpus_robots
+from helpers import corpus_env, corpus_model, corpus_robots
 from myrabot_desc.model.kinematics import world_transforms
 from myrabot_desc.model.loader import load_robot
 
@@ -20,9 +20,7 @@ ROBOTS = corpus_robots()
 def _load_corpus(robot, monkeypatch):
     for k, v in corpus_env(robot).items():
         monkeypatch.setenv(k, v)
-    top, *rest = corpus_args(robot)
-    mappings = dict(a.split(":=", 1) for a in rest if ":=" in a)
-    return load_robot(top, mappings=mappings, package_paths=[rest[-1]])
+    return corpus_model(robot)
 
 
 def _poses(robot, seed: int):

@@ -155,3 +155,14 @@ def test_docs_rules_md_documents_every_rule_and_is_current():
     for code in [*load_all(), *EXTERNAL]:
         assert f"### {code}\n" in text
         assert "**Example.**" in text.split(f"### {code}\n", 1)[1].split("\n### ", 1)[0], code
+
+
+def test_report_colours_are_click_styles():
+    """checks/report writes its ANSI styles itself (no click below the command layer): the same
+    bytes click.style writes, so a terminal shows what it showed."""
+    import click
+
+    from myrabot_desc.checks.report import STYLE, style
+
+    for kw in [*STYLE.values(), dict(bold=True), dict(fg="green")]:
+        assert style("P004 text", **kw) == click.style("P004 text", **kw)

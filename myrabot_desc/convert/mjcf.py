@@ -37,8 +37,6 @@ from __future__ import annotations
 import contextlib
 import copy
 import math
-import shutil
-import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -55,6 +53,9 @@ from myrabot_desc.model import meshes as meshio
 from myrabot_desc.model.inertia import describe, repaired
 from myrabot_desc.output import OutputDir, write_output
 from myrabot_desc.safety import limit
+
+# shutil and tempfile are imported where they are used: `convert --to sdf` imports this module
+# too (commands/convert.py), and they cost it ~4 ms.
 
 TINY_MASS = 1e-3
 TINY_INERTIA = 1e-6
@@ -160,6 +161,8 @@ class _Prep:
             dest = folder / name
             mesh = self.loaded.get(src)
             if mesh is None:
+                import shutil
+
                 shutil.copyfile(src, dest)
             elif dest.suffix == ".msh":
                 _write_msh(dest, mesh)
@@ -476,6 +479,7 @@ def _c_stdout_to(notes):
     the process's stdout/stderr: catch both descriptors and turn the lines into our warnings."""
     import os
     import sys
+    import tempfile
 
     sys.stdout.flush()
     sys.stderr.flush()
@@ -984,6 +988,8 @@ def convert_mjcf(robot, output: str, base: str = "auto", scene: str | None = "sc
     _report_mjcf(robot, report, free, base)
     scene_written = None
     if out is None:
+        import tempfile
+
         with tempfile.TemporaryDirectory() as d:
             text, model = compile_in(Path(d))
         write_output("-", text)

@@ -8,7 +8,6 @@ we redirect fd 2 around the call and put the captured text into our error.
 from __future__ import annotations
 
 import os
-import tempfile
 
 from myrabot_desc.errors import InputError
 from myrabot_desc.model.tree import MAX_TREE_DEPTH, depth
@@ -17,6 +16,7 @@ from myrabot_desc.model.tree import MAX_TREE_DEPTH, depth
 def capture_fd2(fn, *args, **kwargs):
     """Run fn with file descriptor 2 redirected; return (result, captured_text)."""
     import sys
+    import tempfile      # here: every command that reads a model imports this module (~4 ms)
 
     sys.stderr.flush()
     saved = os.dup(2)

@@ -52,9 +52,10 @@ class _Builder(expatbuilder.ExpatBuilderNS):
     """minidom's own builder (as xacro's minidom.parse uses), annotating each element with
     its source line, refusing any DTD or entity declaration, and bounding the nesting."""
 
-    def __init__(self, locs: list, fname: str, lines=None, max_depth: int = MAX_DEPTH):
+    def __init__(self, locs: list, fname: str, lines=None, max_depth: int = MAX_DEPTH, offsets=None):
         super().__init__()
         self.locs = locs
+        self.offsets = offsets          # byte offset of each element's start tag (None: not known)
         self.fname = fname
         self.lines = lines              # the lines to use (lxml's), else expat's own
         self.depth = 0
@@ -86,6 +87,8 @@ class _Builder(expatbuilder.ExpatBuilderNS):
         line = self._parser.CurrentLineNumber if self.lines is None else next(self.lines)
         idx = str(len(self.locs))
         self.locs.append(Loc(self.fname, line))
+        if self.offsets is not None:
+            self.offsets.append(self._parser.CurrentByteIndex if self.lines is None else None)
         uri = node.namespaceURI
         if uri is not None and uri == self.xacro_uri:
             a = minidom.Attr(XSRC_ATTR, uri, XSRC_LOCAL, "xacro")
@@ -114,28 +117,31 @@ class _Builder(expatbuilder.ExpatBuilderNS):
         super().end_element_handler(name)
 
 
-def _expat(data, locs, fname, lines=None, max_depth: int = MAX_DEPTH) -> Parsed:
-    b = _Builder(locs, fname, lines, max_depth)
+def _expat(data, locs, fname, lines=None, max_depth: int = MAX_DEPTH, offsets=None) -> Parsed:
+    b = _Builder(locs, fname, lines, max_depth, offsets)
     doc = b.parseString(data)
     return Parsed(doc, b.noted, b.plain_words, b.plain_tags)
 
 
-def parse(data: bytes, name: str, locs: list) -> Parsed:
+def parse(data: bytes, name: str, locs: list, offsets: list | None = None) -> Parsed:
     """A model file's bytes, parsed; each element's Loc appended to ``locs`` (its annotation
-    is the index there). InputError (``name:line: error: ...``) for a file that may not or
+    is the index there) and, with ``offsets``, the byte offset of its start tag in ``data`` (None
+    where lxml read the file). InputError (``name:line: error: ...``) for a file that may not or
     cannot be read."""
 
     check_xml_bytes(data, name)
     if len(data) <= MAX_EXPAT_BYTES:
         mark = len(locs)
         try:
-            return _expat(data, locs, name)
+            return _expat(data, locs, name, offsets=offsets)
         except (_Stop, expat.ExpatError, ValueError, RecursionError):
             del locs[mark:]
-    return _via_lxml(data, name, locs)
+            if offsets is not None:
+                del offsets[mark:]
+    return _via_lxml(data, name, locs, offsets)
 
 
-def _via_lxml(data: bytes, name: str, locs: list) -> Parsed:
+def _via_lxml(data: bytes, name: str, locs: list, offsets: list | None = None) -> Parsed:
     """lxml's verdict (and message) on the file; when it reads it, its text for expat."""
     from lxml import etree
 
@@ -145,4 +151,5 @@ def _via_lxml(data: bytes, name: str, locs: list) -> Parsed:
     text += etree.tostring(root, encoding="unicode", with_tail=False)
     text += "".join(etree.tostring(s, encoding="unicode") for s in root.itersiblings())
     lines = iter([el.sourceline for el in root.iter() if isinstance(el.tag, str)])
-    return _expat(text.encode("utf-8"), locs, name, lines, max_depth=10**9)   # lxml has bounded the depth
+    # (the text is lxml's re-serialisation: its offsets are not the file's)
+    return _expat(text.encode("utf-8"), locs, name, lines, max_depth=10**9, offsets=offsets)   # lxml bounded the depth

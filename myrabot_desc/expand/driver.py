@@ -38,6 +38,7 @@ from myrabot_desc.expand import legacy as lg
 from myrabot_desc.expand.domread import SRC_ATTR, XSRC_ATTR
 from myrabot_desc.expand.fast import pretty_xml
 from myrabot_desc.expand.packages import PackageResolver, split_package_uri
+from myrabot_desc.expand.provenance import SourceMap, Tracker, src_index
 from myrabot_desc.safety import Limits, _short, display, may_open, read_checked, safe_parser, scan_tag_attr
 
 
@@ -54,6 +55,7 @@ class BuildResult:
         self.package_roots = {} if package_roots is None else package_roots
         self._src_name = src_name or str(source)
         self._root = None
+        self.source_map = None              # provenance.SourceMap: where each output value was written
 
     @property
     def root(self):
@@ -139,6 +141,10 @@ class _Build:
         self.limits = limits
         self.resolve_uris = resolve_uris
         self.locs: list[Loc] = []          # index -> Loc for _mdsrc annotations
+        self.offsets: list = []            # index -> byte offset of that element's start tag (or None)
+        self.file_data: dict[str, tuple] = {}   # shown name -> (path, bytes) of each model file read
+        self.track = None                  # provenance.Tracker while xacro expands
+        self.source_map = None             # SourceMap, after render
         self.last_loc: Loc | None = None
         self.call_stack: list[tuple[str, Loc | None]] = []
         self.diagnostics: list[Diagnostic] = []
@@ -183,9 +189,10 @@ class _Build:
         if entry is None:
             data = self._read_bytes(path, asked_at)
             fname = display(path)
-            entry = self.trees[key] = [data, domread.parse(data, fname, self.locs), fname]
+            entry = self.trees[key] = [data, domread.parse(data, fname, self.locs, self.offsets), fname]
+            self.file_data.setdefault(fname, (key, data))
         elif entry[1] is None:       # handed to xacro already (which changes it): parse again
-            entry[1] = domread.parse(entry[0], entry[2], self.locs)
+            entry[1] = domread.parse(entry[0], entry[2], self.locs, self.offsets)
         return entry[1]
 
     def read_tree(self, path: Path, asked_at: Loc | None = None):
@@ -341,6 +348,7 @@ class _Build:
         self.check_unexpanded(doc, locations)
         result = BuildResult(text=text, locations=locations, diagnostics=self.diagnostics, deps=self.deps,
                              source=self.src, package_roots=dict(self.resolver.used), src_name=display(self.src))
+        result.source_map = self.source_map
         if len(text) > LXML_MAX_TEXT:   # only such a document can hold a value past lxml's cap: refuse it here
             result.root                 # (what check/convert would refuse) rather than write it
         return result
@@ -429,11 +437,16 @@ class _Build:
         for comment in banner:
             doc.insertBefore(comment, first)
         marks: list = []
-        text = pretty_xml(doc, skip_attr=SRC_ATTR, skip_suffix=":mdsrc", marks=marks)
+        origins: list = []
+        text = pretty_xml(doc, skip_attr=SRC_ATTR, skip_suffix=":mdsrc", marks=marks, origins=origins,
+                          recorded=self.track.origins if self.track is not None else None)
         if len(marks) > self.limits.max_output_elements:
             raise InputError(f"the expanded URDF has over {self.limits.max_output_elements} elements")
         n = len(self.locs)
-        locations = [self.locs[int(m)] if m and m.isdigit() and int(m) < n else None for m in marks]
+        index = [int(m) if m and m.isdigit() and int(m) < n else None for m in marks]
+        locs = self.locs
+        locations = [None if i is None else locs[i] for i in index]
+        self.source_map = SourceMap(index, origins, self.locs, self.offsets, self.file_data)
         return text, locations
 
     def check_unexpanded(self, doc, locations: list) -> None:
@@ -717,6 +730,8 @@ class _Hooks:
         self.saved_recursion = sys.getrecursionlimit()
         sys.setrecursionlimit(max(self.saved_recursion, b.limits.max_macro_depth * 12 + 2000))
         xacro_fast.reset()
+        track = b.track = xacro_fast._track[0] = Tracker(xacro.Table, b.mappings)
+        pending = track.pending
 
         orig_eval_all = xacro_fast.eval_all   # xacro's eval_all, statement for statement, faster
         orig_macro = xacro.handle_macro_call
@@ -747,11 +762,20 @@ class _Hooks:
                 v = a._value
                 if v.isdigit() and int(v) < len(locs):
                     b.last_loc = locs[int(v)]
+            if pending:
+                track.claim(symbols)
             orig_eval_all(node, macros, symbols)
 
         def handle_macro_call(node, macros, symbols):
             if not node.tagName.startswith("xacro:"):
                 return False
+            dynamic = node.tagName == "xacro:call"     # xacro renames it and comes back here
+            if not dynamic:
+                try:
+                    macro = xacro.resolve_macro(node.tagName[6:], macros, symbols)[2]
+                except Exception:                 # xacro reports it
+                    macro = None
+                track.call(node, macro, symbols)
             loc = take_xloc(node)
             name = node.tagName[6:]
             if len(b.call_stack) >= b.limits.max_macro_depth:
@@ -760,7 +784,11 @@ class _Hooks:
                                  loc or b.last_loc, b._stack())
             b.count_expansion(name, macros, symbols, loc)
             b.call_stack.append((name, loc))
-            result = orig_macro(node, macros, symbols)
+            try:
+                result = orig_macro(node, macros, symbols)
+            finally:
+                if not dynamic:
+                    track.done()
             b.call_stack.pop()
             return result
 
@@ -769,12 +797,20 @@ class _Hooks:
             return orig_check_attrs(tag, required, optional)
 
         def grab_macro(elt, macros):
+            src = src_index(elt, XSRC_ATTR)
+            name = elt.getAttribute("name")
             take_xloc(elt)
-            return orig_grab_macro(elt, macros)
+            orig_grab_macro(elt, macros)
+            macro = dict.get(macros, name[6:] if name.startswith("xacro:") else name)
+            if macro is not None:
+                macro._md_src = src
 
         def grab_property(elt, table):
+            pre = track.before_property(elt, table)
             take_xloc(elt)
-            return orig_grab_property(elt, table)
+            orig_grab_property(elt, table)
+            if pre is not None:
+                track.after_property(pre, table)
 
         def parse(inp, filename=None):
             if inp is not None:

@@ -25,6 +25,8 @@ from __future__ import annotations
 
 import xml.dom
 
+from myrabot_desc.expand.provenance import XSRC_ATTR, src_index
+
 TEXT = xml.dom.Node.TEXT_NODE
 COMMENT = xml.dom.Node.COMMENT_NODE
 
@@ -34,9 +36,14 @@ _hints: dict[int, tuple[object, int]] = {}
 _singleton_pos: list = [None, 0]
 
 
+# The build's provenance.Tracker while it expands (None: nothing recorded).
+_track: list = [None]
+
+
 def reset() -> None:
     _hints.clear()
     _singleton_pos[0] = None
+    _track[0] = None
 
 
 def _index(parent, node) -> int:
@@ -267,6 +274,11 @@ def clone_node(node, deep, doc):
             clone._attrs, clone._attrsNS = attrs, attrs_ns
         else:
             clone._attrs = clone._attrsNS = None
+        track = _track[0]
+        if track is not None:        # a block evaluated before it is inserted keeps its origins
+            org = track.origins.get(node)
+            if org is not None:
+                track.origins[clone] = org
         if deep and node.childNodes:
             prev = None
             for child in node.childNodes:
@@ -363,6 +375,8 @@ def eval_all(node, macros, symbols):
     """
     import xacro as X
 
+    track = _track[0]
+    elem = node
     attrs = node._attrs
     if attrs:
         for a in list(attrs.values()):
@@ -372,6 +386,8 @@ def eval_all(node, macros, symbols):
             else:
                 value = a._value
                 if "$" in value:
+                    if track is not None:
+                        track.attr(node, name, value, symbols)
                     result = str(X.eval_text(value, symbols))
                     if result != value:
                         a._value = result
@@ -429,9 +445,12 @@ def eval_all(node, macros, symbols):
                 X.grab_macro(node, macros)
 
             elif tag == "xacro:arg":
+                src = _src_index(node) if track is not None else None
                 name, default = X.check_attrs(node, ["name", "default"], [])
                 if name not in X.substitution_args_context["arg"]:
                     X.substitution_args_context["arg"][name] = str(X.eval_text(default, symbols))
+                    if track is not None:
+                        track.arg_default(name, src, default, symbols)
 
                 X.remove_previous_comments(node)
                 X.replace_node(node, by=None)
@@ -477,6 +496,8 @@ def eval_all(node, macros, symbols):
         elif t == TEXT:
             data = node.data
             if "$" in data:
+                if track is not None:
+                    track.text(elem, data, symbols)
                 node.data = data = str(X.eval_text(data, symbols))
             if data.strip():
                 eval_comments = False  # non-empty text disables comment evaluation
@@ -491,6 +512,10 @@ def eval_all(node, macros, symbols):
                 pass  # leave comment as is
 
         node = next
+
+
+def _src_index(node):
+    return src_index(node, XSRC_ATTR)
 
 
 # ---------------------------------------------------------------- output
@@ -519,14 +544,15 @@ def _escapers(write_data, attr_kw):
             chain if exact_text(probe) == chain(probe) else exact_text)
 
 
-def pretty_xml(doc, skip_attr=None, skip_suffix=None, marks=None) -> str:
+def pretty_xml(doc, skip_attr=None, skip_suffix=None, marks=None, origins=None, recorded=None) -> str:
     """``doc.toprettyxml(indent="  ")`` as xacro writes it (xmlutils.fixed_writexml), faster.
 
     Elements, text and comments are written here with the same strings and the
     same escaping function; every other node kind uses its own writexml.
     Attributes named ``skip_attr`` or ending in ``skip_suffix`` are left out,
     and (when ``marks`` is a list) the value of ``skip_attr`` of each element,
-    or None, is appended to ``marks`` in document order.
+    or None, is appended to ``marks`` in document order; with ``origins`` (a
+    list), what ``recorded`` (the build's tracker's origins) holds for each element, or None.
     """
     import io
     from xml.dom import minidom
@@ -542,6 +568,7 @@ def pretty_xml(doc, skip_attr=None, skip_suffix=None, marks=None) -> str:
     out = io.StringIO()
     w = out.write
     addindent, newl = "  ", "\n"
+    recorded = recorded.get if recorded is not None else (lambda el: None)
 
     def element(el, indent):
         tag = el.tagName
@@ -560,6 +587,8 @@ def pretty_xml(doc, skip_attr=None, skip_suffix=None, marks=None) -> str:
                 w("\"")
         if marks is not None:
             marks.append(mark)
+            if origins is not None:
+                origins.append(recorded(el))
         kids = el.childNodes
         if kids:
             if len(kids) == 1 and kids[0].nodeType == TEXT:

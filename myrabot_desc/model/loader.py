@@ -95,7 +95,7 @@ def load_robot(path=None, **build_options) -> Robot:
     if data is None or is_xacro(src, data):
         result = build_file(src, build_options.pop("mappings", None), **build_options)
         return read_urdf_text(result.text, src, locations=result.locations, package_roots=result.package_roots,
-                              root=result.root,
+                              root=result.root, source_map=result.source_map,
                               build_warnings=result.diagnostics, from_xacro=True,
                               packages=build_options.get("packages"),
                               package_paths=build_options.get("package_paths", ()))
@@ -106,17 +106,21 @@ def load_robot(path=None, **build_options) -> Robot:
 def read_urdf_bytes(data: bytes, src: Path, packages=None, package_paths=()) -> Robot:
     root = parse_xml_bytes(data, str(src))
     text = data.decode("utf-8", errors="replace")
-    return _read(root, text, src, None, {}, [], False, packages, package_paths)
+    robot = _read(root, text, src, None, {}, [], False, packages, package_paths)
+    robot.source_bytes = data
+    return robot
 
 
 def read_urdf_text(text: str, src: Path, locations=None, package_roots=None, build_warnings=None,
-                   from_xacro=False, packages=None, package_paths=(), root=None) -> Robot:
+                   from_xacro=False, packages=None, package_paths=(), root=None, source_map=None) -> Robot:
     """Read URDF text into a Robot; ``root`` is the text already parsed (the build hands it over)."""
 
     if root is None:
         root = parse_xml_bytes(text.encode("utf-8"), str(src))
-    return _read(root, text, src, locations, package_roots or {}, list(build_warnings or []), from_xacro,
-                 packages, package_paths)
+    robot = _read(root, text, src, locations, package_roots or {}, list(build_warnings or []), from_xacro,
+                  packages, package_paths)
+    robot.source_map = source_map
+    return robot
 
 
 # What a file that is not a URDF robot is, by its root element (for the message that refuses it).
@@ -243,7 +247,7 @@ class _Reader:
         color = kids.get("color")
         rgba = self.vec(color, "rgba", None, 4) if color is not None else None
         tex = kids.get("texture")
-        return Material(el.get("name", ""), rgba, tex.get("filename") if tex is not None else None, self.loc(el))
+        return Material(el.get("name", ""), rgba, tex.get("filename") if tex is not None else None, self.loc(el), el)
 
     def inertial(self, kids: dict) -> Inertial | None:
         """The <inertial> among ``kids`` (_kids of a <link>)."""
@@ -255,7 +259,7 @@ class _Reader:
         mass = self.num(m, "value", 0.0) if m is not None else 0.0
         t = ik.get("inertia")
         vals = {k: (self.num(t, k, 0.0) if t is not None else 0.0) for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
-        return Inertial(mass, self.pose(i, ik), loc=self.loc(i), **vals)
+        return Inertial(mass, self.pose(i, ik), loc=self.loc(i), ref=i, **vals)
 
 
 _NO_ORIGIN = Pose()    # one shared (immutable) identity for every element without <origin>
@@ -356,14 +360,14 @@ def _read_model(root, text, src: Path, locations, package_roots, build_warnings,
             if mat is not None and mname and mname not in materials and (mat.rgba or mat.texture):
                 materials[mname] = mat
             visuals.append(Visual(r.pose(v, vk), r.geometry(vk, base, roots, resolve), v.get("name"), mname, mat,
-                                  r.loc(v)))
+                                  r.loc(v), v))
         collisions = []
         for c in col_els:
             ck = _kids(c)
-            collisions.append(Collision(r.pose(c, ck), r.geometry(ck, base, roots, resolve), c.get("name"), r.loc(c)))
+            collisions.append(Collision(r.pose(c, ck), r.geometry(ck, base, roots, resolve), c.get("name"), r.loc(c), c))
         if name in links:
             continue  # duplicates are reported by the tree rules from the XML
-        links[name] = Link(name, r.inertial(first), tuple(visuals), tuple(collisions), r.loc(el))
+        links[name] = Link(name, r.inertial(first), tuple(visuals), tuple(collisions), r.loc(el), el)
 
     joints: dict[str, Joint] = {}
     for el in top["joint"]:
@@ -391,7 +395,7 @@ def _read_model(root, text, src: Path, locations, package_roots, build_warnings,
         if name in joints:
             continue
         joints[name] = Joint(name, jtype, p.get("link"), c.get("link"), r.pose(el, kids), axis, limit, mimic,
-                             dynamics, r.loc(el))
+                             dynamics, r.loc(el), el)
 
     gazebo = tuple(_gazebo_block(r, g) for g in top["gazebo"])
     transmissions = tuple(

@@ -23,6 +23,7 @@ from typing import Any, NamedTuple
 from myrabot_desc.diagnostics import Loc
 from myrabot_desc.expand.packages import resolve_resource_uri
 from myrabot_desc.model.pin_model import build_model
+from myrabot_desc.model.sources import Sources
 from myrabot_desc.model.tree import maps
 from myrabot_desc.safety import parse_xml_bytes
 
@@ -70,6 +71,7 @@ class Material(NamedTuple):
     rgba: tuple[float, float, float, float] | None = None
     texture: str | None = None
     loc: Loc | None = None
+    ref: Any = None               # the URDF element it was read from, for Robot.sources (opaque)
 
 
 class Visual(NamedTuple):
@@ -79,6 +81,7 @@ class Visual(NamedTuple):
     material_name: str | None = None
     material: Material | None = None   # resolved against robot-level materials when only named
     loc: Loc | None = None
+    ref: Any = None               # the URDF element it was read from, for Robot.sources (opaque)
 
 
 class Collision(NamedTuple):
@@ -86,6 +89,7 @@ class Collision(NamedTuple):
     geometry: Geometry | None
     name: str | None = None
     loc: Loc | None = None
+    ref: Any = None               # the URDF element it was read from, for Robot.sources (opaque)
 
 
 class Inertial(NamedTuple):
@@ -98,6 +102,7 @@ class Inertial(NamedTuple):
     iyz: float = 0.0
     izz: float = 0.0
     loc: Loc | None = None
+    ref: Any = None               # the URDF element it was read from, for Robot.sources (opaque)
 
     def tensor(self):
         """3x3 inertia matrix (numpy) in the inertial frame."""
@@ -114,6 +119,7 @@ class Link(NamedTuple):
     visuals: tuple[Visual, ...] = ()
     collisions: tuple[Collision, ...] = ()
     loc: Loc | None = None
+    ref: Any = None               # the URDF element it was read from, for Robot.sources (opaque)
 
     @property
     def mass(self) -> float:
@@ -153,6 +159,7 @@ class Joint(NamedTuple):
     mimic: Mimic | None = None
     dynamics: Dynamics | None = None
     loc: Loc | None = None
+    ref: Any = None               # the URDF element it was read from, for Robot.sources (opaque)
 
     @property
     def moves(self) -> bool:
@@ -267,6 +274,10 @@ class Robot:
     # a SourceLines for a URDF read from one file (use loc_of rather than this map).
     element_locs: dict | SourceLines = field(default_factory=dict, repr=False)
     _elements: list = field(default_factory=list, repr=False)      # keeps those lxml proxies (and ids) alive
+    # Where the build says each output value came from (expand/provenance.SourceMap), or for a
+    # URDF read from one file its bytes: Robot.sources reads spans from them when asked.
+    source_map: Any = field(default=None, repr=False, compare=False)
+    source_bytes: bytes | None = field(default=None, repr=False, compare=False)
     # Facts derived from the robot, built once by whoever needs them first (sim/prepared.py);
     # the robot is not modified after loading, so they stay true for its lifetime.
     derived: dict = field(default_factory=dict, repr=False, compare=False)
@@ -276,6 +287,21 @@ class Robot:
         if type(self.element_locs) is dict:
             return self.element_locs.get(id(el))
         return self.element_locs.loc(el)
+
+    @property
+    def sources(self):
+        """Where each value was written (model/sources.Sources): ``robot.sources.origin(part.ref, attr)``."""
+        s = self.derived.get("sources")
+        if s is None:
+            plain = None
+            if self.source_map is None and self.source_bytes is not None:
+                plain = (str(self.loc.file) if self.loc else str(self.source), self.source, self.source_bytes)
+            s = self.derived["sources"] = Sources(self.root_element, self.source_map, plain)
+        return s
+
+    def origin(self, part, field: str):
+        """Where ``field`` of ``part`` was written (model/sources.Origin): ``robot.origin(joint, "limit.effort")``."""
+        return self.sources.field(part, field)
 
     def source_files(self) -> list[str]:
         """The files the model's elements came from (the input and, for xacro, its includes), in

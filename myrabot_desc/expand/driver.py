@@ -99,8 +99,9 @@ XACRO_WORDS = {"macro", "property", "include", "insert_block", "arg", "if", "unl
 
 def build_file(path, mappings: dict | None = None, *, packages: dict | None = None, package_paths=(),
                legacy: str = "auto", unsafe_eval: bool = False, no_env: bool = False, allow_paths=(),
-               limits: Limits | None = None, resolve_uris: bool = False) -> BuildResult:
-    """Expand ``path`` into URDF. Raises InputError for input that cannot be built."""
+               limits: Limits | None = None, resolve_uris: bool = False, overlay: dict | None = None) -> BuildResult:
+    """Expand ``path`` into URDF. Raises InputError for input that cannot be built. ``overlay``: resolved
+    path -> bytes read instead of that file (``check --fix`` proves its edits before writing them)."""
     src = Path(path)
     if not src.exists():
         raise InputError(f"no such file: {src}")
@@ -117,6 +118,7 @@ def build_file(path, mappings: dict | None = None, *, packages: dict | None = No
             b = _Build(src, mappings or {}, packages or {}, list(package_paths), legacy, unsafe_eval, no_env,
                        list(allow_paths), limits or Limits(), resolve_uris)
             b.src_name = os.fspath(path)   # as given, like xacro's banner and location lines ("./x.xacro")
+            b.overlay = overlay or {}
             return b.run()
         finally:
             if gc_was_on:
@@ -145,6 +147,7 @@ class _Build:
         self.file_data: dict[str, tuple] = {}   # shown name -> (path, bytes) of each model file read
         self.track = None                  # provenance.Tracker while xacro expands
         self.source_map = None             # SourceMap, after render
+        self.overlay: dict = {}            # resolved path -> bytes to read instead of the file
         self.last_loc: Loc | None = None
         self.call_stack: list[tuple[str, Loc | None]] = []
         self.diagnostics: list[Diagnostic] = []
@@ -207,6 +210,11 @@ class _Build:
         return parsed
 
     def _read_bytes(self, path: Path, asked_at: Loc | None) -> bytes:
+        if self.overlay:
+            data = self.overlay.get(self.key(path))
+            if data is not None:
+                return data
+
         try:
             size = path.stat().st_size
         except OSError as exc:

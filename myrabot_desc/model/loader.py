@@ -83,7 +83,10 @@ def load_robot(path=None, **build_options) -> Robot:
     if src.is_dir():
         raise InputError(f"{src} is a folder; give a .urdf or .xacro file")
     data = None
-    if not is_xacro(src):
+    overlay = build_options.get("overlay")
+    if overlay and src.resolve() in overlay:
+        data = overlay[src.resolve()]
+    elif not is_xacro(src):
         limit = (build_options.get("limits") or Limits()).max_input_bytes
         try:
             size = src.stat().st_size

@@ -100,11 +100,41 @@ class Origin(NamedTuple):
 class _File:
     """One source file's bytes and the start-tag offsets of its elements."""
 
-    __slots__ = ("name", "path", "data", "_lines")
+    __slots__ = ("name", "path", "data", "_ends")
 
     def __init__(self, name: str, path: Path | None, data: bytes):
         self.name, self.path, self.data = name, path, data
-        self._lines = None
+        self._ends = None
+
+    def element_end(self, offset: int) -> int | None:
+        """The byte just past the end of the element whose start tag is at ``offset`` (its end tag's
+        ``>``, or the start tag's own for ``<x/>``)."""
+        if self._ends is None:
+            from xml.parsers import expat
+
+            ends: dict[int, int] = {}
+            stack: list[int] = []
+            p = expat.ParserCreate()
+            p.SetParamEntityParsing(expat.XML_PARAM_ENTITY_PARSING_NEVER)
+
+            def start(name, attrs):
+                stack.append(p.CurrentByteIndex)
+
+            def end(name):
+                at = p.CurrentByteIndex
+                begin = stack.pop()
+                if self.data.startswith(b"</", at):
+                    ends[begin] = self.data.index(b">", at) + 1
+                else:                      # <x/>: the end is reported at the start tag
+                    st = self.start_tag(begin)
+                    ends[begin] = st[2] if st else at
+            p.StartElementHandler, p.EndElementHandler = start, end
+            try:
+                p.Parse(self.data, True)
+            except expat.ExpatError:
+                pass
+            self._ends = ends
+        return self._ends.get(offset)
 
     def line_col(self, offset: int) -> tuple[int, int]:
         data = self.data
@@ -227,6 +257,14 @@ class Sources:
             return None
         st = f.start_tag(off)
         return f.span(off, st[2]) if st else None
+
+    def element(self, el) -> Span | None:
+        """The whole element where it is written, start tag to end tag (to remove or to move it)."""
+        f, off = self._source_element(self._source_of(el))
+        if f is None or off is None:
+            return None
+        end = f.element_end(off)
+        return f.span(off, end) if end is not None else None
 
     def attribute(self, el, attr: str) -> Span | None:
         """The whole ``name="value"`` of an attribute where it is written (to remove it)."""

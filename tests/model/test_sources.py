@@ -16,7 +16,7 @@ import yaml
 
 from myrabot_desc.model.loader import load_robot
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 FIX = ROOT / "tests" / "fixtures"
 CORPUS = ROOT / "tests" / "corpus"
 SEED = FIX / "seed_myrabot"

@@ -44,7 +44,7 @@ def main(argv=None) -> int:
                     help="runs of the xacro CLI on 4,000 calls (about 45 s each) [1]")
     ap.add_argument("--quick", action="store_true", help="skip the xacro CLI on 4,000 calls")
     a = ap.parse_args(argv)
-    from myrabot_desc.build.packages import data_root
+    from myrabot_desc.expand.packages import data_root
 
     ours = [str(BIN / "myrabot-desc"), "build"]
     xacro = [str(BIN / "xacro")]

@@ -54,7 +54,7 @@ def main(argv=None):
     res = {"simulated_s": S, "rate_hz": 1000}
 
     t0 = time.perf_counter()
-    from myrabot_desc.build.packages import data_root
+    from myrabot_desc.expand.packages import data_root
     from myrabot_desc.model.loader import load_robot
     from myrabot_desc.sim import pointing, prepared, scene, vuelta
 

@@ -25,7 +25,7 @@ START = ("click", "lxml", "yaml.reader")     # what a plain build no longer impo
 
 
 def imported_by(args: list[str]) -> list[str]:
-    code = ("import sys, json, contextlib, io\nfrom myrabot_desc.entry import main\n"
+    code = ("import sys, json, contextlib, io\nfrom myrabot_desc.commands.entry import main\n"
             "with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):\n"
             f"    try:\n        main({args!r})\n    except SystemExit:\n        pass\n"
             f"print(json.dumps([m for m in {HEAVY + START!r} if m in sys.modules]))")
@@ -39,7 +39,7 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--repeat", type=int, default=20, help="runs per command (best is kept) [20]")
     a = ap.parse_args(argv)
-    from myrabot_desc.build.packages import data_root
+    from myrabot_desc.expand.packages import data_root
 
     py, cli = str(BIN / "python"), str(BIN / "myrabot-desc")
     small = str(ROOT / "tests" / "fixtures" / "xacro" / "math_yaml.urdf.xacro")

@@ -118,7 +118,7 @@ def bench_slider(repeat):
     sys.path.insert(0, str(ROOT / "tests"))
     from test_view_browser import dismiss_notifications, slider, solid
 
-    from myrabot_desc.cli_common import Inputs
+    from myrabot_desc.commands.common import ModelInputs as Inputs
     from myrabot_desc.view.server import Viewer
 
     v = Viewer(Inputs().load, port=0, findings=False)

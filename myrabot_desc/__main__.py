@@ -1,6 +1,6 @@
 import sys
 
-from myrabot_desc.entry import main
+from myrabot_desc.commands.entry import main
 
 if __name__ == "__main__":
     sys.exit(main())

@@ -1,4 +1,5 @@
-"""The one error type for input that cannot be processed (exit code 2)."""
+"""The one error type for input that cannot be processed (exit code 2), and the one for options
+that parse but do not make sense together (the command line shows it as a usage error)."""
 
 from __future__ import annotations
 
@@ -26,3 +27,12 @@ class InputError(Exception):
         for line in self.stack:
             text += f"\n  {line}"
         return text
+
+
+class UsageProblem(Exception):
+    """Options that parse but do not make sense (the command line shows it as a usage error: click's
+    BadParameter when ``param_hint`` names the option, else its UsageError)."""
+
+    def __init__(self, message: str, param_hint: str | None = None):
+        super().__init__(message)
+        self.param_hint = param_hint

@@ -1,19 +1,15 @@
-"""``myrabot-desc info``: what the robot is."""
+"""What the robot is (``myrabot-desc info``): the summary as plain data, and the text it prints."""
 
 from __future__ import annotations
 
 import math
 
-import click
-
-from myrabot_desc.cli_common import guarded, input_options
+from myrabot_desc.model.kinematics import center_of_mass, world_transforms
 from myrabot_desc.safety import display
 
 
 def summarize(robot) -> dict:
     """Everything ``info`` shows, as plain data (also the --json output)."""
-    from myrabot_desc.model.kinematics import center_of_mass, world_transforms
-
     T = world_transforms(robot)
     mass, com = center_of_mass(robot)
     dof = [j for j in robot.joints.values() if j.type in ("revolute", "continuous", "prismatic") and not j.mimic]
@@ -99,54 +95,33 @@ def _fmt_limit(j) -> str:
     return f"{rng}, effort {j.limit.effort}, velocity {j.limit.velocity}"
 
 
-@click.command("info")
-@input_options()
-@click.option("--json", "as_json", is_flag=True, help="Print the summary as JSON.")
-@click.option("--no-tree", is_flag=True, help="Leave out the link tree.")
-def info_cmd(inputs, as_json, no_tree):
-    """Show what the robot is: the link tree (joint types and axes), degrees of
-    freedom, joint limits, total mass, centre of mass at the zero configuration,
-    and every frame's world position.
-
-    \b
-    Examples:
-      myrabot-desc info                      # the bundled MYRAbot
-      myrabot-desc info robot.urdf --json
-    """
-    import json
-
-    with guarded():
-        robot = inputs.load()
-        for d in robot.build_warnings:
-            if d.severity == "error":
-                click.echo(str(d), err=True)
-        s = summarize(robot)
-        if as_json:
-            click.echo(json.dumps(s, indent=2))
-            return
-        echo = click.echo
-        echo(f"robot {s['name']!r}  ({s['source']})")
-        echo(f"  {s['links']} links, {s['joints']} joints, {s['dof']} degrees of freedom, root: "
-             f"{', '.join(s['roots']) or 'none (cycle?)'}")
-        com = s["center_of_mass"]
-        echo(f"  total mass {s['total_mass']:.4f} kg; centre of mass at zero configuration "
-             + (f"({com[0]:.4f}, {com[1]:.4f}, {com[2]:.4f}) m" if com else "undefined (no mass)"))
-        if not no_tree:
-            echo("\ntree:")
-            for line in tree_lines(robot):
-                echo("  " + line)
-        movable = [j for j in robot.joints.values() if j.type in ("revolute", "continuous", "prismatic")]
-        if movable:
-            echo("\nmovable joints:")
-            w = max(len(j.name) for j in movable)
-            for j in movable:
-                echo(f"  {j.name:<{w}}  {j.type:<10} {_fmt_limit(j)}")
-        if s["sensors"]:
-            echo("\nsensors:")
-            for x in s["sensors"]:
-                echo(f"  {x['name']} ({x['type']}) on {x['link']}")
-        echo("\nframes (world position at zero configuration, m):")
-        w = max((len(f["frame"]) for f in s["frames"]), default=5)
-        for f in s["frames"]:
-            x, y, z = f["xyz"]
-            echo(f"  {f['frame']:<{w}}  {x:9.4f} {y:9.4f} {z:9.4f}")
+def text_lines(robot, s: dict, tree: bool = True) -> list[str]:
+    """The lines ``info`` prints for ``robot`` and its summary ``s`` (:func:`summarize`)."""
+    out = []
+    add = out.append
+    add(f"robot {s['name']!r}  ({s['source']})")
+    add(f"  {s['links']} links, {s['joints']} joints, {s['dof']} degrees of freedom, root: "
+        f"{', '.join(s['roots']) or 'none (cycle?)'}")
+    com = s["center_of_mass"]
+    add(f"  total mass {s['total_mass']:.4f} kg; centre of mass at zero configuration "
+        + (f"({com[0]:.4f}, {com[1]:.4f}, {com[2]:.4f}) m" if com else "undefined (no mass)"))
+    if tree:
+        add("\ntree:")
+        for line in tree_lines(robot):
+            add("  " + line)
+    movable = [j for j in robot.joints.values() if j.type in ("revolute", "continuous", "prismatic")]
+    if movable:
+        add("\nmovable joints:")
+        w = max(len(j.name) for j in movable)
+        for j in movable:
+            add(f"  {j.name:<{w}}  {j.type:<10} {_fmt_limit(j)}")
+    if s["sensors"]:
+        add("\nsensors:")
+        for x in s["sensors"]:
+            add(f"  {x['name']} ({x['type']}) on {x['link']}")
+    add("\nframes (world position at zero configuration, m):")
+    w = max((len(f["frame"]) for f in s["frames"]), default=5)
+    for f in s["frames"]:
+        x, y, z = f["xyz"]
+        add(f"  {f['frame']:<{w}}  {x:9.4f} {y:9.4f} {z:9.4f}")
+    return out

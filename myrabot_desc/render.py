@@ -16,9 +16,13 @@ import math
 import os
 from typing import NamedTuple
 
-import click
-
-from myrabot_desc.cli_common import guarded, input_options
+from myrabot_desc.diagnostics import Loc
+from myrabot_desc.errors import InputError
+from myrabot_desc.expand.yaml_load import load_path
+from myrabot_desc.model.kinematics import center_of_mass
+from myrabot_desc.safety import limit
+from myrabot_desc.view.facts import inertia_box
+from myrabot_desc.view.scene import parse_joint_values
 
 # (azimuth, elevation) in degrees, MuJoCo's convention: the camera looks along
 # (cos el cos az, cos el sin az, sin el).
@@ -55,8 +59,6 @@ class Camera(NamedTuple):
 def choose_gl() -> str:
     """Set MUJOCO_GL (before mujoco is imported) to a backend whose library exists; say what is missing."""
     import ctypes.util
-
-    from myrabot_desc.errors import InputError
 
     want = os.environ.get("MUJOCO_GL", "").strip().lower()
     libs = {"egl": "EGL", "osmesa": "OSMesa"}
@@ -119,8 +121,6 @@ def build_model(scene, q: dict, layers: Layers):
     import mujoco
     import numpy as np
 
-    from myrabot_desc.view.facts import inertia_box
-
     T = scene.transforms(q)
     spec = mujoco.MjSpec()
     spec.modelname = "render"
@@ -176,8 +176,6 @@ def build_model(scene, q: dict, layers: Layers):
                                contype=0, conaffinity=0, group=2)
                 extra.append(b)
     if layers.inertia:
-        from myrabot_desc.model.kinematics import center_of_mass
-
         for link in scene.robot.links.values():
             if link.name not in T:
                 continue
@@ -248,8 +246,6 @@ def open_renderer(mujoco, model, height: int, width: int):
     """mujoco.Renderer, or InputError saying which GL backend failed and what it needs."""
     import warnings
 
-    from myrabot_desc.errors import InputError
-
     try:
         with warnings.catch_warnings():        # glfw warns on stderr before it fails without a display
             warnings.simplefilter("ignore")
@@ -302,8 +298,6 @@ def png_bytes(img) -> bytes:
 
 # ------------------------------------------------------------------ inputs
 def parse_size(text: str) -> tuple[int, int]:
-    from myrabot_desc.errors import InputError
-
     w, sep, h = text.lower().partition("x")
     try:
         W, H = int(w), int(h)
@@ -317,14 +311,9 @@ def parse_size(text: str) -> tuple[int, int]:
 def read_pose(path: str, scene) -> dict[str, float]:
     """Joint values from a YAML file: ``NAME: VALUE`` lines, optionally under ``joints:``.
 
-    The file is untrusted: read by the one YAML loader (build/yaml_load.py: safety.read_checked,
+    The file is untrusted: read by the one YAML loader (expand/yaml_load.py: safety.read_checked,
     so regular files only and the input size limit; no tags but xacro's units, no alias bombs),
     never by PyYAML's shared loaders, which a build's ``load_yaml`` may have extended."""
-    from myrabot_desc.build.yaml_load import load_path
-    from myrabot_desc.diagnostics import Loc
-    from myrabot_desc.errors import InputError
-    from myrabot_desc.safety import limit
-    from myrabot_desc.view.scene import parse_joint_values
 
     doc = load_path(path, limit("max_input_bytes"), name=str(path))
     if isinstance(doc, dict) and set(doc) == {"joints"}:
@@ -340,53 +329,3 @@ def read_pose(path: str, scene) -> dict[str, float]:
             raise InputError(f"joint {k!r}: {v!r} is not a number", Loc(path, None))
         items.append(f"{k}={v}")
     return parse_joint_values(items, scene, where=path + ":")
-
-
-@click.command("render")
-@input_options()
-@click.option("-o", "--output", default="robot.png", show_default=True, metavar="PNG",
-              help="Where to write the picture.")
-@click.option("--view", "view", type=click.Choice([*VIEWS, "all"]), default="iso", show_default=True,
-              help="Camera: iso, front (from +x), side (from -y), top; all = the four in a 2x2 grid.")
-@click.option("--joint", "joints", multiple=True, metavar="NAME=VALUE",
-              help="A joint's position (rad or m), clamped to its limits. Repeatable.")
-@click.option("--pose", "pose_file", metavar="FILE.yaml",
-              help="Joint values from YAML (NAME: VALUE, as `view` copies them); --joint wins.")
-@click.option("--collision", is_flag=True, help="Draw the collision geometry (orange) over ghosted visuals.")
-@click.option("--frames", is_flag=True, help="Draw every link frame as axes (x red, y green, z blue) with its name.")
-@click.option("--inertia", is_flag=True,
-              help="Draw each link's equivalent inertia box (blue; red when the moments are impossible), "
-                   "the link centres of mass (black) and the robot's (magenta).")
-@click.option("--size", "size_text", default="1200x900", show_default=True, metavar="WxH", help="Image size in pixels.")
-def render_cmd(inputs, output, view, joints, pose_file, collision, frames, inertia, size_text):
-    """Render the robot to a PNG without a display (MuJoCo offscreen, EGL or OSMesa).
-
-    Works for any URDF/xacro the other commands read, with the same package options.
-
-    \b
-    Examples:
-      myrabot-desc render -o out/myrabot.png                      # the bundled MYRAbot, iso view
-      myrabot-desc render --view all --inertia -o out/inertia.png
-      myrabot-desc render --joint arti1=1.0 --joint base=0.5 --frames -o out/arm.png
-      myrabot-desc render robot.urdf.xacro -p my_pkg=../my_pkg --pose pose.yaml --collision
-    """
-    import time
-
-    from myrabot_desc.model.kinematics import require_tree
-    from myrabot_desc.output import write_output
-    from myrabot_desc.view.scene import build_scene, parse_joint_values
-
-    with guarded():
-        t0 = time.perf_counter()
-        size = parse_size(size_text)
-        choose_gl()
-        robot = inputs.load()
-        require_tree(robot)                 # a cycle or a second root: one line, like sim and view
-        scene = build_scene(robot, collision=collision)
-        q = read_pose(pose_file, scene) if pose_file else {}
-        q.update(parse_joint_values(joints, scene))
-        for line in scene.problems:
-            click.echo(line, err=True)
-        img = render_image(scene, q, ALL if view == "all" else (view,), size, Layers(collision, frames, inertia))
-        write_output(output, png_bytes(img))
-        click.echo(f"wrote {output} ({size[0]}x{size[1]}, {view} view, {time.perf_counter() - t0:.2f} s)", err=True)

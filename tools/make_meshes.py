@@ -290,7 +290,7 @@ def _png_bytes(img):
 def default_root() -> Path:
     """Folder of the bundled ROS package (the one holding package.xml)."""
     try:
-        from myrabot_desc.build.packages import data_root
+        from myrabot_desc.expand.packages import data_root
 
         return Path(data_root())
     except Exception:  # the loader is optional here; fall back to the source tree

@@ -9,7 +9,9 @@ Library use::
 
 from __future__ import annotations
 
+from myrabot_desc.checks import suppress
 from myrabot_desc.checks.context import CheckOptions, Context
+from myrabot_desc.checks.registry import load_all, matches, to_diagnostic
 from myrabot_desc.diagnostics import SEVERITY_ORDER, sort_diagnostics  # noqa: F401  (library API)
 
 __all__ = ["CheckOptions", "Context", "run_checks", "check_robot", "sort_diagnostics"]
@@ -23,8 +25,6 @@ def check_robot(robot, options: CheckOptions | None = None, select=(), ignore=()
     checks/suppress.py) drop the findings they cover; with ``unused`` each one that silenced
     nothing is an X009 finding (``check`` over several files passes False and decides over the
     whole run, from ``ctx.suppressions_seen``/``ctx.suppressions_used``)."""
-    from myrabot_desc.checks import suppress
-    from myrabot_desc.checks.registry import load_all, matches, to_diagnostic
 
     rules = load_all()
     ctx = Context(robot, options)

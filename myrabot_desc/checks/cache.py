@@ -18,6 +18,12 @@ import json
 import os
 from pathlib import Path
 
+from myrabot_desc import __version__
+from myrabot_desc.checks.report import FileResult, _plain
+from myrabot_desc.diagnostics import Diagnostic, Loc
+from myrabot_desc.expand.packages import bundled_path
+from myrabot_desc.safety import LIMITS, SKIP_DIRS
+
 ENTRY_FORMAT = 1
 MAX_TREE_FILES = 20_000          # a folder bigger than this (a home folder) is not watched: no caching
 MAX_ENTRY_BYTES = 20_000_000
@@ -34,7 +40,6 @@ def _tree_signature(root: str) -> str | None:
     """Hash of (relative path, size, mtime) of every file under ``root``; None when too big."""
     if root in _trees:
         return _trees[root]
-    from myrabot_desc.safety import SKIP_DIRS
 
     h = hashlib.sha256()
     n = 0
@@ -58,9 +63,6 @@ def _tree_signature(root: str) -> str | None:
 
 
 def _key(task) -> str:
-    from myrabot_desc import __version__
-    from myrabot_desc.safety import LIMITS
-
     opts = task.options
     env = {k: os.environ.get(k) for k in ENV_KEYS + tuple(lim.env for lim in LIMITS)}
     material = {"format": ENTRY_FORMAT, "version": __version__, "cwd": os.getcwd(),
@@ -76,8 +78,6 @@ def _entry_path(task) -> Path:
 
 
 def _roots(task, robot) -> list[str]:
-    from myrabot_desc.build.packages import bundled_path
-
     src = Path(task.path) if task.path else bundled_path()
     roots = {str(src.resolve().parent)}
     roots.update(str(Path(p).resolve()) for p in robot.package_roots.values())
@@ -133,8 +133,6 @@ def store(task, robot, res) -> None:
 
 
 def _plain_result(res) -> dict:
-    from myrabot_desc.checks.report import _plain
-
     return {"robot": res.robot, "links": res.links, "joints": res.joints,
             "suggestions": [list(s) for s in res.suggestions],
             "seen": [list(k) for k in res.suppressions_seen], "used": [list(k) for k in res.suppressions_used],
@@ -143,9 +141,6 @@ def _plain_result(res) -> dict:
 
 
 def _result(e: dict, task):
-    from myrabot_desc.checks.report import FileResult
-    from myrabot_desc.diagnostics import Diagnostic, Loc
-
     res = FileResult(file=task.path or "", strict=task.strict, robot=e["robot"], links=e["links"],
                      joints=e["joints"], suggestions=[tuple(s) for s in e["suggestions"]])
     res.suppressions_seen = [tuple(k) for k in e["seen"]]

@@ -6,13 +6,13 @@ and prefixes are errors with a did-you-mean (command line and configuration alik
 
 from __future__ import annotations
 
+from myrabot_desc.checks.report import rule_table
+
 
 def known_codes() -> list[str]:
     """Every code (imports the rule modules: asked only when there is a code to check)."""
     global _KNOWN
     if _KNOWN is None:
-        from myrabot_desc.checks.report import rule_table
-
         _KNOWN = [row[0] for row in rule_table()]
     return _KNOWN
 

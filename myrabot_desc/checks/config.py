@@ -17,8 +17,10 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from myrabot_desc.checks.codes import closest, unknown_code_message
 from myrabot_desc.diagnostics import Loc
 from myrabot_desc.errors import InputError
+from myrabot_desc.safety import LIMITS, display
 
 TOOL_TABLE = "myrabot-desc"
 OWN_NAME = "myrabot-desc.toml"
@@ -135,8 +137,6 @@ class _Reader:
         raise InputError(message, Loc(_display(self.path), line))
 
     def codes(self, key: str, value, known) -> list[str]:
-        from myrabot_desc.checks.codes import unknown_code_message
-
         if isinstance(value, str):
             value = [c for c in value.split(",")]
         if not isinstance(value, list) or not all(isinstance(c, str) for c in value):
@@ -157,8 +157,6 @@ class _Reader:
 
 
 def _display(path: Path) -> str:
-    from myrabot_desc.safety import display
-
     return display(path)
 
 
@@ -196,8 +194,6 @@ def read_config(path: Path, known_codes) -> Config | None:
     cfg = Config(path=path)
     for key, value in table.items():
         if key not in KEYS:
-            from myrabot_desc.checks.codes import closest
-
             guess = closest(key, KEYS)
             r.fail(key, f"unknown configuration key '{key}'" + (f"; did you mean '{guess}'?" if guess else
                                                                    f" (known: {', '.join(KEYS)})"))
@@ -236,14 +232,10 @@ def read_config(path: Path, known_codes) -> Config | None:
                     _Reader(path, text, sub).fail(glob, f"{key}.{glob}: expected a table of xacro args")
                 cfg.args.append((glob, {str(k): _scalar(v) for k, v in values.items()}))
         elif kind == "table-limits":
-            from myrabot_desc.safety import LIMITS
-
             names = {lim.field.replace("_", "-"): lim.field for lim in LIMITS}
             for name, v in value.items():
                 rr = _Reader(path, text, sub)
                 if name not in names:
-                    from myrabot_desc.checks.codes import closest
-
                     guess = closest(name, names)
                     rr.fail(name, f"unknown limit '{name}'" + (f"; did you mean '{guess}'?" if guess else
                                                                f" (known: {', '.join(names)})"))

@@ -6,6 +6,8 @@ from dataclasses import dataclass
 from functools import cached_property
 
 from myrabot_desc.diagnostics import Loc
+from myrabot_desc.model import shapes as geometry
+from myrabot_desc.model.kinematics import world_transforms
 
 
 @dataclass
@@ -38,7 +40,6 @@ class Context:
     @cached_property
     def world(self) -> dict:
         """link -> 4x4 world pose at q = 0 with the root at the origin."""
-        from myrabot_desc.model.kinematics import world_transforms
 
         return world_transforms(self.robot)
 
@@ -116,7 +117,6 @@ class Context:
 
     def mesh(self, geom):
         """The MeshFacts of a Mesh geometry (scaled; model/meshes.py), or None / an error string; cached."""
-        from myrabot_desc.model import shapes as geometry
 
         key = (str(geom.path), tuple(geom.scale))
         if key not in self._mesh_cache:

@@ -2,7 +2,7 @@
 
     python -m myrabot_desc.checks.docs > docs/rules.md
 
-A test keeps docs/rules.md equal to this output; tests/test_rule_examples.py runs every example
+A test keeps docs/rules.md equal to this output; tests/check/test_rule_examples.py runs every example
 shown here through `check`.
 """
 

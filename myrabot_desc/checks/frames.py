@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 from myrabot_desc.checks.rule import Finding, rule
+from myrabot_desc.checks.urdf_syntax import local, suggest
 
 FRAME_PARAMS = ("bodyName", "frameName", "frameId", "frame_name", "robotBaseFrame", "robot_base_frame",
                 "gz_frame_id", "ignition_frame_id", "optical_frame_id")
@@ -102,7 +103,6 @@ def gazebo_reference(ctx):
     Severity: error when the block holds a sensor or plugin, warning for properties only.
     Fix: the exact link name (did-you-mean is given).
     """
-    from myrabot_desc.checks.urdf_syntax import suggest
 
     r = ctx.robot
     names = set(r.links) | set(r.joints)
@@ -130,7 +130,6 @@ def plugin_frames(ctx):
     does not exist breaks TF lookups downstream (RViz shows nothing, the IMU plugin
     fails to find its body). Fix: the exact link name.
     """
-    from myrabot_desc.checks.urdf_syntax import suggest
 
     names = _frame_names(ctx)
     for p in ctx.robot.plugins():
@@ -291,7 +290,6 @@ FULL_TURN = 2 * math.pi
 
 def _child(el, *path):
     """The descendant element at path (local names), or None."""
-    from myrabot_desc.checks.urdf_syntax import local
 
     for p in path:
         el = next((c for c in el if local(c.tag) == p), None) if el is not None else None

@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections import defaultdict
 
 from myrabot_desc.checks.rule import Finding, rule
+from myrabot_desc.model.inertia import principal_moments
 
 TRIANGLE_TOL = 1e-3      # relative: a + b >= c (1 - tol); URDF files round to ~6 digits
 ZERO_MOMENT = 1e-12      # kg·m²: below this a moment is rounding noise (1 g at 0.03 mm); MuJoCo's mjMINVAL is 1e-15
@@ -108,7 +109,6 @@ def mass_positive(ctx):
 
 def principal(i) -> list[float]:
     """Principal moments, ascending: pure Python (model.inertia), so a plain check never imports numpy."""
-    from myrabot_desc.model.inertia import principal_moments
 
     return principal_moments(i)
 

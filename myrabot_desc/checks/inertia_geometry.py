@@ -11,6 +11,7 @@ import math
 from myrabot_desc.checks.examples import tetrahedron_stl
 from myrabot_desc.checks.rule import Finding, rule
 from myrabot_desc.model import shapes as G
+from myrabot_desc.model.kinematics import pose_matrix, pose_stack
 
 
 def _part(body: str, name: str = "chassis") -> str:
@@ -43,7 +44,6 @@ class Solid:
     __slots__ = ("link", "source", "items", "props", "why_not", "marker", "desc")   # 20,000 of them in a star
 
     def __init__(self, ctx, link):
-        from myrabot_desc.model.kinematics import pose_matrix
         self.link = link
         self.source, self.items = ctx.shapes(link, "collision")
         self.props = None
@@ -86,8 +86,6 @@ class Solid:
     def in_inertial_frame(self):
         """(com in inertial frame, tensor in inertial axes about the solid's com)."""
         import numpy as np
-
-        from myrabot_desc.model.kinematics import pose_matrix
 
         T = pose_matrix(self.link.inertial.origin)
         R, p = T[:3, :3], T[:3, 3]
@@ -134,8 +132,6 @@ def inertia_vs_geometry(ctx):
     given in the message (`--inertia --suggest` prints the `<inertia/>` line).
     """
     import numpy as np
-
-    from myrabot_desc.model.kinematics import pose_stack
 
     solid = [(name, s) for name, s in solids(ctx).items() if s.props is not None]
     if not solid:
@@ -200,8 +196,6 @@ def radius_of_gyration(ctx):
     """
     import numpy as np
 
-    from myrabot_desc.model.kinematics import pose_stack
-
     pts_of = hull_points(ctx)
     by_size: dict[int, list] = {}          # links grouped by point count: one stacked product per group
     for name, s in solids(ctx).items():
@@ -254,8 +248,6 @@ def hull_points(ctx) -> dict:
         return cache
     import numpy as np
 
-    from myrabot_desc.model.kinematics import pose_stack
-
     parts: dict[str, list | None] = {}
     by_size: dict[int, list] = {}           # point count -> [(points in the shape frame, origin, link, slot)]
     for name, s in solids(ctx).items():
@@ -307,8 +299,6 @@ def _hull_points(ctx, link):
     the collision shapes are used (visual meshes are the slow ones to load), else the visuals.
     """
     import numpy as np
-
-    from myrabot_desc.model.kinematics import pose_matrix
 
     out = []
     cols = [c for c in link.collisions if c.geometry is not None]
@@ -435,7 +425,6 @@ def _with_visuals(ctx, link, pts):
             local = np.asarray(G.surface_points(g, 32), dtype=float)
         if not len(local):
             continue
-        from myrabot_desc.model.kinematics import pose_matrix
 
         T = pose_matrix(it.origin)
         extra.append(local @ T[:3, :3].T + T[:3, 3])

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from myrabot_desc.checks.examples import tetrahedron_stl
 from myrabot_desc.checks.rule import Finding, rule
+from myrabot_desc.expand.packages import split_package_uri
 
 
 def _shell(geometry: str, kind: str = "collision", name: str = "cover") -> str:
@@ -36,7 +37,6 @@ def mesh_resolves(ctx):
     MuJoCo refuse to load the geometry). Fix: pass the package with `-p NAME=PATH` or
     `--package-path`, correct the path, or ship the file (the message says which part failed).
     """
-    from myrabot_desc.build.packages import split_package_uri
 
     r = ctx.robot
     reported = set()

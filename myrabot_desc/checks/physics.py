@@ -4,6 +4,13 @@ from __future__ import annotations
 
 from myrabot_desc.checks.examples import drive_example as _drive
 from myrabot_desc.checks.rule import Finding, rule
+from myrabot_desc.errors import InputError
+from myrabot_desc.model import drive as D
+from myrabot_desc.model.inertia import eigh3, tensor
+from myrabot_desc.model.kinematics import center_of_mass, pose_matrix
+from myrabot_desc.model.parts import JOINT_TYPES
+from myrabot_desc.model.shapes import surface_points
+from myrabot_desc.model.support import ground_support, lowest, placed_collisions, signed_distance
 
 _FINGER = """<link name="finger">{inertial}</link>
 <joint name="finger_joint" type="revolute">
@@ -20,29 +27,23 @@ SPAWN_TOL = 0.002        # m: penetration Gazebo resolves without a visible jump
 
 def _collision_world(ctx):
     """model/support.placed_collisions with check's mesh cache (mesh shapes only with --inertia/--meshes)."""
-    from myrabot_desc.model.support import placed_collisions
 
     return placed_collisions(ctx.robot, ctx.world, (lambda g, loc: ctx.mesh(g)) if ctx.opts.load_meshes else None)
 
 
 def wheels(ctx) -> list[str]:
     """The wheel joints (model/drive.py's answer, the one convert and sim get)."""
-    from myrabot_desc.model import drive as D
 
     return D.wheel_joints(ctx.robot)
 
 
 def is_mobile(ctx) -> bool:
-    from myrabot_desc.model import drive as D
-
     return D.is_mobile(ctx.robot)
 
 
 def support(ctx):
     """What the robot stands on at q = 0 (model/support.py: the same function sim and the viewer
     use): (Support, centre of mass, mass), or None without collision geometry or mass."""
-    from myrabot_desc.model.kinematics import center_of_mass
-    from myrabot_desc.model.support import ground_support
 
     got = ctx.__dict__.get("_support", False)
     if got is not False:
@@ -75,7 +76,6 @@ def static_support(ctx):
     s = support(ctx)
     if s is None:
         return
-    from myrabot_desc.model.support import signed_distance
 
     sup, com, mass = s
     zmin, hull, names = sup.ground_z, sup.polygon, sup.links
@@ -109,9 +109,6 @@ def _tip(ctx, hull, com, zmin):
     """(angle in degrees, link): the body pivots about the wheel axle (the wheels roll) toward its
     centre of mass until another collision shape touches the ground; None if nothing would."""
     import numpy as np
-
-    from myrabot_desc.model.kinematics import pose_matrix
-    from myrabot_desc.model.shapes import surface_points
 
     r = ctx.robot
     wheel_joints = [r.joints[n] for n in wheels(ctx) if n in r.joints]
@@ -160,7 +157,6 @@ def spawn_penetration(ctx):
     """
     if not ctx.tree_ok or not is_mobile(ctx):
         return
-    from myrabot_desc.model.support import lowest
 
     below = [(z, name) for z, _, name in lowest(ctx.robot, ctx.world, ctx.mesh if ctx.opts.load_meshes else False)
              if z < -SPAWN_TOL]
@@ -188,8 +184,6 @@ def dynamics_finite(ctx):
     if not ctx.tree_ok or not ctx.robot.joints or _dynamics_surely_finite(ctx.robot):
         return
     import numpy as np
-
-    from myrabot_desc.errors import InputError
 
     try:
         model = ctx.robot.pinocchio(floating=False)
@@ -234,8 +228,6 @@ def _dynamics_surely_finite(robot) -> bool:
     child has a positive mass with a positive-definite inertia, every other link a non-negative
     mass and semi-definite inertia. Then each moving body's spatial inertia is positive
     definite, so is the mass matrix at every configuration, and RNEA/ABA stay finite."""
-    from myrabot_desc.model.inertia import eigh3, tensor
-    from myrabot_desc.model.parts import JOINT_TYPES
 
     if robot.load_issues:
         return False
@@ -274,7 +266,6 @@ def mass_summary(ctx):
     """
     if not ctx.tree_ok:
         return
-    from myrabot_desc.model.kinematics import center_of_mass
 
     mass, com = center_of_mass(ctx.robot)
     if not mass > 0:

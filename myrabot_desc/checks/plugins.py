@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
-from myrabot_desc.checks.examples import ELECTRIC_IMU, MODERN_IMU, drive_example as _drive
+from myrabot_desc.checks.examples import ELECTRIC_IMU, MODERN_IMU
+from myrabot_desc.checks.examples import drive_example as _drive
 from myrabot_desc.checks.rule import Finding, rule
+from myrabot_desc.checks.urdf_syntax import local, suggest
+from myrabot_desc.materials.resolve import resolver_for
 from myrabot_desc.model import drive as D
 from myrabot_desc.model.drive import GZ, ROS1, ROS2
 from myrabot_desc.model.plugins import published_topics, publishes_ranges
@@ -111,7 +114,6 @@ def drive_joints_exist(ctx):
     The plugin looks its joints up by name at load; a missing one makes it fail to load
     (Gazebo logs an error and the robot never moves). Fix: the exact joint name.
     """
-    from myrabot_desc.checks.urdf_syntax import suggest
 
     r = ctx.robot
     for p, d in drives(ctx):
@@ -293,7 +295,6 @@ def unknown_params(ctx):
     ROS 2 plugin (`wheelSeparation` vs `wheel_separation`), a typo, or a legacy one
     (`torque` next to `wheelTorque`). Fix: the name the plugin reads (given), or delete it.
     """
-    from myrabot_desc.checks.urdf_syntax import local, suggest
 
     for p, d in drives(ctx):
         spec = d.spec
@@ -350,13 +351,11 @@ def material_resolves(ctx):
     the folders next to the model. Fix: define the material in a script of the package
     (and export it) or use a stock name.
     """
-    from myrabot_desc.materials.resolve import resolver_for
 
     names = [(g, g.properties.get("material")) for g in ctx.robot.gazebo if g.properties.get("material")]
     if not names:
         return
     res = resolver_for(ctx.robot)
-    from myrabot_desc.checks.urdf_syntax import suggest
 
     missing: dict[str, list] = {}
     for g, name in names:

@@ -12,12 +12,22 @@ import os
 from dataclasses import dataclass, field
 from pathlib import Path
 
-import click
+from myrabot_desc.checks.registry import EXTERNAL, RULES, load_all
+from myrabot_desc.diagnostics import Loc
+from myrabot_desc.errors import InputError
+from myrabot_desc.expand.packages import bundled_path
 
 JSON_SCHEMA = "myrabot-desc/check-report/1"
 SARIF_LEVEL = {"error": "error", "warning": "warning", "info": "note"}
 GITHUB_LEVEL = {"error": "error", "warning": "warning", "info": "notice"}
 STYLE = {"error": dict(fg="red", bold=True), "warning": dict(fg="yellow", bold=True), "info": dict(fg="cyan")}
+_FG = {"red": 31, "green": 32, "yellow": 33, "cyan": 36}
+
+
+def style(text: str, fg: str | None = None, bold: bool = False) -> str:
+    """``text`` in ANSI colour and weight, as click.style writes them (the command strips them when
+    stdout is not a terminal, click.echo's rule)."""
+    return (f"\033[{_FG[fg]}m" if fg else "") + ("\033[1m" if bold else "") + text + "\033[0m"
 
 
 @dataclass
@@ -94,21 +104,21 @@ def render_text(results, color: bool | None = None, quiet: bool = False) -> str:
     for r in results:
         name = rel(r.file) or "(bundled MYRAbot)"
         if r.failure:
-            lines.append(click.style(r.failure, **STYLE["error"]))
+            lines.append(style(r.failure, **STYLE["error"]))
             continue
         if many or r.diagnostics:
-            lines.append(click.style(f"{name}", bold=True) + f": robot {r.robot or '?'}, "
+            lines.append(style(f"{name}", bold=True) + f": robot {r.robot or '?'}, "
                          f"{_plural(r.links, 'link')}, {_plural(r.joints, 'joint')}")
         for sev in ("error", "warning", "info"):
             ds = [d for d in r.diagnostics if d.severity == sev]
             if not ds:
                 continue
-            lines.append(click.style(f"  {sev}s ({len(ds)})" if sev != "info" else f"  info ({len(ds)})", **STYLE[sev]))
+            lines.append(style(f"  {sev}s ({len(ds)})" if sev != "info" else f"  info ({len(ds)})", **STYLE[sev]))
             for d in ds:
                 w = where(d)
-                lines.append(f"    {w + ': ' if w else ''}" + click.style(d.code, **STYLE[sev]) + f" {d.message}")
+                lines.append(f"    {w + ': ' if w else ''}" + style(d.code, **STYLE[sev]) + f" {d.message}")
         if r.suggestions:
-            lines.append(click.style("  suggested inertias (solid body of the collision geometry at the declared "
+            lines.append(style("  suggested inertias (solid body of the collision geometry at the declared "
                                      "mass, in the inertial frame):", bold=True))
             for link, line in r.suggestions:
                 lines.append(f"    {link}: {line}")
@@ -119,8 +129,9 @@ def render_text(results, color: bool | None = None, quiet: bool = False) -> str:
                f"in {_plural(t['files'], 'file')}")
     if t["failed"]:
         summary += f" ({t['failed']} could not be processed)"
-    style = STYLE["error"] if t["errors"] or t["failed"] else (STYLE["warning"] if t["warnings"] else dict(fg="green"))
-    lines.append(click.style(summary, **style))
+    summary_style = STYLE["error"] if t["errors"] or t["failed"] else (
+        STYLE["warning"] if t["warnings"] else dict(fg="green"))
+    lines.append(style(summary, **summary_style))
     return "\n".join(lines) + "\n"
 
 
@@ -206,14 +217,10 @@ def _input(r) -> str:
 
 
 def _bundled_name() -> str:
-    from myrabot_desc.build.packages import bundled_path
-
     return rel(str(bundled_path()))
 
 
 def _rule_name(code: str) -> str:
-    from myrabot_desc.checks.registry import EXTERNAL, RULES
-
     if code in RULES:
         return RULES[code].name
     return EXTERNAL.get(code, (code.lower(),))[0]
@@ -221,7 +228,6 @@ def _rule_name(code: str) -> str:
 
 def rule_table():
     """[(code, name, severity, summary, full doc)] for every known code, sorted."""
-    from myrabot_desc.checks.registry import EXTERNAL, load_all
 
     rows = [(c, r.name, r.severity, r.summary, r.doc) for c, r in load_all().items()]
     rows += [(c, n, s, summ, summ) for c, (n, s, summ) in EXTERNAL.items()]
@@ -328,9 +334,6 @@ def merge_sarif(docs: list[dict]) -> dict:
 
 
 def merge_sarif_files(files: list[str]) -> str:
-    from myrabot_desc.diagnostics import Loc
-    from myrabot_desc.errors import InputError
-
     if not files:
         raise InputError("--merge-sarif: give the SARIF files to merge")
     docs = []

@@ -9,7 +9,7 @@ Each rule carries its example next to it (ruff's "what, why, example, fix"): ``b
 is a URDF (or xacro) that makes the rule fire with ``message``, ``good`` the fixed
 version that keeps it quiet. Either is a whole document (it starts with ``<?xml`` or
 ``<robot``) or a snippet that :func:`document` places into :data:`TEMPLATE`, a minimal
-robot of one link. tests/test_rule_examples.py runs every example through ``check``,
+robot of one link. tests/check/test_rule_examples.py runs every example through ``check``,
 and docs/rules.md is generated from them (``python -m myrabot_desc.checks.docs``).
 """
 

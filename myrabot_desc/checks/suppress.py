@@ -21,7 +21,9 @@ import re
 from pathlib import Path
 from typing import NamedTuple
 
-from myrabot_desc.diagnostics import Diagnostic, Loc
+from myrabot_desc.checks.codes import known_codes, unknown_code_message
+from myrabot_desc.diagnostics import Diagnostic, Loc, sort_diagnostics
+from myrabot_desc.safety import limit, safe_parser
 
 COMMENT_RE = re.compile(r"myrabot-desc:\s*(ignore-file|ignore)\s*\[([^\]]*)\]")
 MARKER = b"myrabot-desc:"
@@ -49,7 +51,6 @@ def suppressions_in(file: str) -> list[Suppression]:
         return []
     if key in _cache:
         return [s._replace(file=file) for s in _cache[key]]
-    from myrabot_desc.safety import limit
 
     out: list[Suppression] = []
     try:
@@ -65,8 +66,6 @@ def suppressions_in(file: str) -> list[Suppression]:
 
 def _parse(data: bytes, file: str) -> list[Suppression]:
     from lxml import etree
-
-    from myrabot_desc.safety import safe_parser
 
     try:
         root = etree.fromstring(data, parser=safe_parser())
@@ -125,7 +124,6 @@ def apply(diags: list, robot, enabled) -> tuple[list, list, list]:
     """Drop the suppressed findings. Returns (kept findings, keys of the suppressions seen for codes
     the run checks, keys that silenced something); a key is (file, line, code).
     Suppressions naming unknown codes come back as X009 findings straight away."""
-    from myrabot_desc.checks.codes import known_codes
 
     by_file: dict[str, list[Suppression]] = {}
     for f in source_files(robot):
@@ -154,8 +152,6 @@ def apply(diags: list, robot, enabled) -> tuple[list, list, list]:
             for c in s.codes:
                 matching = [k for k in known if k.startswith(c)]
                 if not matching:
-                    from myrabot_desc.checks.codes import unknown_code_message
-
                     kept.append(Diagnostic("X009", "warning", f"suppression: {unknown_code_message(c, known)}",
                                            Loc(s.file, s.line), {"rule": "unused-suppression", "code": c}))
                 elif any(enabled(k) for k in matching):
@@ -178,7 +174,6 @@ def unused_diagnostics(seen, used: set) -> list:
 def unused_findings(results) -> None:
     """After the whole run: X009 for every suppression no checked model used, added to the first
     result (in input order) whose model read that file."""
-    from myrabot_desc.diagnostics import sort_diagnostics
 
     used = set()
     for r in results:

@@ -5,6 +5,10 @@ from __future__ import annotations
 import math
 
 from myrabot_desc.checks.rule import Finding, rule
+from myrabot_desc.checks.urdf_syntax import suggest
+from myrabot_desc.model.drive import commanded_joints
+from myrabot_desc.model.parts import JOINT_TYPES
+from myrabot_desc.model.tree import cycles
 
 # Example snippets (placed in checks.rule.TEMPLATE, whose only link is base_link).
 _ARM_LINK = """<link name="arm">
@@ -115,7 +119,6 @@ def no_cycle(ctx):
         yield Finding(f"link {link} is the child of {len(js)} joints ({names}): a link has one parent",
                       ctx.loc_of(first_named[js[1]]), {"link": link, "joints": js})
     # cycles: each link walked once (model/tree.py; the walk per link was cubic in a chain's length)
-    from myrabot_desc.model.tree import cycles
 
     for cyc in cycles({j.child: j.parent for j in r.joints.values()}, r.links):
         yield Finding(f"the joints form a cycle through links {' -> '.join(cyc + [cyc[0]])}",
@@ -132,7 +135,6 @@ def joint_links_exist(ctx):
     A misspelt link name breaks the tree (urdfdom: "parent link [x] of joint [j] not
     found"). Fix: use the exact link name (did-you-mean is given).
     """
-    from myrabot_desc.checks.urdf_syntax import suggest
 
     r = ctx.robot
     for j in r.joints.values():
@@ -242,7 +244,6 @@ def limits_positive(ctx):
     passive joint (a suspension that no transmission, ros2_control block or drive
     commands, in a model that declares its actuators) says just that: not reported.
     """
-    from myrabot_desc.model.drive import commanded_joints
 
     commanded = None
     for j in ctx.robot.joints.values():
@@ -274,7 +275,6 @@ def mimic_target(ctx):
     A dangling mimic is dropped silently by some parsers and rejected by others
     (urchin). Fix: the exact name of the driving joint.
     """
-    from myrabot_desc.checks.urdf_syntax import suggest
 
     r = ctx.robot
     for j in r.joints.values():
@@ -341,8 +341,6 @@ def joint_type_known(ctx):
     urdfdom rejects the file ("has no known type"); MuJoCo reads an unknown type as a
     ball joint. Fix: one of the six URDF types (did-you-mean is given).
     """
-    from myrabot_desc.checks.urdf_syntax import suggest
-    from myrabot_desc.model.parts import JOINT_TYPES
 
     for j in ctx.robot.joints.values():
         if j.type not in JOINT_TYPES:

@@ -12,6 +12,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from myrabot_desc.convert.common import sub
+from myrabot_desc.materials.resolve import resolver_for
+from myrabot_desc.safety import may_open
 
 
 @dataclass(frozen=True)
@@ -40,7 +42,7 @@ class Appearance:
         self._unresolved: dict[str, object] = {}
         self._missing_tex: dict[str, object] = {}
         try:
-            from myrabot_desc.materials.resolve import resolver_for
+            pass
         except ImportError:  # the shared resolver is not installed: URDF colours only
             self.resolver = None
         else:
@@ -100,7 +102,6 @@ class Appearance:
 def texture_mean_rgb(path) -> tuple[float, float, float] | None:
     """Average colour of a texture image (MuJoCo gets one rgba per geom: a can is then red-ish,
     not white). None when the image cannot be read."""
-    from myrabot_desc.safety import may_open
 
     if not may_open(path):      # a FIFO or device named as a texture would block or never end
         return None

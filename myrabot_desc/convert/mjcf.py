@@ -37,17 +37,25 @@ from __future__ import annotations
 import contextlib
 import copy
 import math
-import shutil
-import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
 from lxml import etree
 
-from myrabot_desc.convert.common import Notes, local, num, nums, warn_load_issues
-from myrabot_desc.convert.report import Report, part_name
+from myrabot_desc.convert.appearance import Appearance, texture_mean_rgb
+from myrabot_desc.convert.common import Notes, local, num, nums, to_float, warn_load_issues
+from myrabot_desc.convert.gazebo import GazeboProps
+from myrabot_desc.convert.preflight import Problem, refuse_or_record
+from myrabot_desc.convert.report import Report, part_name, seed
 from myrabot_desc.errors import InputError
+from myrabot_desc.model import drive as D
+from myrabot_desc.model import meshes as meshio
 from myrabot_desc.model.inertia import describe, repaired
+from myrabot_desc.output import OutputDir, write_output
+from myrabot_desc.safety import limit
+
+# shutil and tempfile are imported where they are used: `convert --to sdf` imports this module
+# too (commands/convert.py), and they cost it ~4 ms.
 
 TINY_MASS = 1e-3
 TINY_INERTIA = 1e-6
@@ -83,7 +91,6 @@ def _parse(text: str):
 
 def is_mobile(robot) -> bool:
     """A wheeled base (a declared drive or wheel joints): model/drive.py's answer, the one check uses."""
-    from myrabot_desc.model import drive as D
 
     return D.is_mobile(robot)
 
@@ -108,7 +115,6 @@ class _Prep:
         key = src.resolve()
         if key in self.meshes:
             return self.meshes[key]
-        from myrabot_desc.model import meshes as meshio
 
         ext = src.suffix.lower()
         mesh = None
@@ -155,6 +161,8 @@ class _Prep:
             dest = folder / name
             mesh = self.loaded.get(src)
             if mesh is None:
+                import shutil
+
                 shutil.copyfile(src, dest)
             elif dest.suffix == ".msh":
                 _write_msh(dest, mesh)
@@ -191,7 +199,6 @@ def _binary_stl_ok(path: Path) -> bool:
 def wheel_joints(robot) -> set[str]:
     """Joints driven in velocity (wheels): the drive model's answer (model/drive.py), joints with
     a velocity interface and every declared drive's wheels."""
-    from myrabot_desc.model import drive as D
 
     names, _ = D.velocity_joints(robot)
     return set(names) | {j for d in D.find(robot) for j in d.joints if j in robot.joints}
@@ -199,8 +206,6 @@ def wheel_joints(robot) -> set[str]:
 
 def prepare_urdf(robot, notes: Notes, base: str, mesh_dirname: str, report: Report | None = None):
     """The URDF MuJoCo gets (an edited copy of the model's parsed tree), and the mesh plan."""
-    from myrabot_desc.convert.appearance import Appearance, texture_mean_rgb
-    from myrabot_desc.convert.gazebo import GazeboProps
 
     report = report if report is not None else Report("mjcf")
     root = copy.deepcopy(robot.root_element)
@@ -474,6 +479,7 @@ def _c_stdout_to(notes):
     the process's stdout/stderr: catch both descriptors and turn the lines into our warnings."""
     import os
     import sys
+    import tempfile
 
     sys.stdout.flush()
     sys.stderr.flush()
@@ -546,7 +552,6 @@ def _check_depth(robot) -> None:
     """Refuse a body chain MuJoCo cannot take, or more bodies than the limit, before spending
     seconds in its compiler: MuJoCo's parse and compile, run several times here, and the search
     for bodies touching at rest grow faster than the link count."""
-    from myrabot_desc.safety import limit
 
     most = limit("max_mjcf_bodies")
     if len(robot.links) > most:
@@ -599,7 +604,6 @@ SPRING_KEYS = ("springStiffness", "springReference")
 def joint_springs(robot) -> dict[str, tuple[float, float]]:
     """joint -> (stiffness, reference) from Gazebo's ``<springStiffness>``/``<springReference>``
     (a passive suspension or wheel drop): MuJoCo's joint ``stiffness`` and ``springref``."""
-    from myrabot_desc.convert.common import to_float
 
     out = {}
     for g in robot.gazebo:
@@ -623,7 +627,6 @@ def link_friction(robot) -> dict[str, float]:
     isotropic). Gazebo takes the smaller of two surfaces' mu and its ground plane has 100, so the
     robot's value is the contact's; in MuJoCo its geoms get that friction and priority over the
     floor. A caster with mu 0 slides (Kobuki's); without it, it drags with the floor's 1."""
-    from myrabot_desc.convert.common import to_float
 
     out = {}
     for g in robot.gazebo:
@@ -641,7 +644,6 @@ def _joint_plan(robot, wheels):
     which joints its transmissions, ros2_control blocks and drives command leaves the others
     passive (a suspension, a caster, TurtleBot 4's wheel drops); one that says nothing gets a
     position actuator on every limited joint."""
-    from myrabot_desc.model import drive as D
 
     with_transmission = {n for t in robot.transmissions for n in t.joints}
     commanded = D.commanded_joints(robot)
@@ -665,7 +667,6 @@ def _joint_plan(robot, wheels):
 def _rolling_kv(robot, joint, inertia: float, dt: float, mass_share: float) -> float:
     """A wheel's velocity gain without an effort limit: (its own inertia + its share of the robot's
     mass at its radius) / timestep, plus WHEEL_OVER_DAMPING x its joint damping (see WHEEL_CLAMP_AT)."""
-    from myrabot_desc.model import drive as D
 
     w = D.wheel(robot, joint.name, read_meshes=True)
     r = w.radius if w is not None and w.radius else 0.0
@@ -932,8 +933,6 @@ def convert_mjcf(robot, output: str, base: str = "auto", scene: str | None = "sc
         import mujoco
     except ImportError:
         raise InputError("MJCF needs the mujoco package: pip install mujoco") from None
-    from myrabot_desc.convert.report import seed
-    from myrabot_desc.output import OutputDir, write_output
 
     notes = Notes()
     if not robot.links:
@@ -949,8 +948,6 @@ def convert_mjcf(robot, output: str, base: str = "auto", scene: str | None = "sc
     mesh_dirname = f"{out.stem}_meshes" if out else "meshes"
     urdf_root, prep, free = prepare_urdf(robot, notes, base, mesh_dirname, report)
     if prep.collision_errors and not allow_errors:
-        from myrabot_desc.convert.preflight import Problem, refuse_or_record
-
         refuse_or_record([Problem(m, loc) for m, loc in prep.collision_errors], False)
     if out is None and prep.meshes:
         raise InputError(f"this model has {len(prep.meshes)} mesh file(s): MJCF to stdout cannot carry them, "
@@ -991,6 +988,8 @@ def convert_mjcf(robot, output: str, base: str = "auto", scene: str | None = "sc
     _report_mjcf(robot, report, free, base)
     scene_written = None
     if out is None:
+        import tempfile
+
         with tempfile.TemporaryDirectory() as d:
             text, model = compile_in(Path(d))
         write_output("-", text)
@@ -1059,7 +1058,6 @@ def _report_mjcf(robot, report, free, base):
     for t in robot.transmissions:
         report.set("transmission", t.name or "?", "translated",
                    "read for the joints' interfaces; MuJoCo actuators written from the joint limits")
-    from myrabot_desc.model import drive as D
 
     springs, friction = joint_springs(robot), link_friction(robot)
     for g in robot.gazebo:

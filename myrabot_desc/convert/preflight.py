@@ -11,8 +11,12 @@ reads every mesh anyway, adds what its reader finds.
 from __future__ import annotations
 
 from pathlib import Path
-
 from typing import NamedTuple
+
+from myrabot_desc.errors import InputError
+from myrabot_desc.expand.packages import unresolved_reason
+from myrabot_desc.model import meshes as meshio
+from myrabot_desc.safety import parse_xml_bytes
 
 # loader issues that no URDF reader would accept (urdfdom refuses the document): the text is not a
 # number, the element lacks what identifies it. NaN, inf and out-of-range numbers parse; they stay
@@ -69,7 +73,6 @@ def value_problems(robot) -> list[Problem]:
 
 def mesh_problems(robot) -> list[Problem]:
     """Collision meshes that are missing, outside the model's roots, empty or over the limits."""
-    from myrabot_desc.model import meshes as meshio
 
     out: list[Problem] = []
     checked: dict[object, str | None] = {}
@@ -79,8 +82,6 @@ def mesh_problems(robot) -> list[Problem]:
             if getattr(g, "kind", None) != "mesh":
                 continue
             if g.path is None:
-                from myrabot_desc.build.packages import unresolved_reason
-
                 base = robot.source.parent if robot.source else Path.cwd()
                 why = unresolved_reason(g.filename, robot.package_roots, base) or "cannot be found"
             else:
@@ -101,7 +102,6 @@ def triangle_problem(path, size: int) -> str | None:
     """Why this mesh file holds no triangles a reader can take, or None. A structural look without
     numpy: a binary STL's size must match its header, an ASCII STL needs a facet, an OBJ a face, a
     COLLADA file must be XML with a triangle, polygon or polylist element."""
-    from myrabot_desc.errors import InputError
 
     ext = path.suffix.lower()
     if ext not in (".stl", ".obj", ".dae"):
@@ -128,7 +128,6 @@ def triangle_problem(path, size: int) -> str | None:
     if ext == ".obj":
         return None if any(line.startswith(b"f ") for line in data.splitlines()) else \
             f"{path.name} holds no faces"
-    from myrabot_desc.safety import parse_xml_bytes
 
     try:
         root = parse_xml_bytes(data, path.name)
@@ -147,7 +146,6 @@ def problems(robot) -> list[Problem]:
 
 def refuse_or_record(found: list[Problem], allow: bool, report=None, notes=None) -> None:
     """Raise (every reason, exit 2) or, with --allow-errors, put each in the report as dropped."""
-    from myrabot_desc.errors import InputError
 
     if not found:
         return

@@ -23,11 +23,12 @@ from myrabot_desc.convert.common import (
     pose_text,
     pretty,
     sub,
+    to_bool,
     warn_load_issues,
 )
 from myrabot_desc.convert.gazebo import GazeboProps
-from myrabot_desc.convert.report import Report, seed
-from myrabot_desc.convert.sensors import translate_sensor
+from myrabot_desc.convert.report import Report, part_name, seed
+from myrabot_desc.convert.sensors import plugin_kind, translate_sensor
 from myrabot_desc.convert.systems import Systems
 from myrabot_desc.convert.uris import UriMapper
 from myrabot_desc.errors import InputError
@@ -156,7 +157,6 @@ def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = Non
     world_links = {n for n, l in robot.links.items()
                    if n == "world" and not l.visuals and not l.collisions and l.inertial is None}
     mp = props.get(None)
-    from myrabot_desc.convert.common import to_bool
     if to_bool(mp.get("static")) is not None:
         sub(model, "static", to_bool(mp["static"]))
     sc = to_bool(mp.get("selfCollide"), to_bool(mp.get("self_collide")))
@@ -454,8 +454,6 @@ def _model_extras(model, robot, notes, report, taken) -> list[str]:
 def _report_sdf(robot, report, opts, host, world_links, frame_names, joint_names, lumped_joints, repairs_by_link,
                 massless, props, systems, sensor_fates) -> None:
     """The fate of every source element in the SDF (seed() marked them all kept)."""
-    from myrabot_desc.convert.report import part_name
-    from myrabot_desc.convert.sensors import plugin_kind
 
     lumped = {j.name for j in lumped_joints}
     for n, link in robot.links.items():

@@ -12,7 +12,10 @@ from lxml import etree
 
 from myrabot_desc.convert.common import Notes, comment, nums, pretty, sub
 from myrabot_desc.convert.sdf import SDF_VERSION, SdfOptions, SdfResult, build_model
+from myrabot_desc.diagnostics import Loc
 from myrabot_desc.errors import InputError
+from myrabot_desc.expand.packages import data_root
+from myrabot_desc.model.loader import load_robot
 
 DEFAULT_SYSTEMS = [
     ("gz-sim-physics-system", "gz::sim::systems::Physics"),
@@ -36,8 +39,6 @@ SENSOR_SYSTEMS = {
 def read_layout(name: str) -> dict:
     import yaml
 
-    from myrabot_desc.build.packages import data_root
-
     path = data_root() / "layouts" / f"{name}.yaml"
     if not path.is_file():
         raise InputError(f"no layout '{name}' ({path} missing)")
@@ -45,7 +46,6 @@ def read_layout(name: str) -> dict:
         data = yaml.safe_load(path.read_text(encoding="utf-8"))
     except yaml.YAMLError as exc:
         line = getattr(getattr(exc, "problem_mark", None), "line", None)
-        from myrabot_desc.diagnostics import Loc
 
         raise InputError(f"layout is not valid YAML: {getattr(exc, 'problem', exc)}",
                          Loc(str(path), line + 1 if line is not None else None)) from None
@@ -99,8 +99,6 @@ def to_world(robot, layout: str, opts: SdfOptions | None = None, load=None, repo
     """``robot`` is placed where the layout puts its robot; the layout's objects are built from the
     bundled package (``load(path)`` builds one, default ``load_robot``). ``report`` gets the robot's
     conversion report (the objects are the bundled demo's)."""
-    from myrabot_desc.build.packages import data_root
-    from myrabot_desc.model.loader import load_robot
 
     opts = opts or SdfOptions()
     data = read_layout(layout)

@@ -1,4 +1,5 @@
-"""OGRE material scripts: reader (ogre), Gazebo's stock colours (stock), name resolution (resolve).
+"""OGRE material scripts: reader (ogre), Gazebo's stock colours (stock), name resolution (resolve),
+explicit values for the `materials` command (export).
 
 ``check`` and ``convert`` use :func:`myrabot_desc.materials.resolve.resolver_for`.
 """

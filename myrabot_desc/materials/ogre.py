@@ -50,6 +50,8 @@ from typing import Callable, Iterable
 
 from myrabot_desc.diagnostics import Loc
 from myrabot_desc.errors import InputError
+from myrabot_desc.safety import limit as table_limit
+from myrabot_desc.safety import read_checked
 
 RGBA = tuple[float, float, float, float]
 
@@ -426,7 +428,6 @@ def _split_header(node: _Node, file: str) -> tuple[str, str | None]:
 
 def limit(max_bytes: int | None = None) -> int:
     """The size limit for one script: ``max_bytes`` if given, else $MYRABOT_DESC_MAX_MATERIAL_BYTES, else 5 MB."""
-    from myrabot_desc.safety import limit as table_limit
 
     return max_bytes if max_bytes is not None else table_limit("max_material_bytes")
 
@@ -675,7 +676,6 @@ def read_script_text(path: Path, file: str, max_bytes: int | None = None) -> str
         if size > max_bytes:
             raise InputError(f"material script is {size} bytes, over the {max_bytes}-byte limit ({ENV_BYTES})",
                              Loc(file))
-        from myrabot_desc.safety import read_checked
 
         data = read_checked(path, None, max_bytes)     # regular files only: a FIFO would block
     except InputError as exc:

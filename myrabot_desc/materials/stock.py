@@ -29,6 +29,8 @@ from myrabot_desc.materials.ogre import (
     Pass,
     Technique,
     TextureUnit,
+    _merge_list,
+    _merge_technique,
     summarize,
 )
 
@@ -199,7 +201,6 @@ def names() -> list[str]:
 @lru_cache(maxsize=None)
 def stock_material(name: str) -> Material | None:
     """The stock material ``name`` (parents applied), or None when it is not a stock name."""
-    from myrabot_desc.materials.ogre import _merge_list, _merge_technique
 
     if name not in STOCK_SOURCE:
         return None

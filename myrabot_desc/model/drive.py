@@ -43,6 +43,8 @@ from __future__ import annotations
 import math
 from typing import NamedTuple
 
+from myrabot_desc.errors import InputError
+from myrabot_desc.model.shapes import surface_points
 from myrabot_desc.model.transforms import IDENTITY, compose, pose_T, rotate
 
 ALIGNED = 0.99          # |cos| between a cylinder's axis and the joint axis for "a wheel drawn as a cylinder"
@@ -552,10 +554,6 @@ def wheel(robot, joint_name: str, T=None, read_meshes: bool = True) -> Wheel | N
 
 
 def _world_points(g, it, Rs, ps):
-    from myrabot_desc.model.shapes import surface_points
-
-    from myrabot_desc.errors import InputError
-
     try:
         pts = surface_points(g, POINTS_N, loc=getattr(it, "loc", None))
     except InputError as exc:      # an unreadable mesh: no measured radius from it (the wheel keeps why)

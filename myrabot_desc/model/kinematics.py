@@ -2,15 +2,21 @@
 
 URDF convention: a joint's origin places the child frame in the parent frame;
 rpy is fixed-axis X, Y, Z, i.e. R = Rz(yaw) @ Ry(pitch) @ Rx(roll).
+
+numpy is imported inside the functions that use it (~100 ms): modules that only need the model
+import this one at their top without paying for numpy until a transform is computed.
 """
 
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
-import numpy as np
-
+from myrabot_desc.errors import InputError
 from myrabot_desc.model.parts import Joint, Pose, Robot
+
+if TYPE_CHECKING:
+    import numpy as np
 
 
 def pose_rows(pose) -> list:
@@ -27,6 +33,8 @@ def pose_rows(pose) -> list:
 def pose_stack(poses) -> np.ndarray:
     """pose_matrix of every pose as one (n, 4, 4) array (the same floats), built from one flat list:
     a list per row and pose would be 100,000 objects for the garbage collector to rescan."""
+    import numpy as np
+
     flat: list[float] = []
     add = flat.extend
     for pose in poses:
@@ -41,6 +49,8 @@ def pose_stack(poses) -> np.ndarray:
 
 
 def rpy_matrix(rpy) -> np.ndarray:
+    import numpy as np
+
     r, p, y = rpy
     cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
     return np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
@@ -49,12 +59,16 @@ def rpy_matrix(rpy) -> np.ndarray:
 
 
 def pose_matrix(pose: Pose) -> np.ndarray:
+    import numpy as np
+
     return np.array(pose_rows(pose), dtype=float)
 
 
 def _norms(axes) -> list[float]:
     """np.linalg.norm of each axis, bit for bit (it is sqrt(a.dot(a)); the stacked 1x3 @ 3x1
     products take the same dot kernel), in one call instead of one per joint."""
+    import numpy as np
+
     if not axes:
         return []
     a = np.array(axes, dtype=float).reshape(-1, 3)
@@ -62,6 +76,8 @@ def _norms(axes) -> list[float]:
 
 
 def axis_angle(axis, angle: float) -> np.ndarray:
+    import numpy as np
+
     a = np.asarray(axis, dtype=float)
     n = np.linalg.norm(a)
     return np.array(_axis_angle_rows(a.tolist(), float(n), angle))
@@ -93,6 +109,8 @@ _MOVING = ("revolute", "continuous", "prismatic")
 
 def joint_motion(joint: Joint, q: float) -> np.ndarray:
     """Transform of the joint's own motion by position q (revolute/continuous/prismatic)."""
+    import numpy as np
+
     n = _norms([joint.axis])[0] if joint.type in _MOVING else 0.0
     return np.array(_motion_flat(joint, n, q), dtype=float).reshape(4, 4)
 
@@ -122,6 +140,8 @@ def world_transforms(robot: Robot, q: dict[str, float] | None = None, root_pose:
 
 
 def _world_transforms(robot: Robot, q, root_pose, frozen: bool = False) -> dict[str, np.ndarray]:
+    import numpy as np
+
     q = dict(q or {})
     for j in robot.joints.values():
         if j.mimic and j.mimic.joint in q and j.name not in q:
@@ -182,6 +202,8 @@ def joint_world_transforms(robot: Robot, q: dict[str, float] | None = None) -> d
 
 def center_of_mass(robot: Robot, q: dict[str, float] | None = None) -> tuple[float, np.ndarray]:
     """Total mass and centre of mass (world frame) of every link with an inertial."""
+    import numpy as np
+
     T = world_transforms(robot, q)
     links = [link for name, link in robot.links.items()
              if link.inertial is not None and name in T and link.inertial.mass > 0]
@@ -204,7 +226,6 @@ def require_tree(robot: Robot) -> str:
     a joint naming a missing link, a link with two parents, a cycle or a second root would
     otherwise surface as a KeyError deep inside.
     """
-    from myrabot_desc.errors import InputError
 
     parent_of: dict[str, str] = {}
     for j in robot.joints.values():

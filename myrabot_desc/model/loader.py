@@ -10,9 +10,18 @@ import math
 import re
 from pathlib import Path
 
-from myrabot_desc.build.packages import BUNDLED_ASSEMBLY, bundled_path, data_root  # noqa: F401  (library API)
 from myrabot_desc.diagnostics import Diagnostic, Loc
 from myrabot_desc.errors import InputError
+from myrabot_desc.expand.driver import build_file
+from myrabot_desc.expand.packages import (  # noqa: F401  (BUNDLED_ASSEMBLY, bundled_path, data_root: library API)
+    BUNDLED_ASSEMBLY,
+    PackageResolver,
+    bundled_path,
+    data_root,
+    outside_roots,
+    resolve_resource_uri,
+    split_package_uri,
+)
 from myrabot_desc.model.parts import (
     Box,
     Collision,
@@ -30,10 +39,12 @@ from myrabot_desc.model.parts import (
     Pose,
     Robot,
     Sensor,
+    SourceLines,
     Sphere,
     Transmission,
     Visual,
 )
+from myrabot_desc.safety import Limits, parse_xml_bytes, read_input
 
 # Sizes, offsets, masses and inertias beyond this (SI units) are typing errors or attacks: 1e300
 # overflows volumes and inertias downstream. Joint limits and dynamics are exempt (1e16 is a
@@ -72,11 +83,10 @@ def load_robot(path=None, **build_options) -> Robot:
     if src.is_dir():
         raise InputError(f"{src} is a folder; give a .urdf or .xacro file")
     data = None
-    if not is_xacro(src):
-        from myrabot_desc.safety import Limits
-
-        from myrabot_desc.safety import read_input
-
+    overlay = build_options.get("overlay")
+    if overlay and src.resolve() in overlay:
+        data = overlay[src.resolve()]
+    elif not is_xacro(src):
         limit = (build_options.get("limits") or Limits()).max_input_bytes
         try:
             size = src.stat().st_size
@@ -86,11 +96,9 @@ def load_robot(path=None, **build_options) -> Robot:
             raise InputError(f"{src} is {size} bytes, over the {limit}-byte limit")
         data = read_input(src, limit)       # bounded: /dev/zero or an endless pipe stops at the limit
     if data is None or is_xacro(src, data):
-        from myrabot_desc.build.driver import build_file
-
         result = build_file(src, build_options.pop("mappings", None), **build_options)
         return read_urdf_text(result.text, src, locations=result.locations, package_roots=result.package_roots,
-                              root=result.root,
+                              root=result.root, source_map=result.source_map,
                               build_warnings=result.diagnostics, from_xacro=True,
                               packages=build_options.get("packages"),
                               package_paths=build_options.get("package_paths", ()))
@@ -99,22 +107,23 @@ def load_robot(path=None, **build_options) -> Robot:
 
 
 def read_urdf_bytes(data: bytes, src: Path, packages=None, package_paths=()) -> Robot:
-    from myrabot_desc.safety import parse_xml_bytes
-
     root = parse_xml_bytes(data, str(src))
     text = data.decode("utf-8", errors="replace")
-    return _read(root, text, src, None, {}, [], False, packages, package_paths)
+    robot = _read(root, text, src, None, {}, [], False, packages, package_paths)
+    robot.source_bytes = data
+    return robot
 
 
 def read_urdf_text(text: str, src: Path, locations=None, package_roots=None, build_warnings=None,
-                   from_xacro=False, packages=None, package_paths=(), root=None) -> Robot:
+                   from_xacro=False, packages=None, package_paths=(), root=None, source_map=None) -> Robot:
     """Read URDF text into a Robot; ``root`` is the text already parsed (the build hands it over)."""
-    from myrabot_desc.safety import parse_xml_bytes
 
     if root is None:
         root = parse_xml_bytes(text.encode("utf-8"), str(src))
-    return _read(root, text, src, locations, package_roots or {}, list(build_warnings or []), from_xacro,
-                 packages, package_paths)
+    robot = _read(root, text, src, locations, package_roots or {}, list(build_warnings or []), from_xacro,
+                  packages, package_paths)
+    robot.source_map = source_map
+    return robot
 
 
 # What a file that is not a URDF robot is, by its root element (for the message that refuses it).
@@ -135,8 +144,6 @@ def what_document(tag: str) -> str:
 # ---------------------------------------------------------------- reading
 class _Reader:
     def __init__(self, root, src: Path, locations):
-        from myrabot_desc.model.parts import SourceLines
-
         self.src = src
         self.issues: list[Diagnostic] = []
         elements = [el for el in root.iter() if isinstance(el.tag, str)] if locations is not None else ()
@@ -228,8 +235,6 @@ class _Reader:
             fn = shape.get("filename", "")
             path = resolve(fn) if fn else None
             if fn and path is None:
-                from myrabot_desc.build.packages import outside_roots
-
                 if outside_roots(fn, package_roots, robot_src_dir) is not None:
                     self.issue(shape, f"mesh {fn} lies outside the allowed folders (the model's package and folder): not read "
                                "(a model may only use files of its own package or of the packages it names)",
@@ -245,7 +250,7 @@ class _Reader:
         color = kids.get("color")
         rgba = self.vec(color, "rgba", None, 4) if color is not None else None
         tex = kids.get("texture")
-        return Material(el.get("name", ""), rgba, tex.get("filename") if tex is not None else None, self.loc(el))
+        return Material(el.get("name", ""), rgba, tex.get("filename") if tex is not None else None, self.loc(el), el)
 
     def inertial(self, kids: dict) -> Inertial | None:
         """The <inertial> among ``kids`` (_kids of a <link>)."""
@@ -257,7 +262,7 @@ class _Reader:
         mass = self.num(m, "value", 0.0) if m is not None else 0.0
         t = ik.get("inertia")
         vals = {k: (self.num(t, k, 0.0) if t is not None else 0.0) for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
-        return Inertial(mass, self.pose(i, ik), loc=self.loc(i), **vals)
+        return Inertial(mass, self.pose(i, ik), loc=self.loc(i), ref=i, **vals)
 
 
 _NO_ORIGIN = Pose()    # one shared (immutable) identity for every element without <origin>
@@ -290,12 +295,6 @@ def _read(*args) -> Robot:
 
 def _read_model(root, text, src: Path, locations, package_roots, build_warnings, from_xacro, packages,
                 package_paths) -> Robot:
-    from myrabot_desc.build.packages import (
-        PackageResolver,
-        resolve_resource_uri,
-        split_package_uri,
-    )
-
     if root.tag != "robot":
         loc = locations[0] if locations and locations[0] is not None else Loc(str(src), root.sourceline)
         raise InputError(f"{what_document(root.tag)}: check, convert, info and sim read URDF robots; "
@@ -364,14 +363,14 @@ def _read_model(root, text, src: Path, locations, package_roots, build_warnings,
             if mat is not None and mname and mname not in materials and (mat.rgba or mat.texture):
                 materials[mname] = mat
             visuals.append(Visual(r.pose(v, vk), r.geometry(vk, base, roots, resolve), v.get("name"), mname, mat,
-                                  r.loc(v)))
+                                  r.loc(v), v))
         collisions = []
         for c in col_els:
             ck = _kids(c)
-            collisions.append(Collision(r.pose(c, ck), r.geometry(ck, base, roots, resolve), c.get("name"), r.loc(c)))
+            collisions.append(Collision(r.pose(c, ck), r.geometry(ck, base, roots, resolve), c.get("name"), r.loc(c), c))
         if name in links:
             continue  # duplicates are reported by the tree rules from the XML
-        links[name] = Link(name, r.inertial(first), tuple(visuals), tuple(collisions), r.loc(el))
+        links[name] = Link(name, r.inertial(first), tuple(visuals), tuple(collisions), r.loc(el), el)
 
     joints: dict[str, Joint] = {}
     for el in top["joint"]:
@@ -399,7 +398,7 @@ def _read_model(root, text, src: Path, locations, package_roots, build_warnings,
         if name in joints:
             continue
         joints[name] = Joint(name, jtype, p.get("link"), c.get("link"), r.pose(el, kids), axis, limit, mimic,
-                             dynamics, r.loc(el))
+                             dynamics, r.loc(el), el)
 
     gazebo = tuple(_gazebo_block(r, g) for g in top["gazebo"])
     transmissions = tuple(

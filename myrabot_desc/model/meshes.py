@@ -14,6 +14,7 @@ import struct
 from pathlib import Path
 
 from myrabot_desc.errors import InputError
+from myrabot_desc.safety import limit, parse_xml_bytes, read_checked, safe_parser
 
 ENV_BYTES = "MYRABOT_DESC_MAX_MESH_BYTES"
 ENV_TRIANGLES = "MYRABOT_DESC_MAX_MESH_TRIANGLES"
@@ -24,8 +25,6 @@ class MeshError(ValueError):
 
 
 def limits() -> tuple[int, int]:
-    from myrabot_desc.safety import limit
-
     return limit("max_mesh_bytes"), limit("max_mesh_triangles")
 
 
@@ -62,7 +61,6 @@ MAX_ARCHIVE_MEMBERS = 10_000
 
 def _read(path: Path, max_bytes: int) -> bytes:
     """The mesh's bytes: a regular file only (a FIFO or device would block or never end)."""
-    from myrabot_desc.safety import read_checked
 
     try:
         return read_checked(path, None, max_bytes, what="mesh")
@@ -92,8 +90,6 @@ def _resolver(path: Path, max_bytes: int):
     """trimesh's resolver for the files a mesh names (OBJ mtllib, DAE images, glTF buffers): inside
     the mesh's folder (trimesh's own rule), regular files only, each within the mesh byte limit."""
     from trimesh.resolvers import FilePathResolver
-
-    from myrabot_desc.safety import read_checked
 
     class Resolver(FilePathResolver):
         def get(self, name):
@@ -215,8 +211,6 @@ def lenient_dae(path: Path, notes):
     (convert --to mjcf uses it; the file has passed ``precheck``)."""
     import numpy as np
     import trimesh
-
-    from myrabot_desc.safety import parse_xml_bytes
 
     try:
         import collada
@@ -653,7 +647,6 @@ def _dae_parts(data: bytes):
 
     if b"<!DOCTYPE" in data[:65536] or b"<!ENTITY" in data[:65536]:
         raise _NotLean("DTD")
-    from myrabot_desc.safety import safe_parser
 
     try:
         root = etree.fromstring(data, safe_parser(huge_tree=True, remove_comments=True, remove_pis=True))
@@ -908,9 +901,9 @@ def _obj_parts(data: bytes):
     taken from the corner trimesh keeps. The subset: v/vt/vn lines of fixed width, faces all written
     alike (v, v/vt, v//vn or v/vt/vn) with positive indices, polygons fanned. Anything else raises
     _NotLean."""
-    import numpy as np
-
     import re
+
+    import numpy as np
 
     try:
         text = data.decode("utf-8")

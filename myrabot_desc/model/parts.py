@@ -21,6 +21,11 @@ from pathlib import Path
 from typing import Any, NamedTuple
 
 from myrabot_desc.diagnostics import Loc
+from myrabot_desc.expand.packages import resolve_resource_uri
+from myrabot_desc.model.pin_model import build_model
+from myrabot_desc.model.sources import Sources
+from myrabot_desc.model.tree import maps
+from myrabot_desc.safety import parse_xml_bytes
 
 Vec3 = tuple[float, float, float]
 
@@ -66,6 +71,7 @@ class Material(NamedTuple):
     rgba: tuple[float, float, float, float] | None = None
     texture: str | None = None
     loc: Loc | None = None
+    ref: Any = None               # the URDF element it was read from, for Robot.sources (opaque)
 
 
 class Visual(NamedTuple):
@@ -75,6 +81,7 @@ class Visual(NamedTuple):
     material_name: str | None = None
     material: Material | None = None   # resolved against robot-level materials when only named
     loc: Loc | None = None
+    ref: Any = None               # the URDF element it was read from, for Robot.sources (opaque)
 
 
 class Collision(NamedTuple):
@@ -82,6 +89,7 @@ class Collision(NamedTuple):
     geometry: Geometry | None
     name: str | None = None
     loc: Loc | None = None
+    ref: Any = None               # the URDF element it was read from, for Robot.sources (opaque)
 
 
 class Inertial(NamedTuple):
@@ -94,6 +102,7 @@ class Inertial(NamedTuple):
     iyz: float = 0.0
     izz: float = 0.0
     loc: Loc | None = None
+    ref: Any = None               # the URDF element it was read from, for Robot.sources (opaque)
 
     def tensor(self):
         """3x3 inertia matrix (numpy) in the inertial frame."""
@@ -110,6 +119,7 @@ class Link(NamedTuple):
     visuals: tuple[Visual, ...] = ()
     collisions: tuple[Collision, ...] = ()
     loc: Loc | None = None
+    ref: Any = None               # the URDF element it was read from, for Robot.sources (opaque)
 
     @property
     def mass(self) -> float:
@@ -149,6 +159,7 @@ class Joint(NamedTuple):
     mimic: Mimic | None = None
     dynamics: Dynamics | None = None
     loc: Loc | None = None
+    ref: Any = None               # the URDF element it was read from, for Robot.sources (opaque)
 
     @property
     def moves(self) -> bool:
@@ -263,6 +274,10 @@ class Robot:
     # a SourceLines for a URDF read from one file (use loc_of rather than this map).
     element_locs: dict | SourceLines = field(default_factory=dict, repr=False)
     _elements: list = field(default_factory=list, repr=False)      # keeps those lxml proxies (and ids) alive
+    # Where the build says each output value came from (expand/provenance.SourceMap), or for a
+    # URDF read from one file its bytes: Robot.sources reads spans from them when asked.
+    source_map: Any = field(default=None, repr=False, compare=False)
+    source_bytes: bytes | None = field(default=None, repr=False, compare=False)
     # Facts derived from the robot, built once by whoever needs them first (sim/prepared.py);
     # the robot is not modified after loading, so they stay true for its lifetime.
     derived: dict = field(default_factory=dict, repr=False, compare=False)
@@ -272,6 +287,21 @@ class Robot:
         if type(self.element_locs) is dict:
             return self.element_locs.get(id(el))
         return self.element_locs.loc(el)
+
+    @property
+    def sources(self):
+        """Where each value was written (model/sources.Sources): ``robot.sources.origin(part.ref, attr)``."""
+        s = self.derived.get("sources")
+        if s is None:
+            plain = None
+            if self.source_map is None and self.source_bytes is not None:
+                plain = (str(self.loc.file) if self.loc else str(self.source), self.source, self.source_bytes)
+            s = self.derived["sources"] = Sources(self.root_element, self.source_map, plain)
+        return s
+
+    def origin(self, part, field: str):
+        """Where ``field`` of ``part`` was written (model/sources.Origin): ``robot.origin(joint, "limit.effort")``."""
+        return self.sources.field(part, field)
 
     def source_files(self) -> list[str]:
         """The files the model's elements came from (the input and, for xacro, its includes), in
@@ -296,8 +326,6 @@ class Robot:
 
     # -------------------------------------------------------- tree helpers
     def child_joints(self, link: str) -> list[Joint]:
-        from myrabot_desc.model.tree import maps   # one map for the robot: a star of 20,000 links stays linear
-
         return list(maps(self).child_joints.get(link, ()))
 
     def joints_by_parent(self) -> dict[str, list[Joint]]:
@@ -308,8 +336,6 @@ class Robot:
         return out
 
     def parent_joint(self, link: str) -> Joint | None:
-        from myrabot_desc.model.tree import maps
-
         return maps(self).parent_joint.get(link)
 
     @property
@@ -340,16 +366,37 @@ class Robot:
 
     def resolve_uri(self, uri: str) -> Path | None:
         """package://, file:// or a relative path -> a file on disk, or None."""
-        from myrabot_desc.build.packages import resolve_resource_uri
 
         base = self.source.parent if self.source else Path.cwd()
         return resolve_resource_uri(uri, self.package_roots, base)
 
     def pinocchio(self, floating: bool = False):
         """A Pinocchio model of this robot (built on demand; see pin_bridge)."""
-        from myrabot_desc.model.pin_model import build_model
 
         return build_model(self, floating=floating)
+
+    def to_yourdfpy(self, load_meshes: bool = False, build_scene_graph: bool = True):
+        """This robot as a ``yourdfpy.URDF``, for Python users of yourdfpy (the tests use it as an
+        independent check of our kinematics).
+
+        Built from ``urdf_text`` read by our own parser (no DTD, entities or network) and cleaned as
+        ``yourdfpy.URDF.load`` cleans a file; mesh file names go through :meth:`resolve_uri`, so only
+        files under the input's folder and the package roots can be opened, and one that does not
+        resolve is left out, as yourdfpy leaves out a file it cannot find. Meshes are loaded (by
+        trimesh, through yourdfpy) only with ``load_meshes``."""
+        import yourdfpy
+        from lxml import etree
+
+        root = parse_xml_bytes(self.urdf_text.encode("utf-8"), str(self.source or "<urdf>"))
+        etree.strip_tags(root, etree.Comment)
+        etree.cleanup_namespaces(root)
+
+        def filename(fname: str) -> str:
+            path = self.resolve_uri(fname)
+            return str(path) if path is not None else ""
+
+        return yourdfpy.URDF(robot=yourdfpy.URDF._parse_robot(xml_element=root), build_scene_graph=build_scene_graph,
+                             load_meshes=load_meshes, filename_handler=filename)
 
 
 def _local(tag) -> str:

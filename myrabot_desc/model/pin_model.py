@@ -8,14 +8,15 @@ we redirect fd 2 around the call and put the captured text into our error.
 from __future__ import annotations
 
 import os
-import tempfile
 
 from myrabot_desc.errors import InputError
+from myrabot_desc.model.tree import MAX_TREE_DEPTH, depth
 
 
 def capture_fd2(fn, *args, **kwargs):
     """Run fn with file descriptor 2 redirected; return (result, captured_text)."""
     import sys
+    import tempfile      # here: every command that reads a model imports this module (~4 ms)
 
     sys.stderr.flush()
     saved = os.dup(2)
@@ -56,8 +57,6 @@ _DOF = {"fixed": 0, "floating": 6, "planar": 3}
 def build_model(robot, floating: bool = False):
     """pinocchio.Model of ``robot`` (free-flyer root when ``floating``)."""
     import pinocchio as pin
-
-    from myrabot_desc.model.tree import MAX_TREE_DEPTH, depth
 
     d = depth(robot)
     if d > MAX_TREE_DEPTH:      # Pinocchio's parser recurses per joint: SIGSEGV near 4,000

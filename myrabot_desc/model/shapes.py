@@ -11,6 +11,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from myrabot_desc.errors import InputError
+from myrabot_desc.model import meshes as meshio
+
 
 @dataclass
 class MassProps:
@@ -69,8 +72,6 @@ def load_mesh(g):
     attribute names) of a mesh file with the URDF scale applied; str on failure. Cached per file,
     scale and limits: robots in one run share mesh files, links share them within a robot."""
     try:
-        from myrabot_desc.model import meshes as meshio
-
         key = (str(g.path), g.path.stat().st_mtime_ns, tuple(g.scale), meshio.limits())
     except OSError as exc:
         return f"cannot read {g.path}: {exc.strerror}"
@@ -92,8 +93,6 @@ def _nbytes(m) -> int:
 
 
 def _load_mesh(g):
-    from myrabot_desc.model import meshes as meshio
-
     try:  # size and triangle limits, one-line reasons (meshio.py)
         return meshio.facts(g.path, tuple(g.scale))   # check needs geometry only
     except meshio.MeshError as exc:
@@ -167,15 +166,12 @@ def surface_points(g, n: int = 32, mesh=None, loc=None):
             import numpy as np
 
             return np.asarray(getattr(mesh, "vertices", mesh), float)
-        from myrabot_desc.errors import InputError
-        from myrabot_desc.model import meshes as meshio
 
         if g.path is None:
             raise InputError(f"mesh {g.filename} cannot be resolved", loc)
         import numpy as np
 
         return meshio.vertices(g.path, loc) * np.asarray(g.scale)
-    from myrabot_desc.errors import InputError
 
     raise InputError(f"unsupported geometry {g.kind}", loc)
 

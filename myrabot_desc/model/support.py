@@ -22,6 +22,10 @@ from __future__ import annotations
 import math
 from typing import NamedTuple
 
+from myrabot_desc.model.hull2d import convex_hull
+from myrabot_desc.model.kinematics import pose_matrix, world_transforms
+from myrabot_desc.model.shapes import lowest_points, surface_points
+
 CONTACT_TOL = 0.005      # m: geometry this close to the lowest point holds the robot up (see above)
 
 
@@ -53,8 +57,6 @@ def _mesh_reader(meshes):
     if meshes is False or meshes is None:
         return None
     if meshes is True:
-        from myrabot_desc.model.shapes import surface_points
-
         def read(g, loc):
             try:
                 return np.asarray(surface_points(g, loc=loc), dtype=float)
@@ -75,7 +77,6 @@ def placed_collisions(robot, world, mesh_of=None):
     (link -> 4x4, from model.kinematics.world_transforms). ``mesh`` is None for primitives; mesh
     shapes come with ``mesh_of(geometry, loc)``'s answer and are left out without ``mesh_of`` or
     when it gives None or a reason (a str). The one walk check's P rules and the support share."""
-    from myrabot_desc.model.kinematics import pose_matrix
 
     for link in robot.links.values():
         if link.name not in world:
@@ -99,8 +100,6 @@ def lowest(robot, world, meshes=True):
     ``world`` (link -> 4x4, from model.kinematics.world_transforms)."""
     import numpy as np
 
-    from myrabot_desc.model.shapes import lowest_points
-
     read = _mesh_reader(meshes)
     out = []
     for link, it, T, v in placed_collisions(robot, world, read):
@@ -123,8 +122,6 @@ def ground_support(robot, q: dict | None = None, meshes=True, world=None) -> Sup
 
     ``meshes``: read mesh collisions (True), skip them (False), or a callable geometry -> loaded
     mesh (check passes its per-run cache). ``world``: the link poses when the caller has them."""
-    from myrabot_desc.model.hull2d import convex_hull
-    from myrabot_desc.model.kinematics import world_transforms
 
     low = lowest(robot, world if world is not None else world_transforms(robot, q), meshes)
     if not low:

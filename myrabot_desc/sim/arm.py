@@ -24,6 +24,9 @@ from __future__ import annotations
 import math
 
 from myrabot_desc.errors import InputError
+from myrabot_desc.model.kinematics import pose_matrix, world_transforms
+from myrabot_desc.model.pin_model import build_model
+from myrabot_desc.model.shapes import surface_points
 
 ARM_JOINTS = ("base", "arti1", "arti2", "arti3", "pinza")
 ALT_NAMES = {"base": ("base_brazo",)}
@@ -33,8 +36,6 @@ class Arm:
     def __init__(self, robot, joints=ARM_JOINTS):
         import numpy as np
         import pinocchio as pin
-
-        from myrabot_desc.model.pin_model import build_model
 
         self.robot = robot
         self.names = []
@@ -77,8 +78,6 @@ class Arm:
         """Gripper axis in the wrist joint frame, and the tip distance along it."""
         import numpy as np
 
-        from myrabot_desc.model.kinematics import pose_matrix
-
         oMi = self.fk(np.zeros(len(self.names)))
         j2, j3 = self.jid[2], self.jid[3]
         p2, p3 = oMi[j2].translation.copy(), oMi[j3].translation.copy()
@@ -89,7 +88,6 @@ class Arm:
         R3 = oMi[j3].rotation
         self.axis_local = R3.T @ d
         # tip: the farthest collision point of the wrist's subtree along the axis
-        from myrabot_desc.model.kinematics import world_transforms
 
         robot = self.robot
         jname = self.names[3]
@@ -97,7 +95,6 @@ class Arm:
         tf = world_transforms(robot)
         T3 = tf[robot.joints[jname].child]
         best = 0.0
-        from myrabot_desc.model.shapes import surface_points
 
         for ln in sub:
             link = robot.links[ln]

@@ -9,12 +9,16 @@ sitting between its mounting plates; they are left out and listed, as an SRDF
 
 Every distinct pose goes through a broadphase (bounding boxes) before the exact
 test; the closest approach is searched in the order of bounding-box lower bounds.
-Both report what testing every pair would (tests/test_sim.py checks that).
+Both report what testing every pair would (tests/sim/test_programs.py checks that).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+
+from myrabot_desc.model import meshes
+from myrabot_desc.model.kinematics import pose_matrix
+from myrabot_desc.sim.result import Check
 
 # Distance queries cost ~10 collision tests each; the closest approach is found at the
 # joints' extremes (always probed) plus this many evenly spread poses.
@@ -241,8 +245,6 @@ def geometry_model(model, robot, notes: list):
     URDF reader names them. A mesh that cannot be read is left out, with a note."""
     import pinocchio as pin
 
-    from myrabot_desc.model.kinematics import pose_matrix
-
     gm = pin.GeometryModel()
     skipped = []
     for ln, link in robot.links.items():
@@ -281,8 +283,6 @@ def coal_shape(g):
     if g.kind == "mesh" and g.path is not None:
         import numpy as np
 
-        from myrabot_desc.model import meshes
-
         try:
             m = meshes.load(g.path, process=False)
         except meshes.MeshError:
@@ -303,7 +303,6 @@ def collision_check(res, arm, t, arm_q, q_home, name: str, expected: str, scene=
     ``poses``: ``unique_configs(t, arm_q)`` when the caller has it already; ``collider``: an
     ArmCollider of ``arm`` and ``scene`` to reuse.
     """
-    from myrabot_desc.sim.result import Check
 
     tt, qq = unique_configs(t, arm_q) if poses is None else poses
     col = ArmCollider(arm, scene) if collider is None else collider

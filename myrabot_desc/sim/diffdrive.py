@@ -25,6 +25,8 @@ import math
 from dataclasses import dataclass, field
 
 from myrabot_desc.errors import InputError
+from myrabot_desc.model import drive as D
+
 
 @dataclass(frozen=True)
 class PluginDrive:
@@ -111,7 +113,6 @@ def find_drive(robot, wheels: str = "plugin", left=(), right=()) -> Drive:
     the first declared drive (a plugin of any dialect, ros_control velocity wheels), else
     continuous joints named like wheels, sided by where they sit. A skid-steer base is its equivalent diff drive
     (each side's wheels turn together; the separation is between the sides' centres)."""
-    from myrabot_desc.model import drive as D
 
     d = D.main_drive(robot, tuple(left), tuple(right), guess=True)
     if d is None:
@@ -200,7 +201,6 @@ def _local(tag) -> str:
 
 def urdf_wheels(robot, d) -> UrdfDrive:
     """The drive's wheels as built (model/drive.measure); each side's first wheel stands for the side."""
-    from myrabot_desc.model import drive as D
 
     g = D.measure(robot, d)
     for w in g.wheels:
@@ -231,7 +231,6 @@ def urdf_wheels(robot, d) -> UrdfDrive:
 
 def wheel_radius(robot, joint_name: str) -> float | None:
     """The radius of the wheel turned by a joint (model/drive.py's one rule)."""
-    from myrabot_desc.model import drive as D
 
     w = D.wheel(robot, joint_name)
     return None if w is None else w.radius

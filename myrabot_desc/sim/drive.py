@@ -13,7 +13,12 @@ from __future__ import annotations
 import math
 import time
 
+from myrabot_desc.model.pin_model import build_model
+from myrabot_desc.sim import stability
+from myrabot_desc.sim.arm import whole_com
+from myrabot_desc.sim.diffdrive import find_drive, integrate
 from myrabot_desc.sim.result import Check, Series, SimResult
+from myrabot_desc.sim.stability import footprint
 
 DEFAULT_SCRIPT = ((0.2, 0.0, 5.0), (0.0, 0.5, 4.0), (0.2, 0.4, 5.0))
 
@@ -32,8 +37,6 @@ def parse_twist(text: str) -> tuple[float, float, float]:
 def run(robot, *, rate=1000.0, duration=None, script=DEFAULT_SCRIPT, wheels="plugin", left=(), right=(),
         wheel_speed_max=None, wheel_accel_max=None, tolerance=0.02, progress=None) -> SimResult:
     import numpy as np
-
-    from myrabot_desc.sim.diffdrive import find_drive, integrate
 
     wall0 = time.perf_counter()
     drive = find_drive(robot, wheels, left, right)
@@ -118,7 +121,6 @@ def run(robot, *, rate=1000.0, duration=None, script=DEFAULT_SCRIPT, wheels="plu
                   Series("v achieved", np.concatenate([base.v, base.v[-1:]]), "m/s", group="twist"),
                   Series("w commanded", _cmd_series(bounds, N, 3), "rad/s", group="twist"),
                   Series("w achieved", np.concatenate([base.w, base.w[-1:]]), "rad/s", group="twist")]
-    from myrabot_desc.sim.stability import footprint
 
     res.outline_of = lambda: footprint(robot)
     res.wall = time.perf_counter() - wall0
@@ -160,10 +162,6 @@ def _stance(robot, drive) -> dict:
     """Static stance: where the centre of mass sits against the support polygon."""
     try:
         import pinocchio as pin
-
-        from myrabot_desc.model.pin_model import build_model
-        from myrabot_desc.sim import stability
-        from myrabot_desc.sim.arm import whole_com
 
         model = build_model(robot)
         data = model.createData()

@@ -18,7 +18,11 @@ from __future__ import annotations
 import math
 import time
 
+from myrabot_desc.sim import prepared
+from myrabot_desc.sim import scene as sc
 from myrabot_desc.sim import servo as sv
+from myrabot_desc.sim.collide import collision_check
+from myrabot_desc.sim.diffdrive import BaseTrack
 from myrabot_desc.sim.result import Check, Series, SimResult
 
 # mover_objetos key codes (Appendix A.9): arrows arrive as ESC [ A/B/C/D, the code reads the last byte
@@ -48,8 +52,6 @@ def parse_keys(text: str) -> list[str]:
 def _setup(robot, layout, speed_units):
     import numpy as np
 
-    from myrabot_desc.sim import prepared
-
     arm = prepared.arm(robot)
     servos = [sv.Servo(0.0, sv.speed_rad_s(speed_units, arm.velocity[i]), arm.lower[i], arm.upper[i])
               for i in range(len(arm.names))]
@@ -72,24 +74,18 @@ def _base_track(robot, N, dt):
     """The base stands still: a constant track on the grid."""
     import numpy as np
 
-    from myrabot_desc.sim.diffdrive import BaseTrack
-
     z = np.zeros(N + 1)
     return BaseTrack(t=np.arange(N + 1) * dt, x=z, y=z, yaw=z, wheel_left=z, wheel_right=z, v=z[:-1], w=z[:-1],
                      axle_x=z, axle_y=z)
 
 
 def _collisions(res, arm, scene, q_home, label):
-    from myrabot_desc.sim.collide import collision_check
-
     collision_check(res, arm, res.t, res.arm_q, q_home, "collision", label, scene)
 
 
 def run_escoja(robot, layout_objects, *, which="1", rate=1000.0, duration=None, select_at=0.5, hold=2.0,
                speed_units=400, standoff=0.05, tolerance=5.0, units_mode="nearest", progress=None) -> SimResult:
     import numpy as np
-
-    from myrabot_desc.sim import scene as sc
 
     wall0 = time.perf_counter()
     target_obj = sc.select(layout_objects, which)
@@ -148,7 +144,6 @@ def run_escoja(robot, layout_objects, *, which="1", rate=1000.0, duration=None, 
     res.series = [Series(n, np.degrees(arm_q[:, i]), "deg") for i, n in enumerate(arm.names)]
     res.series.append(Series("pointing error", errs, "deg (error)", t=t[ks]))
     res.scene = list(layout_objects)
-    from myrabot_desc.sim import prepared
 
     res.outline_of = lambda: prepared.footprint(robot)
     res.wall = time.perf_counter() - wall0
@@ -161,8 +156,6 @@ def run_seguir(robot, layout_objects, *, which="1", keys=DEFAULT_KEYS, rate=1000
                move_at=2.0, track_rate=10.0, speed_units=400, standoff=0.05, tolerance=5.0,
                units_mode="nearest", progress=None) -> SimResult:
     import numpy as np
-
-    from myrabot_desc.sim import scene as sc
 
     wall0 = time.perf_counter()
     obj = sc.select(layout_objects, which)
@@ -244,7 +237,6 @@ def run_seguir(robot, layout_objects, *, which="1", keys=DEFAULT_KEYS, rate=1000
     res.series.append(Series("tracking error", errs, "deg (error)", t=t[ks]))
     res.scene = list(others) + [obj]
     res.moving = [(obj.model, path[:, 0], path[:, 1])]
-    from myrabot_desc.sim import prepared
 
     res.outline_of = lambda: prepared.footprint(robot)
     res.wall = time.perf_counter() - wall0

@@ -10,6 +10,12 @@ programs) reuse them, and they go when the robot goes. Robots are not modified a
 
 from __future__ import annotations
 
+from myrabot_desc.sim.arm import Arm
+from myrabot_desc.sim.collide import ArmCollider
+from myrabot_desc.sim.diffdrive import find_drive
+from myrabot_desc.sim.stability import footprint as outline
+from myrabot_desc.sim.stability import support_polygon
+
 
 def get(robot, key, build):
     """``build()``, built once for ``robot`` and ``key``."""
@@ -28,32 +34,23 @@ def drive(robot, wheels: str):
     """``find_drive(robot, wheels)``: a fresh Drive (runs set its limits) on the shared geometry."""
     import dataclasses
 
-    from myrabot_desc.sim.diffdrive import find_drive
-
     d = get(robot, ("drive", wheels), lambda: find_drive(robot, wheels))
     return dataclasses.replace(d, notes=list(d.notes))
 
 
 def arm(robot):
-    from myrabot_desc.sim.arm import Arm
-
     return get(robot, "arm", lambda: Arm(robot))
 
 
 def collider(robot):
     """The arm against the robot's own structure (no scene)."""
-    from myrabot_desc.sim.collide import ArmCollider
 
     return get(robot, "collider", lambda: ArmCollider(arm(robot)))
 
 
 def support(robot, wheels: str):
-    from myrabot_desc.sim.stability import support_polygon
-
     return get(robot, ("support", wheels), lambda: support_polygon(robot, drive(robot, wheels)))
 
 
 def footprint(robot) -> list:
-    from myrabot_desc.sim.stability import footprint as outline
-
     return list(get(robot, "footprint", lambda: outline(robot)))

@@ -19,7 +19,14 @@ from pathlib import Path
 
 from myrabot_desc.diagnostics import Loc
 from myrabot_desc.errors import InputError
-from myrabot_desc.safety import display
+from myrabot_desc.expand.packages import data_root
+from myrabot_desc.expand.yaml_load import load_path
+from myrabot_desc.model.kinematics import pose_matrix, world_transforms
+from myrabot_desc.model.loader import load_robot
+from myrabot_desc.model.shapes import surface_points
+from myrabot_desc.safety import check_path, display, limit
+from myrabot_desc.sim.collide import coal_shape
+from myrabot_desc.sim.stability import _hull
 
 
 @dataclass
@@ -31,8 +38,6 @@ class SceneObject:
     selectable: bool
 
     def coal_shapes(self):
-        from myrabot_desc.sim.collide import coal_shape
-
         for i, (ln, g, M) in enumerate(self.shapes):
             s = coal_shape(g)
             if s is not None:
@@ -40,8 +45,6 @@ class SceneObject:
 
     def points(self):
         import numpy as np
-
-        from myrabot_desc.model.shapes import surface_points
 
         out = []
         for ln, g, M in self.shapes:
@@ -69,7 +72,6 @@ class SceneObject:
 
     def outline(self):
         """Top-view shapes for the plot: ('circle', ((x, y), r)) or ('poly', [(x, y), ...])."""
-        from myrabot_desc.sim.stability import _hull
 
         out = []
         for ln, g, M in self.shapes:
@@ -77,8 +79,6 @@ class SceneObject:
                 out.append(("circle", ((float(M[0, 3]), float(M[1, 3])), g.radius)))
             else:
                 import numpy as np
-
-                from myrabot_desc.model.shapes import surface_points
 
                 p = np.asarray(surface_points(g, 720)) @ M[:3, :3].T + M[:3, 3]
                 out.append(("poly", _hull(p[:, :2])))
@@ -97,13 +97,6 @@ class SceneObject:
 
 def load_layout(path: Path, robot_pose=None) -> list[SceneObject]:
     import numpy as np
-
-    from myrabot_desc.build.packages import data_root
-    from myrabot_desc.model.kinematics import pose_matrix, world_transforms
-    from myrabot_desc.model.loader import load_robot
-
-    from myrabot_desc.build.yaml_load import load_path
-    from myrabot_desc.safety import check_path, limit
 
     path = Path(path)
     doc = load_path(path, limit("max_input_bytes"))     # our loader: no code from tags, no FIFO

@@ -14,6 +14,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from myrabot_desc.model.hull2d import convex_hull
+from myrabot_desc.model.kinematics import pose_matrix, world_transforms
+from myrabot_desc.model.shapes import surface_points
+from myrabot_desc.model.support import CONTACT_TOL, ground_support, signed_distances
+
 G = 9.81
 
 
@@ -31,8 +36,6 @@ class Support:
 
 def support_polygon(robot, drive) -> Support:
     """model/support.py's ground support, with notes on how the drive wheels take part in it."""
-    from myrabot_desc.model.kinematics import world_transforms
-    from myrabot_desc.model.support import CONTACT_TOL, ground_support
 
     wheels = {drive.urdf.left.link: drive.urdf.left, drive.urdf.right.link: drive.urdf.right}
     tf = world_transforms(robot)
@@ -63,8 +66,6 @@ def margins(support: Support, coms, accels):
     """``margin`` of many poses at once (numpy rows: centres of mass (n, 3), accelerations (n, 2))."""
     import numpy as np
 
-    from myrabot_desc.model.support import signed_distances
-
     h = coms[:, 2] - support.ground_z
     loaded = np.column_stack([coms[:, 0] - h / G * accels[:, 0], coms[:, 1] - h / G * accels[:, 1]])
     return signed_distances(support.polygon, loaded)
@@ -78,17 +79,12 @@ def _hull(points):
     """Convex hull in the plane, counter-clockwise (``points``: pairs or an (n, 2) array)."""
     import numpy as np
 
-    from myrabot_desc.model.hull2d import convex_hull
-
     return convex_hull(np.asarray(points, dtype=float).reshape(-1, 2).tolist())
 
 
 def footprint(robot):
     """Convex outline (root frame, xy) of the robot's primitive collision geometry at the zero pose."""
     import numpy as np
-
-    from myrabot_desc.model.kinematics import pose_matrix, world_transforms
-    from myrabot_desc.model.shapes import surface_points
 
     tf = world_transforms(robot)
     pts = []

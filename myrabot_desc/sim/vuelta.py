@@ -25,7 +25,10 @@ from __future__ import annotations
 import math
 import time
 
+from myrabot_desc.sim import prepared, stability
 from myrabot_desc.sim import servo as sv
+from myrabot_desc.sim.collide import collision_check, unique_configs
+from myrabot_desc.sim.diffdrive import fit_circle, integrate
 from myrabot_desc.sim.result import Check, Series, SimResult
 
 V_CMD, W_CMD = 0.1, 0.3
@@ -36,9 +39,6 @@ SPEED_UNITS = 400
 def run(robot, *, rate=1000.0, duration=25.0, presses=(1.0,), feedback_rate=100.0, wheels="plugin",
         wheel_speed_max=None, wheel_accel_max=None, check_collisions=True, progress=None) -> SimResult:
     import numpy as np
-
-    from myrabot_desc.sim import prepared
-    from myrabot_desc.sim.diffdrive import integrate
 
     wall0 = time.perf_counter()
     drive = prepared.drive(robot, wheels)
@@ -169,9 +169,6 @@ def _first_in_window(servo, target, lo, hi, msg_t):
 def _verdict(res, robot, drive, arm, segments, commands, swing_cmds, dt, check_collisions):
     import numpy as np
 
-    from myrabot_desc.sim import prepared, stability
-    from myrabot_desc.sim.diffdrive import fit_circle
-
     base, t = res.base, res.t
     r_exp, T_exp = V_CMD / W_CMD, 2 * math.pi / W_CMD
     if not segments:
@@ -208,7 +205,6 @@ def _verdict(res, robot, drive, arm, segments, commands, swing_cmds, dt, check_c
                             f"{reversals / (res.duration - t[k0]) * T_exp:.1f} swings per turn"))
     res.info["swing commands"] = swing_cmds
     # collisions of the arm with the structure
-    from myrabot_desc.sim.collide import collision_check, unique_configs
 
     poses = unique_configs(t, res.arm_q)     # distinct arm poses, for the tip-over margin too
     q_home = np.array([sv.units_to_rad(sv.UNITS_HOME)] * len(arm.names))

@@ -13,6 +13,9 @@ from __future__ import annotations
 
 from typing import NamedTuple
 
+from myrabot_desc.model.kinematics import center_of_mass, pose_matrix
+from myrabot_desc.model.support import ground_support, signed_distance
+
 
 class InertiaBox(NamedTuple):
     size: tuple[float, float, float]     # edge lengths (m) along the principal axes
@@ -39,8 +42,6 @@ def inertia_box(inertial) -> InertiaBox | None:
     """The equivalent inertia box of a URDF ``Inertial`` (None for a massless or missing one)."""
     import numpy as np
 
-    from myrabot_desc.model.kinematics import pose_matrix
-
     if inertial is None or not inertial.mass > 0:
         return None
     moments, axes = np.linalg.eigh(inertial.tensor())
@@ -66,9 +67,6 @@ def support(robot, q: dict | None = None, meshes: bool = True) -> Support | None
     point (model/support.py, the function check and sim use); None when nothing has collision
     geometry or mass. Meshes are read through model.meshes."""
     import numpy as np
-
-    from myrabot_desc.model.kinematics import center_of_mass
-    from myrabot_desc.model.support import ground_support, signed_distance
 
     found = ground_support(robot, q, meshes=meshes)
     mass, com = center_of_mass(robot, q)

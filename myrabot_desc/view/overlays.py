@@ -11,6 +11,11 @@ from __future__ import annotations
 import math
 import re
 
+from myrabot_desc.errors import InputError
+from myrabot_desc.model.kinematics import center_of_mass
+from myrabot_desc.sim.diffdrive import find_drive
+from myrabot_desc.view.facts import inertia_box, support
+
 WHEEL_URDF_RGB = (20, 170, 60)
 WHEEL_PLUGIN_RGB = (230, 0, 160)
 
@@ -61,7 +66,6 @@ def add_parts(viewer, sc) -> None:
 def add_overlays(viewer, sc) -> None:
     import numpy as np
 
-    from myrabot_desc.view.facts import inertia_box
     diag = size_of(viewer)
     viewer._diag = diag
     nodes = viewer._nodes
@@ -108,8 +112,6 @@ def _add_wheels(viewer, sc) -> None:
     """The URDF's wheels (green, on the wheel links) and the plugin's belief (magenta, root frame)."""
     import numpy as np
 
-    from myrabot_desc.errors import InputError
-    from myrabot_desc.sim.diffdrive import find_drive
     try:
         drive = find_drive(viewer.robot, wheels="urdf")
     except (InputError, KeyError, ValueError):
@@ -148,8 +150,6 @@ def update_dynamic(viewer, T) -> None:
     """What moves with the joints besides the links: the robot's centre of mass and the support."""
     import numpy as np
 
-    from myrabot_desc.model.kinematics import center_of_mass
-
     if not hasattr(viewer, "_robot_com"):
         return
     mass, com = center_of_mass(viewer.robot, viewer.q)
@@ -162,7 +162,6 @@ def update_dynamic(viewer, T) -> None:
             h.remove()
         viewer._support_nodes = {}
         return
-    from myrabot_desc.view.facts import support
 
     s = support(viewer.robot, viewer.q)
     viewer.support = s

@@ -13,6 +13,13 @@ from __future__ import annotations
 import math
 from typing import NamedTuple
 
+from myrabot_desc.convert.appearance import Appearance, texture_mean_rgb
+from myrabot_desc.convert.common import Notes
+from myrabot_desc.convert.gazebo import GazeboProps
+from myrabot_desc.errors import InputError
+from myrabot_desc.model import meshes
+from myrabot_desc.model.kinematics import pose_matrix, world_transforms
+
 DEFAULT_RGBA = (0.7, 0.7, 0.72, 1.0)
 COLLISION_RGBA = (1.0, 0.55, 0.1, 0.55)
 CYLINDER_SECTIONS = 32
@@ -52,7 +59,6 @@ class Scene:
 
     def transforms(self, q: dict | None = None) -> dict:
         """link -> 4x4 world pose (mimic joints follow their leader)."""
-        from myrabot_desc.model.kinematics import world_transforms
 
         return world_transforms(self.robot, self.pose(q))
 
@@ -164,12 +170,6 @@ def build_scene(robot, collision: bool = True) -> Scene:
     """Parts of every visual (and collision, unless ``collision`` is False) element of ``robot``."""
     import numpy as np
 
-    from myrabot_desc.model import meshes
-    from myrabot_desc.convert.appearance import Appearance, texture_mean_rgb
-    from myrabot_desc.convert.common import Notes
-    from myrabot_desc.convert.gazebo import GazeboProps
-    from myrabot_desc.model.kinematics import pose_matrix
-
     problems: list[str] = []
     notes = Notes()
     props = GazeboProps(robot, Notes())
@@ -234,7 +234,6 @@ def build_scene(robot, collision: bool = True) -> Scene:
 
 def parse_joint_values(items, scene: Scene, where: str = "--joint") -> dict[str, float]:
     """``NAME=VALUE`` strings -> {name: radians or metres}; InputError naming the bad one."""
-    from myrabot_desc.errors import InputError
 
     out = {}
     for it in items:
@@ -254,8 +253,6 @@ def parse_joint_values(items, scene: Scene, where: str = "--joint") -> dict[str,
 
 
 def check_joint_name(name: str, scene: Scene, where: str) -> None:
-    from myrabot_desc.errors import InputError
-
     if name in scene.joints:
         return
     j = scene.robot.joints.get(name)

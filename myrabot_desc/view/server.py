@@ -14,9 +14,12 @@ from __future__ import annotations
 import threading
 import time
 
-import click
-
-from myrabot_desc.cli_common import guarded, input_options
+from myrabot_desc.checks import CheckOptions, check_robot
+from myrabot_desc.errors import InputError
+from myrabot_desc.model.kinematics import require_tree
+from myrabot_desc.view import overlays
+from myrabot_desc.view.overlays import finding_links
+from myrabot_desc.view.scene import build_scene
 
 HIGHLIGHT = (255, 0, 200)
 TOGGLES = {            # name -> (label, default)
@@ -81,8 +84,6 @@ class Viewer:
     # ------------------------------------------------------------ loading
     def _read(self):
         """(robot, scene) of the model, or InputError."""
-        from myrabot_desc.model.kinematics import require_tree
-        from myrabot_desc.view.scene import build_scene
 
         robot = self._load()
         require_tree(robot)
@@ -90,7 +91,6 @@ class Viewer:
 
     def reload(self, loaded=None) -> bool:
         """(Re)load the model and rebuild scene and GUI; on a load error keep what is shown."""
-        from myrabot_desc.errors import InputError
 
         try:
             robot, scene = loaded or self._read()
@@ -152,8 +152,6 @@ class Viewer:
 
     # ------------------------------------------------------------ scene
     def _build(self) -> None:
-        from myrabot_desc.view import overlays
-
         sc = self.server.scene
         gui = self.server.gui
         sc.reset()
@@ -185,11 +183,8 @@ class Viewer:
 
     def _place(self) -> None:
         """Send the link poses for the current joint values (and what depends on them)."""
-        import viser.transforms as vtf
-
-        from myrabot_desc.view import overlays
-
         import numpy as np
+        import viser.transforms as vtf
 
         T = self.scene.transforms(self.q)
         prev = self.link_poses if self._sent_generation == self.generation else {}
@@ -231,8 +226,6 @@ class Viewer:
             for h in self._nodes.get(name, ()):
                 h.visible = bool(on)
             if name in ("support", "com"):
-                from myrabot_desc.view import overlays
-
                 overlays.update_dynamic(self, self.link_poses)
 
     def highlight(self, links) -> None:
@@ -329,9 +322,6 @@ class Viewer:
 
     # ------------------------------------------------------------ findings
     def _run_checks(self, generation: int) -> None:
-        from myrabot_desc.checks import CheckOptions, check_robot
-        from myrabot_desc.view.overlays import finding_links
-
         robot = self.robot
         try:
             diags, _ = check_robot(robot, CheckOptions(inertia=True))
@@ -376,55 +366,3 @@ class Viewer:
         shown = ", ".join(f"`{n}`" for n in links) if links else "no link named"
         detail.content = f"**{d.severity} {d.code}** {d.message}\n\n{where}\n\nhighlighted: {shown}"
         detail.visible = True
-
-
-@click.command("view")
-@input_options()
-@click.option("--host", default="127.0.0.1", show_default=True,
-              help="Address to listen on (127.0.0.1: this machine only).")
-@click.option("--port", type=int, default=8080, show_default=True,
-              help="Port to listen on; the next free one is taken when it is busy (0: any free port).")
-@click.option("--open", "open_browser", is_flag=True, help="Open the viewer in the default web browser.")
-@click.option("--watch/--no-watch", default=True, show_default=True,
-              help="Reload when the model's files change, keeping the joint values.")
-@click.option("--check/--no-check", "findings", default=True, show_default=True,
-              help="Run `check --inertia` and list its findings in the viewer.")
-@click.option("--joint", "joints", multiple=True, metavar="NAME=VALUE", help="Initial joint value. Repeatable.")
-def view_cmd(inputs, host, port, open_browser, watch, findings, joints):
-    """Show the robot in a web viewer (viser): joint sliders, frames, centres of mass, inertia boxes,
-    support polygon, drive wheels, and check's findings highlighted on the model.
-
-    Works for any URDF/xacro the other commands read, with the same package options.
-    Stop with Ctrl-C.
-
-    \b
-    Examples:
-      myrabot-desc view                                  # the bundled MYRAbot, http://127.0.0.1:8080
-      myrabot-desc view robot.urdf.xacro -p my_pkg=../my_pkg --open
-      myrabot-desc view robot.urdf --port 0 --no-watch   # any free port, no reloading
-    """
-    with guarded():
-        if not 0 <= port <= 65535:
-            raise click.BadParameter(f"{port} is not a port number", param_hint="--port")
-        from myrabot_desc.view.scene import parse_joint_values
-
-        viewer = Viewer(inputs.load, host=host, port=port, findings=findings)
-        if joints:
-            viewer.set_joints(parse_joint_values(joints, viewer.scene))
-        for line in viewer.scene.problems:
-            click.echo(line, err=True)
-        if watch:
-            viewer.watch()
-        click.echo(f"myrabot-desc view: {viewer.robot.name} at {viewer.url}  (Ctrl-C stops)", err=True)
-        click.echo(viewer.url)
-        if open_browser:
-            import webbrowser
-
-            webbrowser.open(viewer.url)
-        try:
-            while True:
-                time.sleep(3600)
-        except KeyboardInterrupt:
-            pass
-        finally:
-            viewer.stop()

@@ -1,4 +1,4 @@
-"""Mutation fuzzing of URDF, xacro and OGRE material files (tests/test_fuzz.py, bench/fuzz_long.py).
+"""Mutation fuzzing of URDF, xacro and OGRE material files (tests/hardening/test_fuzz.py, bench/fuzz_long.py).
 
 A case is an integer: it picks a seed file, a few mutations (delete, duplicate, swap, move and
 rename elements; delete, duplicate and corrupt attributes and numbers; truncate, splice bytes;
@@ -67,8 +67,8 @@ def bundled_urdf() -> Path:
 
     dest = Path(tempfile.gettempdir()) / "myrabot_fuzz_seed" / "myrabot.urdf"
     if not dest.is_file():
-        from myrabot_desc.build.driver import build_file
-        from myrabot_desc.build.packages import bundled_path
+        from myrabot_desc.expand.driver import build_file
+        from myrabot_desc.expand.packages import bundled_path
 
         dest.parent.mkdir(parents=True, exist_ok=True)
         dest.write_text(build_file(bundled_path()).text)

@@ -1,6 +1,6 @@
 """Run myrabot-desc commands in-process on hostile input and watch what they do.
 
-Used by tests/test_hardening.py, tests/test_fuzz.py and bench/fuzz_long.py. Each run happens in a
+Used by tests/hardening/test_hostile_inputs.py, tests/hardening/test_fuzz.py and bench/fuzz_long.py. Each run happens in a
 worker process (forked, so the heavy imports are paid once) with:
 
 * a Python audit hook recording every ``open`` (path), ``socket.connect``, ``subprocess.Popen``,
@@ -105,9 +105,10 @@ def prepare_worker(memory_cap: bool = False):
     for mod in ("numpy", "lxml.etree", "xacro", "yaml", "trimesh", "trimesh.exchange.dae", "collada", "yourdfpy",
                 "pinocchio", "mujoco", "PIL.Image", "PIL.ImageDraw", "PIL.ImageFont", "scipy.optimize",
                 "scipy.spatial", "coal", "networkx",
-                "myrabot_desc.cli", "myrabot_desc.build.cli", "myrabot_desc.checks.cli", "myrabot_desc.convert.cli",
-                "myrabot_desc.convert.sdf", "myrabot_desc.convert.mjcf", "myrabot_desc.materials.cli",
-                "myrabot_desc.sim.cli", "myrabot_desc.sim.drive", "myrabot_desc.sim.diffdrive",
+                "myrabot_desc.commands.main", "myrabot_desc.commands.build", "myrabot_desc.commands.check",
+                "myrabot_desc.commands.convert", "myrabot_desc.convert.sdf", "myrabot_desc.convert.mjcf",
+                "myrabot_desc.commands.materials", "myrabot_desc.commands.sim", "myrabot_desc.commands.info",
+                "myrabot_desc.sim.drive", "myrabot_desc.sim.diffdrive",
                 "myrabot_desc.sim.plot", "myrabot_desc.info", "myrabot_desc.checks", "myrabot_desc.model.pin_model",
                 "myrabot_desc.model.kinematics", "myrabot_desc.materials.ogre", "myrabot_desc.materials.resolve"):
         try:
@@ -140,7 +141,7 @@ def invoke(argv: list[str], time_limit: float = TIME_LIMIT, env: dict | None = N
 
     from click.testing import CliRunner
 
-    from myrabot_desc.cli import main
+    from myrabot_desc.commands.main import main
 
     runner = CliRunner()
     _state["opens"], _state["events"] = [], []
@@ -191,7 +192,7 @@ def _clip(text: str, n: int = 3000) -> str:
 
 
 def allowed_roots(case_dir: Path, out_dir: Path) -> list[Path]:
-    from myrabot_desc.build.packages import data_root
+    from myrabot_desc.expand.packages import data_root
 
     roots = [case_dir, out_dir, Path(sys.prefix), Path(sys.base_prefix), Path(sys.exec_prefix),
              Path(os.__file__).resolve().parent, data_root(), Path("/dev/null"), Path("/dev/urandom")]

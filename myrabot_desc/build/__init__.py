@@ -1,1 +1,0 @@
-"""Build: xacro sources -> URDF text, without ROS (driver.py runs xacro with our hooks)."""

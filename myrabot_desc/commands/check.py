@@ -1,0 +1,120 @@
+"""``myrabot-desc check``: the command line of the rule registry (checks/run.py runs the files)."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import click
+
+from myrabot_desc import __version__
+from myrabot_desc.checks.report import merge_sarif_files, render, rule_table
+from myrabot_desc.checks.run import default_jobs, exit_code, plan, run_tasks
+from myrabot_desc.checks.suppress import unused_findings
+from myrabot_desc.commands.common import input_options
+from myrabot_desc.commands.console import guarded
+from myrabot_desc.commands.options import usage_error
+from myrabot_desc.errors import UsageProblem
+from myrabot_desc.output import write_output
+
+
+def _progressbar(results, length):
+    """click's progress bar on stderr (it shows only when stderr is a terminal)."""
+    return click.progressbar(results, length=length, label="checking", file=sys.stderr,
+                             item_show_func=lambda r: (Path(r.file).name if r and r.file else ""))
+
+
+@click.command("check")
+@input_options(multiple=True)
+@click.option("--inertia", is_flag=True,
+              help="Load collision meshes and compare every inertia with the solid body of its collision geometry.")
+@click.option("--suggest", is_flag=True, help="With --inertia: print a ready <inertia .../> line per link.")
+@click.option("--meshes", is_flag=True, help="Load every mesh (visual too) to check scale, watertightness and normals.")
+@click.option("--format", "fmt", type=click.Choice(["text", "json", "github", "sarif"]), default="text",
+              show_default=True, help="Report format.")
+@click.option("--select", "select", multiple=True, metavar="CODES",
+              help="Only these codes or prefixes (comma-separated or repeated), e.g. I,G001. Replaces the "
+                   "configuration's select.")
+@click.option("--ignore", "ignore", multiple=True, metavar="CODES",
+              help="Skip these codes or prefixes (added to the configuration's ignore).")
+@click.option("--strict", is_flag=True, help="Warnings fail too (exit 1).")
+@click.option("-o", "--output", type=click.Path(dir_okay=False), default="-", show_default=True,
+              help="Write the report to a file instead of stdout.")
+@click.option("-r", "--recursive", is_flag=True,
+              help="Folders: look for models in their subfolders too (hidden and build folders skipped).")
+@click.option("--config", "config_file", type=click.Path(dir_okay=False), metavar="FILE",
+              help="Use this configuration for every file (pyproject.toml or myrabot-desc.toml) instead of the "
+                   "nearest one.")
+@click.option("--isolated", is_flag=True, help="Ignore every configuration file.")
+@click.option("-j", "--jobs", type=click.IntRange(min=1), default=None, metavar="N",
+              help="Worker processes (default: the CPUs available). The report is the same for any N.")
+@click.option("--shard", "shard_spec", metavar="K/N",
+              help="Check only the K-th of N deterministic parts of the file list (a CI matrix job each).")
+@click.option("-q", "--quiet", is_flag=True, help="No progress bar; text reports only the findings.")
+@click.option("--no-cache", is_flag=True,
+              help="Do not read or write the result cache (.myrabot-desc-cache/ next to the configuration "
+                   "file, or MYRABOT_DESC_CACHE_DIR).")
+@click.option("--merge-sarif", is_flag=True,
+              help="The FILEs are SARIF reports (from --shard jobs): merge them into one report.")
+@click.option("--list-rules", is_flag=True, help="List every rule code and exit.")
+def check_cmd(inputs, inertia, suggest, meshes, fmt, select, ignore, strict, output, recursive, config_file,
+              isolated, jobs, shard_spec, quiet, no_cache, merge_sarif, list_rules):
+    """Lint robot models: tree, inertia, sensors and frames, Gazebo plugins, meshes, physics.
+
+    Each finding has a stable code (X build, T tree, I inertia, S sensors/frames,
+    G Gazebo/plugins, M meshes, P physics), a severity, the numbers that matter and the
+    xacro file:line it comes from. docs/rules.md explains every rule and its fix.
+
+    \b
+    Settings come from the nearest pyproject.toml [tool.myrabot-desc] or myrabot-desc.toml
+    (walking up from each file); a finding is silenced in the model with
+      <!-- myrabot-desc: ignore[I008] why -->
+    on the line before the element (or inside it); see docs/check.md.
+
+    \b
+    Examples:
+      myrabot-desc check                              # the bundled MYRAbot
+      myrabot-desc check robot.urdf.xacro -p my_pkg=../my_pkg
+      myrabot-desc check --inertia --suggest robot.urdf
+      myrabot-desc check urdf/ --format github        # every top-level model in a folder
+      myrabot-desc check -r . --strict                # every model of a repository (CI)
+      myrabot-desc check -r . --shard 2/4 --format sarif -o part2.sarif
+      myrabot-desc check --merge-sarif part*.sarif -o check.sarif
+      myrabot-desc check robot.urdf --select I,P --strict
+
+    \b
+    Exit codes: 0 no errors (no warnings either with --strict), 1 errors found,
+    2 a file could not be processed (one line each, the other files are still checked)
+    or the command line / configuration is wrong.
+    """
+    with guarded():
+        if list_rules:
+            for code, name, sev, summary, _doc in rule_table():
+                click.echo(f"{code}  {sev:<7}  {name:<28} {summary}")
+            return
+        if merge_sarif:
+            text = merge_sarif_files(inputs.files)
+            if output == "-":
+                click.echo(text, nl=False)
+            else:
+                write_output(output, text)
+            return
+        try:
+            tasks, help_url = plan(inputs, inertia, suggest, meshes, select, ignore, strict, recursive, config_file,
+                                   isolated, shard_spec, no_cache)
+        except UsageProblem as exc:
+            raise usage_error(exc) from None
+        progress = not quiet and sys.stderr.isatty()
+        results = run_tasks(tasks, jobs or default_jobs(), _progressbar if progress else None)
+        unused_findings(results)
+        code = exit_code(results)
+        text = render(fmt, results, __version__, exit_code=code, quiet=quiet, help_url=help_url,
+                      shard=shard_spec)
+        if output == "-":
+            click.echo(text, nl=False)
+        else:
+            write_output(output, click.unstyle(text))
+        for r in results:
+            if r.failure and (fmt != "text" or output != "-"):
+                click.echo(r.failure, err=True)
+    sys.exit(code)

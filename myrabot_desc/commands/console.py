@@ -1,0 +1,78 @@
+"""Terminal output and exit codes without click: one echoed line, and :class:`guarded`, which turns
+InputError (and any unexpected error) into one clear line and exit code 2.
+
+Used by every command, the click-free plain ``build`` path (commands/fastbuild.py) included, so
+nothing here imports click.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import sys
+
+from myrabot_desc.errors import InputError
+
+_ANSI = None            # compiled on first use (a plain build rarely prints a style)
+
+
+def echo(message: str, err: bool = True) -> None:
+    """click.echo of one line, without click: a newline added, ANSI styles stripped when the
+    stream is not a terminal, flushed."""
+    global _ANSI
+    stream = sys.stderr if err else sys.stdout
+    if stream is None:
+        return
+    out = message + "\n"
+    try:
+        tty = stream.isatty()
+    except Exception:
+        tty = False
+    if not tty and "\033" in out:
+        if _ANSI is None:
+            _ANSI = re.compile(r"\033\[[0-?]*[ -/]*[@-~]")   # click's own pattern (click._compat)
+        out = _ANSI.sub("", out)
+    stream.write(out)
+    stream.flush()
+
+
+def _is_click_exception(exc) -> bool:
+    click = sys.modules.get("click")      # not imported: it cannot be one of its exceptions
+    return click is not None and isinstance(exc, (click.exceptions.Exit, click.exceptions.Abort,
+                                                  click.ClickException))
+
+
+class guarded:
+    """``with guarded():`` turns InputError (and any unexpected error) into one clear line and
+    exit code 2. Never prints a traceback; set MYRABOT_DESC_DEBUG=1 to see one.
+    (A class, not contextlib.contextmanager: contextlib costs ``build``'s start ~1 ms.)"""
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, exc_type, exc, tb):
+        if exc_type is None or issubclass(exc_type, (SystemExit, KeyboardInterrupt)):
+            return False
+        if issubclass(exc_type, InputError):
+            echo(str(exc))
+            sys.exit(2)
+        if issubclass(exc_type, BrokenPipeError):  # `... | head` closed the pipe: not an error of ours
+            try:
+                devnull = os.open(os.devnull, os.O_WRONLY)
+                os.dup2(devnull, sys.stdout.fileno())
+            except OSError:
+                pass
+            sys.exit(0)
+        if issubclass(exc_type, RecursionError):
+            echo("error: input nests too deeply (recursion limit reached)")
+            sys.exit(2)
+        if issubclass(exc_type, MemoryError):
+            echo("error: input too large (out of memory)")
+            sys.exit(2)
+        if issubclass(exc_type, Exception):  # a bug of ours: still one line, still exit 2
+            if os.environ.get("MYRABOT_DESC_DEBUG") or _is_click_exception(exc):
+                return False
+            echo(f"error: internal error ({type(exc).__name__}: {exc}); "
+                 "set MYRABOT_DESC_DEBUG=1 for a traceback and please report it")
+            sys.exit(2)
+        return False

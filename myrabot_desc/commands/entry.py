@@ -1,0 +1,42 @@
+"""The console entry point (``myrabot-desc``).
+
+A plain ``build ...`` command line runs straight from commands/fastbuild.py, parsed from the same
+option tables as the click command, without importing click (issue 13: ``build`` must start faster
+than the xacro CLI). Everything else, including ``--help`` and any command line the plain
+parser does not take (unusual forms, errors), goes to the click group in commands/main.py, which
+gives its usual output and exit codes.
+
+The two imports inside main() are the point of this module: it picks which of the two to load,
+so that neither path pays for the other's imports, and the build engine is loaded only for a
+command line the plain path takes (not for ``build --help``). With commands/build.py's and
+commands/main.py's lazy subcommand table they are the only function-level imports of our own
+modules (tests/model/test_layers.py).
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+
+from myrabot_desc.commands.options import BUILD_OPTS, INPUT_OPTS, parse_plain
+
+
+def main(argv=None) -> int:
+    # Our numpy work is on small arrays: one BLAS thread is as fast, and OpenBLAS starting a
+    # thread pool per core costs ~50 ms of every command that imports numpy (check, convert,
+    # sim), more in each `check -j N` worker. The user's own setting wins.
+    os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+    args = sys.argv[1:] if argv is None else list(argv)
+    if args[:1] == ["build"] and parse_plain(args[1:], INPUT_OPTS + BUILD_OPTS) is not None:
+        from myrabot_desc.commands.fastbuild import fast_build
+
+        code = fast_build(args[1:])
+        if code is not None:
+            return code
+    from myrabot_desc.commands.main import main as cli
+
+    return cli(args=args)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

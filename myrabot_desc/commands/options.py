@@ -1,0 +1,227 @@
+"""The option tables every command shares, and the command line parsed without click.
+
+One definition per option (:class:`Opt`): click's option (``Opt.click_option``, :func:`input_options`)
+and the plain parser (:func:`parse_plain`, the fast ``build`` path in commands/fastbuild.py) both
+come from it. :class:`Inputs` is what the user asked to read (FILE, NAME:=VALUE, packages, safety
+options); commands/common.py adds loading the model. Nothing here imports click at its top (the
+functions that make click's options import it when called), lxml or the model: a plain ``build``
+and ``build --help`` import this module and must start fast (bench/bench_start.py).
+"""
+
+from __future__ import annotations
+
+from collections import namedtuple
+
+from myrabot_desc.errors import UsageProblem
+from myrabot_desc.safety import LIMITS
+
+__all__ = ["BUILD_OPTS", "INPUT_OPTS", "Inputs", "Opt", "UsageProblem", "input_options", "make_inputs", "parse_plain",
+           "usage_error"]
+
+
+class Opt(namedtuple("Opt", "decls dest kind help metavar choices")):
+    """One command-line option, the one definition of it: click's option and the fast parser
+    (parse_plain) both come from it. kind: "flag", "value" (one string, default None),
+    "multi" (repeatable, a tuple), "choice" (default choices[0], shown), "count" (a whole
+    number >= 1, default None)."""
+
+    __slots__ = ()
+
+    def click_option(self):
+        import click      # here, not at the top: the plain build path must not pay for click
+
+        kw = {"help": self.help}
+        if self.kind == "flag":
+            kw["is_flag"] = True
+        elif self.kind == "multi":
+            kw["multiple"] = True
+        elif self.kind == "choice":
+            kw.update(type=click.Choice(list(self.choices)), default=self.choices[0], show_default=True)
+        elif self.kind == "count":
+            kw.update(type=click.IntRange(min=1), default=None)
+        else:
+            kw["default"] = None
+        if self.metavar:
+            kw["metavar"] = self.metavar
+        return click.option(*self.decls, self.dest, **kw)
+
+
+# FILE [NAME:=VALUE ...] come first (click.argument "args"); then these, in --help order.
+INPUT_OPTS = (
+    Opt(("-p", "--package"), "packages", "multi",
+        "Where package NAME lives (for $(find NAME) and package://NAME). Repeatable.", "NAME=PATH", None),
+    Opt(("--package-path",), "package_paths", "multi",
+        "Folder searched for packages (package.xml or manifest.xml). Repeatable.", "DIR", None),
+    Opt(("--legacy",), "legacy", "choice",
+        "Upgrade ROS Electric/Fuerte xacro syntax (un-prefixed tags, bare macro calls).", None, ("auto", "on", "off")),
+    Opt(("--unsafe-eval",), "unsafe_eval", "flag",
+        "Evaluate ${} expressions without the allow-list (trusted files only).", None, None),
+    Opt(("--no-env",), "no_env", "flag", "Refuse $(env) and $(optenv).", None, None),
+    Opt(("--allow-path",), "allow_paths", "multi",
+        "Also allow includes and load_yaml under DIR. Repeatable.", "DIR", None),
+)
+
+
+# build's own options (commands/fastbuild.py runs them; commands/build.py is their click command).
+BUILD_OPTS = (
+    Opt(("-o", "--output"), "output", "value", "Write the URDF here ('-' for stdout). Default: stdout.",
+        "OUT.urdf", None),
+    Opt(("--deps",), "deps", "flag", "List the files the build reads (input, includes, YAML), one per line.",
+        None, None),
+    Opt(("--resolve-uris",), "resolve_uris", "flag", "Rewrite package:// URIs into absolute file:// paths.",
+        None, None),
+    Opt(("--allow-errors",), "allow_errors", "flag",
+        "Write the URDF even when the build reports errors (X002).", None, None),
+) + tuple(   # a --max-* flag for every limit of the table that has one
+    Opt((lim.flag,), lim.flag[2:].replace("-", "_"), "count", f"{lim.help[0].upper()}{lim.help[1:]} [{lim.default}].",
+        None, None) for lim in LIMITS if lim.flag)
+
+
+def parse_plain(argv, opts) -> dict | None:
+    """``argv`` parsed as click would parse it for these options (values by dest, the
+    positionals under "args"), when it uses only plain forms: ``--name VALUE``,
+    ``--name=VALUE``, ``-p VALUE``, flags, positionals. Anything else (``--help``, ``--``,
+    unknown or bundled short options, a missing or bad value, a value that starts with
+    ``-``) gives None: click then parses it, with its own messages and exit codes."""
+    by_decl = {d: o for o in opts for d in o.decls}
+    values = {o.dest: False if o.kind == "flag" else () if o.kind == "multi" else
+              o.choices[0] if o.kind == "choice" else None for o in opts}
+    args = []
+    i, n = 0, len(argv)
+    while i < n:
+        a = argv[i]
+        i += 1
+        if a[:1] != "-":
+            args.append(a)
+            continue
+        name, eq, value = a.partition("=") if a.startswith("--") else (a, "", None)
+        o = by_decl.get(name)
+        if o is None:
+            return None
+        if o.kind == "flag":
+            if eq:
+                return None
+            values[o.dest] = True
+            continue
+        if not eq:
+            if i >= n or (argv[i][:1] == "-" and argv[i] != "-"):
+                return None
+            value = argv[i]
+            i += 1
+        if o.kind == "multi":
+            values[o.dest] += (value,)
+        elif o.kind == "choice":
+            if value not in o.choices:
+                return None
+            values[o.dest] = value
+        elif o.kind == "count":
+            if not (value.isascii() and value.isdigit() and int(value) >= 1):
+                return None
+            values[o.dest] = int(value)
+        else:
+            values[o.dest] = value
+    values["args"] = tuple(args)
+    return values
+
+
+class Inputs:
+    """What the user asked to read, and how to build it (commands/common.ModelInputs also loads it)."""
+
+    def __init__(self, files=None, packages=None, package_paths=None, mappings=None, legacy: str = "auto",
+                 unsafe_eval: bool = False, no_env: bool = False, allow_paths=None):
+        self.files: list[str] = list(files or [])
+        self.packages: dict[str, str] = dict(packages or {})       # -p NAME=PATH
+        self.package_paths: list[str] = list(package_paths or [])  # --package-path DIR
+        self.mappings: dict[str, str] = dict(mappings or {})       # NAME:=VALUE
+        self.legacy = legacy
+        self.unsafe_eval = unsafe_eval
+        self.no_env = no_env
+        self.allow_paths: list[str] = list(allow_paths or [])
+
+    def __repr__(self) -> str:
+        return f"Inputs({', '.join(f'{k}={v!r}' for k, v in vars(self).items())})"
+
+    def __eq__(self, other):
+        return vars(self) == vars(other) if isinstance(other, Inputs) else NotImplemented
+
+    @property
+    def file(self) -> str | None:
+        return self.files[0] if self.files else None
+
+    def build_options(self) -> dict:
+        return dict(packages=self.packages, package_paths=self.package_paths, mappings=self.mappings,
+                    legacy=self.legacy, unsafe_eval=self.unsafe_eval, no_env=self.no_env,
+                    allow_paths=self.allow_paths)
+
+
+def _split_args(args: tuple[str, ...]) -> tuple[list[str], dict[str, str]]:
+    files, mappings = [], {}
+    for a in args:
+        if ":=" in a:
+            k, v = a.split(":=", 1)
+            mappings[k] = v
+        else:
+            files.append(a)
+    return files, mappings
+
+
+def _parse_packages(values: tuple[str, ...]) -> dict[str, str]:
+    out = {}
+    for v in values:
+        if "=" not in v:
+            raise UsageProblem(f"expected NAME=PATH, got {v!r}", param_hint="-p/--package")
+        k, p = v.split("=", 1)
+        out[k.strip()] = p
+    return out
+
+
+def make_inputs(values: dict, multiple: bool = False, cls: type = Inputs) -> Inputs:
+    """The Inputs (of class ``cls``) of parsed option values (click's or parse_plain's); UsageProblem
+    if they do not fit."""
+    files, mappings = _split_args(values.get("args", ()))
+    if len(files) > 1 and not multiple:
+        raise UsageProblem(f"expected one FILE, got {len(files)}: {' '.join(files)}")
+    return cls(files=files, packages=_parse_packages(values.get("packages", ())),
+                  package_paths=list(values.get("package_paths", ())), mappings=mappings,
+                  legacy=values.get("legacy", "auto"), unsafe_eval=values.get("unsafe_eval", False),
+                  no_env=values.get("no_env", False), allow_paths=list(values.get("allow_paths", ())))
+
+
+def usage_error(exc: UsageProblem):
+    """click's error for a UsageProblem: BadParameter when it names the option, else UsageError."""
+    import click
+
+    if exc.param_hint:
+        return click.BadParameter(str(exc), param_hint=exc.param_hint)
+    return click.UsageError(str(exc))
+
+
+def input_options(multiple: bool = False, cls: type = Inputs):
+    """Decorator: FILE [NAME:=VALUE ...] plus the package and safety options.
+
+    With ``multiple=True`` several FILEs are accepted (``check`` lints a folder's models).
+    Passes ``inputs`` (a ``cls``) to the command.
+    """
+    import functools
+
+    import click
+
+    def deco(f):
+        opts = [click.argument("args", nargs=-1, metavar="[FILE]..." if multiple else "[FILE] [NAME:=VALUE]...")]
+        opts += [o.click_option() for o in INPUT_OPTS]
+        for o in reversed(opts):
+            f = o(f)
+        names = ("args",) + tuple(o.dest for o in INPUT_OPTS)
+
+        @functools.wraps(f)
+        def wrapper(*a, **kw):
+            values = {k: kw.pop(k) for k in names if k in kw}
+            try:
+                inputs = make_inputs(values, multiple, cls)
+            except UsageProblem as exc:
+                raise usage_error(exc) from None
+            return f(*a, inputs=inputs, **kw)
+
+        return wrapper
+
+    return deco

@@ -1,0 +1,198 @@
+"""Where each value of the expanded document was written: recorded while xacro expands.
+
+A value written as a literal needs nothing recorded: its element's source annotation names the
+element it was copied from, and the attribute is there as written. Only values that hold ``$``
+get an origin, decided when xacro evaluates them:
+
+    (kind, name, src, attr, inner)
+
+* ``kind``  'property' (a ``<xacro:property>``), 'param' (a macro parameter given at the call),
+  'default' (a macro parameter's default in ``params=``), 'arg' (a ``<xacro:arg>`` default, or the
+  command line when ``src`` is None), 'expr' (computed: anything else);
+* ``name``  the property, parameter or arg name (None for 'expr');
+* ``src``   the index of the source element where the text is written (the build's list of
+  source elements), or None when it is not in a file;
+* ``attr``  the attribute of that element holding the text ('value', 'default', the parameter's
+  name at a call site, 'params', or '#text' for element text);
+* ``inner`` the origin of that text when it is not a literal itself (a property defined as
+  ``${other}``, a parameter passed ``${prop}``), else None.
+
+A value that is exactly ``${name}`` or ``$(arg name)`` takes the origin of that name; anything
+else is 'expr', written at the element's own attribute. The model turns these tuples into
+source spans (model/sources.py).
+
+Plain tuples and no imports beyond xacro's: this runs inside every build.
+"""
+
+from __future__ import annotations
+
+import re
+
+ONE_NAME = re.compile(r"\$\{\s*([A-Za-z_]\w*)\s*\}")
+ONE_ARG = re.compile(r"\$\(\s*arg\s+([^\s()]+)\s*\)")
+SRC_ATTR = "_mdsrc"
+XSRC_ATTR = "xacro:mdsrc"
+
+
+def src_index(node, attr: str = SRC_ATTR) -> int | None:
+    attrs = node._attrs
+    a = attrs.get(attr) if attrs else None
+    if a is None:
+        return None
+    v = a._value
+    return int(v) if v.isdigit() else None
+
+
+class Tracker:
+    """The origins of one build's ``$`` values (see the module doc)."""
+
+    def __init__(self, table_class, cli_args):
+        self.Table = table_class
+        self.origins: dict = {}          # expanded element -> {attribute or '#text': origin}
+        self.args: dict = {}             # arg name -> origin of its default
+        self.cli_args = set(cli_args)    # args given on the command line
+        self.pending: list = []          # macro calls being expanded: [caller symbols, origins, claimed]
+
+    # -------------------------------------------------------- classification
+    def symbol(self, name: str, symbols):
+        """The recorded origin of ``name`` as ``symbols`` sees it, or None."""
+        t = symbols
+        Table = self.Table
+        while isinstance(t, Table):
+            if dict.__contains__(t, name):
+                org = t.__dict__.get("_md_org")
+                return org.get(name) if org else None
+            t = t.parent
+        return None
+
+    def arg(self, name: str):
+        if name in self.cli_args:
+            return ("arg", name, None, None, None)
+        return self.args.get(name)
+
+    def classify(self, raw: str, symbols, src, attr):
+        """The origin of the text ``raw`` (holding '$'), written at ``src``/``attr``."""
+        m = ONE_NAME.fullmatch(raw.strip())
+        if m is not None:
+            org = self.symbol(m.group(1), symbols)
+            if org is not None:
+                return org
+        else:
+            m = ONE_ARG.fullmatch(raw.strip())
+            if m is not None:
+                org = self.arg(m.group(1))
+                if org is not None:
+                    return org
+        return ("expr", None, src, attr, None)
+
+    # -------------------------------------------------------- what eval_all sees
+    def attr(self, node, name: str, raw: str, symbols) -> None:
+        d = self.origins.get(node)
+        if d is None:
+            d = self.origins[node] = {}
+        d[name] = self.classify(raw, symbols, src_index(node), name)
+
+    def text(self, node, raw: str, symbols) -> None:
+        d = self.origins.get(node)
+        if d is None:
+            d = self.origins[node] = {}
+        d["#text"] = self.classify(raw, symbols, src_index(node), "#text")
+
+    def arg_default(self, name: str, src, default: str, symbols) -> None:
+        inner = self.classify(default, symbols, src, "default") if "$" in default else None
+        self.args[name] = ("arg", name, src, "default", inner)
+
+    # -------------------------------------------------------- definitions
+    def before_property(self, elt, table):
+        """What grab_property is about to define (read before xacro removes the element)."""
+        g = elt.getAttribute
+        name = g("name")
+        if not name or "$" in name:
+            return None
+        attr = "value" if elt.hasAttribute("value") else "default" if elt.hasAttribute("default") else None
+        if attr is None:            # a block property, or remove=
+            return None
+        if attr == "default" and name in table:
+            return None             # keeps the earlier definition
+        raw = g(attr)
+        src = src_index(elt, XSRC_ATTR)
+        inner = self.classify(raw, table, src, attr) if "$" in raw else None
+        return name, ("property", name, src, attr, inner), g("scope")
+
+    def after_property(self, pre, table) -> None:
+        name, org, scope = pre
+        target = table
+        if scope == "global":
+            target = table.top() if hasattr(table, "top") else table
+        elif scope == "parent":
+            target = table.parent
+            if not isinstance(target, self.Table):
+                return
+            import xacro
+
+            if not isinstance(table, xacro.NameSpace):
+                while isinstance(target, xacro.NameSpace):
+                    target = target.parent
+        if not isinstance(target, self.Table) or not dict.__contains__(target, name):
+            return
+        org_map = target.__dict__.get("_md_org")
+        if org_map is None:
+            org_map = target._md_org = {}
+        org_map[name] = org
+
+    def call(self, node, macro, symbols) -> None:
+        """A macro call about to expand: the origins of its parameters, claimed by the table of
+        the body's evaluation (``claim``)."""
+        src = src_index(node, XSRC_ATTR)
+        out = {}
+        given = set()
+        attrs = node._attrs or {}
+        for a in attrs.values():
+            name, raw = a._name, a._value
+            if name.startswith("xacro:"):
+                continue
+            given.add(name)
+            inner = self.classify(raw, symbols, src, name) if "$" in raw else None
+            out[name] = ("param", name, src, name, inner)
+        if macro is not None:
+            msrc = getattr(macro, "_md_src", None)
+            for param in macro.params:
+                if param in given or param[:1] == "*":
+                    continue
+                fwd, default = macro.defaultmap.get(param, (None, None))
+                org = self.symbol(fwd, symbols) if fwd is not None else None
+                if org is None and default is not None:
+                    inner = self.classify(default, symbols, msrc, "params") if "$" in default else None
+                    org = ("default", param, msrc, "params", inner)
+                if org is not None:
+                    out[param] = org
+        self.pending.append([symbols, out, False])
+
+    def claim(self, symbols) -> None:
+        """The first evaluation under a new table during a call is the body's: its parameters."""
+        top = self.pending[-1]
+        if not top[2] and symbols is not top[0] and isinstance(symbols, self.Table):
+            top[2] = True
+            org_map = symbols.__dict__.get("_md_org")
+            if org_map is None:
+                symbols._md_org = dict(top[1])
+            else:
+                org_map.update(top[1])
+
+    def done(self) -> None:
+        self.pending.pop()
+
+
+class SourceMap:
+    """What a build records of where its output came from (read by model/sources.py).
+
+    ``index[i]``: the source element output element ``i`` (document order) was copied from, or
+    None; ``origins[i]``: {attribute or '#text': origin} for its ``$`` values, or None;
+    ``locs[j]``/``offsets[j]``: source element ``j``'s Loc and the byte offset of its start tag
+    in its file (None where unknown); ``files``: shown name -> (path, bytes) of each file read.
+    """
+
+    __slots__ = ("index", "origins", "locs", "offsets", "files")
+
+    def __init__(self, index, origins, locs, offsets, files):
+        self.index, self.origins, self.locs, self.offsets, self.files = index, origins, locs, offsets, files

@@ -1,0 +1,64 @@
+"""What the test folders share: where things are, and the CLI run in-process.
+
+Importable from every test folder (``pythonpath = ["tests"]`` in pyproject.toml)::
+
+    from helpers import ROOT, FIXTURES, invoke
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from click.testing import CliRunner
+
+from myrabot_desc.commands.main import main
+
+ROOT = Path(__file__).resolve().parents[1]      # the repository
+TESTS = ROOT / "tests"
+FIXTURES = TESTS / "fixtures"                   # the seed's files, small xacro cases, wander_bot
+BAD = TESTS / "bad"                             # hostile inputs (hardening)
+CORPUS = TESTS / "corpus"                       # the real-robot corpus (data, see its README.md)
+SHIM = TESTS / "corpus_shim"                    # the test-only ament_index_python for the xacro CLI
+DATA = TESTS / "data"                           # schemas
+SEED = FIXTURES / "seed_myrabot"
+WANDER = FIXTURES / "wander_bot"
+
+
+def invoke(*args, **kwargs):
+    """``myrabot-desc ARGS`` in this process (click's CliRunner); the Result."""
+    return CliRunner().invoke(main, [str(a) for a in args], **kwargs)
+
+
+def corpus_robots() -> list[dict]:
+    """The entries of tests/corpus/robots.yaml (see its header)."""
+    import yaml
+
+    return yaml.safe_load((CORPUS / "robots.yaml").read_text())["robots"]
+
+
+def corpus_package_path(robot: dict) -> Path:
+    return CORPUS / robot.get("package_path", ".")
+
+
+def corpus_args(robot: dict) -> list[str]:
+    """The command-line arguments that read a corpus robot: its top file, its xacro args, --package-path."""
+    return [str(CORPUS / robot["top"]), *robot.get("args", "").split(), "--package-path",
+            str(corpus_package_path(robot))]
+
+
+def corpus_env(robot: dict) -> dict[str, str]:
+    """The environment a corpus robot is read with (the $(optenv) accessories its launch files set)."""
+    return {k: str(v) for k, v in robot.get("env", {}).items()}
+
+
+def corpus_robot(robot_id: str) -> dict:
+    return next(r for r in corpus_robots() if r["id"] == robot_id)
+
+
+def corpus_model(robot: dict):
+    """The Robot of a corpus entry, read with its xacro args and package path (its environment, for
+    the few entries that have one, is the caller's: monkeypatch corpus_env(robot))."""
+    from myrabot_desc.model.loader import load_robot
+
+    mappings = dict(a.split(":=", 1) for a in robot.get("args", "").split())
+    return load_robot(CORPUS / robot["top"], mappings=mappings, package_paths=[corpus_package_path(robot)])

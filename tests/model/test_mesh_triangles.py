@@ -1,0 +1,58 @@
+"""model.meshes.triangles: the lean STL/COLLADA readers give the very vertices and faces trimesh
+gives (so the viewer's and render's pictures do not change), and a render of the bundled robot
+no longer imports trimesh."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from helpers import ROOT
+from myrabot_desc.model import meshes
+
+ERD = Path(sys.prefix) / "lib" / f"python{sys.version_info.major}.{sys.version_info.minor}" / "site-packages" / \
+    "cmeel.prefix" / "share" / "example-robot-data" / "robots"
+SAMPLE = sorted(p for p in (ERD / "talos_data").rglob("*") if p.suffix.lower() in (".stl", ".dae"))[:12] + \
+    sorted(p for p in (ERD / "anymal_c_simple_description").rglob("*.dae"))[:4] + \
+    sorted(p for p in (ROOT / "myrabot_desc").rglob("*.stl"))[:6]
+
+
+def test_sample_is_real():
+    assert len(SAMPLE) >= 15 and {p.suffix.lower() for p in SAMPLE} >= {".stl", ".dae"}
+
+
+@pytest.mark.parametrize("path", SAMPLE, ids=lambda p: p.name)
+def test_triangles_equal_trimesh(path):
+    v, f = meshes.triangles(path)
+    m = meshes.load(path)
+    assert np.array_equal(v, m.vertices) and np.array_equal(f, m.faces)
+    assert len(f) > 0
+
+
+def test_obj_goes_through_trimesh(tmp_path):
+    obj = tmp_path / "quad.obj"
+    obj.write_text("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n")
+    v, f = meshes.triangles(obj)
+    assert v.shape == (4, 3) and f.shape == (2, 3)
+
+
+def test_bad_mesh_is_a_mesh_error(tmp_path):
+    stl = tmp_path / "empty.stl"
+    stl.write_bytes(b"\0" * 80 + (0).to_bytes(4, "little"))
+    with pytest.raises(meshes.MeshError):
+        meshes.triangles(stl)
+
+
+def test_scene_of_bundled_robot_imports_no_trimesh():
+    code = ("import sys\nfrom myrabot_desc.model.loader import load_robot, bundled_path\n"
+            "from myrabot_desc.view.scene import build_scene\n"
+            "s = build_scene(load_robot(str(bundled_path())))\n"
+            "print(len(s.parts), 'trimesh' in sys.modules)")
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert p.returncode == 0, p.stderr
+    parts, imported = p.stdout.split()
+    assert int(parts) > 20 and imported == "False"

@@ -32,9 +32,11 @@ def apply(data: bytes, edits) -> bytes:
     todo = sorted(set((e.start, e.end, e.new) for e in edits))
     out = []
     pos = 0
-    for i, (start, end, new) in enumerate(todo):
-        if start < pos:
+    last = None
+    for start, end, new in todo:
+        if start < pos or (start, end) == last:
             raise Conflict(f"bytes {start}-{end} are edited twice")
+        last = (start, end)
         out.append(data[pos:start])
         out.append(new.encode("utf-8"))
         pos = end

@@ -112,7 +112,7 @@ def _fix_line(info) -> str:
     """'**--fix:** always, safe. What is edited and why.' (or that there is none)."""
     if info.availability == "never":
         return "**`--fix`:** never (the repair needs a decision only the model's author can make)."
-    return f"**`--fix`:** {info.availability}, {info.safety}. {info.how}"
+    return f"**`--fix`:** {info.availability}, {info.safety}. {info.how[:1].upper()}{info.how[1:]}"
 
 
 if __name__ == "__main__":

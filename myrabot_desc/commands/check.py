@@ -148,12 +148,11 @@ def _fix(tasks, fmt, output, quiet, help_url, shard_spec, unsafe, write: bool) -
         for f in r.fixes or ():
             count[f["status"]] = count.get(f["status"], 0) + 1
     failed = any(r.failure for r in results)
+    remaining = sum(len(f.after) for f in run.fixes if f is not None)
     if write:
         write_fixed(run.files)
-        remaining = sum(len(r.diagnostics) for r in results)
         code = exit_code(results)
     else:
-        remaining = sum(len(r.diagnostics) for r in results) - count.get("proposed", 0)
         code = 2 if failed else (1 if run.files else 0)
     line = summary(count.get("applied", count.get("proposed", 0)), count.get("unsafe", 0),
                    count.get("not-editable", 0), count.get("refused", 0), remaining, write)

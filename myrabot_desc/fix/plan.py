@@ -133,10 +133,11 @@ class Planner:
                     problem = r
                     break
                 es, kind, note, uses = r
-                if kind in ("property", "default", "arg"):
-                    safety = "unsafe"
                 if note:
                     notes.append(note)
+                if kind in ("property", "default", "arg"):
+                    safety = "unsafe"
+                    notes.extend(self._shared_note(e, uses) for e in es)
                 for e in es:
                     edits.append((e, uses))
                     site = sites.setdefault((e.file, e.start, e.end), [set(), 0])

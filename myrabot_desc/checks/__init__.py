@@ -35,7 +35,10 @@ def check_robot(robot, options: CheckOptions | None = None, select=(), ignore=()
         if ignore and matches(code, ignore):
             continue
         for f in r.func(ctx) or ():
-            out.append(to_diagnostic(r, f))
+            d = to_diagnostic(r, f)
+            out.append(d)
+            if f.fix is not None:
+                ctx.fixes.append((d, f.fix))
     if select:
         out = [d for d in out if matches(d.code, select)]
     if ignore:

@@ -29,6 +29,7 @@ class Context:
         self.suggestions: list[tuple[str, str]] = []   # (link, "<inertia .../>") for --suggest
         self.suppressions_seen: list = []   # (file, line, code) of inline suppressions (check_robot fills them)
         self.suppressions_used: list = []
+        self.fixes: list = []               # (Diagnostic, rule.Fix) of the findings a rule knows how to repair
 
     # ---------------------------------------------------------------- locations
     def loc_of(self, el) -> Loc | None:

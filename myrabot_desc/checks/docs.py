@@ -52,6 +52,12 @@ def render() -> str:
     out += ["Each rule below shows an example that `check` reports (tests run every one of them) and its",
             "fix. An example that is not a whole file is a snippet placed in this minimal robot:", "",
             "```xml", TEMPLATE.replace("{snippet}", "  <!-- the snippet -->").rstrip("\n"), "```", ""]
+    out += ["`check --fix` repairs a finding in the file where the value is written (a literal in place; a",
+            "property or a parameter's default is a definition every use shares, so editing it is unsafe; a",
+            "computed value is not edited: the report gives the value needed and the expression's location).",
+            "**Safe** fixes keep the model's meaning or restore one the model states elsewhere; **unsafe** ones",
+            "need `--unsafe-fixes`. Each fix is proven first: the fixed sources are rebuilt and rechecked, and",
+            "written only when the finding is gone and no new error appears. `--diff` shows the edits.", ""]
     rows = [(c, r.name, r.severity, r.summary) for c, r in rules.items()]
     rows += [(c, r.name, r.severity, r.summary) for c, r in EXTERNAL_RULES.items()]
     order = list(FAMILIES)
@@ -76,6 +82,8 @@ def render() -> str:
                 f"**Why is this bad?** {why}", ""]
         out += _example(c, ex)
         out += [f"**Fix.** {fix}".rstrip(), ""] if fix or ex.good is not None else []
+        if c in rules:
+            out += [_fix_line(rules[c].fix), ""]
         if ex.good is not None:
             out += ["```xml", ex.good.rstrip("\n"), "```", ""]
     out += ["## JSON report schema (`--format json`)", "",
@@ -98,6 +106,13 @@ def render() -> str:
             "bytes. `--format github` prints `::error file=F,line=L,title=CODE name::message` workflow commands",
             "(`::notice` for info); `--format sarif` writes SARIF 2.1.0 with one `rules` entry per code above.", ""]
     return "\n".join(out)
+
+
+def _fix_line(info) -> str:
+    """'**--fix:** always, safe. What is edited and why.' (or that there is none)."""
+    if info.availability == "never":
+        return "**`--fix`:** never (the repair needs a decision only the model's author can make)."
+    return f"**`--fix`:** {info.availability}, {info.safety}. {info.how[:1].upper()}{info.how[1:]}"
 
 
 if __name__ == "__main__":

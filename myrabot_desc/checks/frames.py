@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from myrabot_desc.checks.rule import Finding, rule
+from myrabot_desc.checks.rule import Finding, Fix, FixInfo, InsertAfter, InsertInto, SetValue, rule
 from myrabot_desc.checks.urdf_syntax import local, suggest
 
 FRAME_PARAMS = ("bodyName", "frameName", "frameId", "frame_name", "robotBaseFrame", "robot_base_frame",
@@ -165,7 +165,12 @@ def _is_camera(sensor) -> bool:
       message="camera front_camera stamps images in camera_link (plugin frameName), whose z axis is (0 0 1) in "
               "camera_link; the camera looks along camera_link's +x, so the image frame should be an optical "
               'frame (z forward): add a frame with rpy="-1.5708 0 -1.5708" under camera_link and use it (REP-103)',
-      good=_CAMERA.format(fov="1.047", frame="camera_optical_frame"))
+      good=_CAMERA.format(fov="1.047", frame="camera_optical_frame"),
+      fix=FixInfo("sometimes", "unsafe", "a link `<camera link>_optical_frame` on a fixed joint with rpy "
+                  "\"-1.5708 0 -1.5708\" is added after the camera's link, and the camera's plugin names it "
+                  "(frameName / frame_name, set or added). Unsafe: it adds a link and a joint, and the images' "
+                  "frame changes for every consumer. A link written in a macro gets the frame in the macro body: "
+                  "if the macro makes several cameras the names collide and the fix is refused."))
 def optical_frame(ctx):
     """Cameras report in a REP-103 optical frame: z forward, x right, y down.
 
@@ -195,7 +200,29 @@ def optical_frame(ctx):
                       f"so the image frame should be an optical frame (z forward): add a frame with "
                       f"rpy=\"-1.5708 0 -1.5708\" under {s.reference} and use it (REP-103)", loc,
                       {"sensor": s.name, "frame": frame, "z_axis": z.tolist(),
-                       "fix": {"parent": s.reference, "rpy": [-math.pi / 2, 0.0, -math.pi / 2]}})
+                       "fix": {"parent": s.reference, "rpy": [-math.pi / 2, 0.0, -math.pi / 2]}},
+                      fix=_optical_fix(r, s, how))
+
+
+def _optical_fix(robot, sensor, how: str) -> Fix | None:
+    """S003's fix: an optical frame under the camera's link, named by the camera's plugin."""
+    plugin = next(iter(sensor.plugins), None)
+    if plugin is None:
+        return None
+    link = sensor.reference
+    name = f"{link}_optical_frame"
+    edits = []
+    if name not in robot.links:
+        edits.append(InsertAfter(robot.links[link],
+                                 f'<link name="{name}"/>\n<joint name="{link}_optical_joint" type="fixed">\n'
+                                 f'  <parent link="{link}"/>\n  <child link="{name}"/>\n'
+                                 f'  <origin xyz="0 0 0" rpy="-1.5708 0 -1.5708"/>\n</joint>'))
+    if how.startswith("plugin "):
+        edits.append(SetValue(plugin, how.split(" ", 1)[1], name))
+    else:
+        key = "frame_name" if any("_" in k for k in plugin.params) else "frameName"
+        edits.append(InsertInto(plugin, f"<{key}>{name}</{key}>"))
+    return Fix(tuple(edits), "unsafe", f"optical frame {name} added")
 
 
 @rule("S004", "sensor-on-massless-link", "warning",

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from collections import defaultdict
 
-from myrabot_desc.checks.rule import Finding, rule
+from myrabot_desc.checks.inertia_geometry import Solid, inertia_line, solids, tensor_fix
+from myrabot_desc.checks.rule import Finding, Fix, FixInfo, InsertInto, SetValue, rule
 from myrabot_desc.model.inertia import principal_moments
 
 TRIANGLE_TOL = 1e-3      # relative: a + b >= c (1 - tol); URDF files round to ~6 digits
@@ -37,7 +38,13 @@ def _has_geometry(ctx, head: str) -> list[str]:
 @rule("I001", "moving-link-mass", "error",
       bad=_inertial(_FINGER_BOX),
       message="link finger moves (joint finger_joint, revolute) and has geometry but no mass",
-      good=_inertial(_FINGER_BOX + "\n" + _inertia(0.02, 6.667e-06, 6.667e-06, 1.333e-06)))
+      good=_inertial(_FINGER_BOX + "\n" + _inertia(0.02, 6.667e-06, 6.667e-06, 1.333e-06)),
+      fix=FixInfo("sometimes", "unsafe", "when the link's geometry can be measured (primitives; meshes with "
+                  "--inertia), it gets a mass and the solid-body inertia at that mass, centred on the geometry: "
+                  "an `<inertial>` is added, or the massless one filled in. The mass is an estimate: the geometry's "
+                  "volume times the median density of the robot's other links whose mass and geometry are known "
+                  "(1000 kg/m³, about that of plastic parts, when there are none). Unsafe: the real mass is the "
+                  "maker's to give."))
 def moving_link_mass(ctx):
     """A link that moves (its parent joint is not fixed) and has geometry needs a positive mass.
 
@@ -56,7 +63,7 @@ def moving_link_mass(ctx):
             yield Finding(f"link {head} moves (joint {pj.name}, {pj.type}) and has geometry but no mass"
                           + (f" (nor do the links fixed to it: {', '.join(g for g in geo if g != head)})"
                              if len(geo) > 1 or geo[0] != head else ""),
-                          r.links[head].loc, {"link": head, "joint": pj.name})
+                          r.links[head].loc, {"link": head, "joint": pj.name}, fix=mass_fix(ctx, r.links[head]))
 
 
 @rule("I002", "massless-moving-frame", "warning",
@@ -116,7 +123,9 @@ def principal(i) -> list[float]:
 @rule("I004", "inertia-positive-definite", "error",
       bad=_inertial(_inertia(0.001, 9e-08, 3.5e-08, 1e-08, ixz=6.3e-08), "antenna", "fixed"),
       message="link antenna: inertia not positive definite, principal moments -2.463e-08/3.5e-08/1.246e-07",
-      good=_inertial(_inertia(0.001, 9e-08, 9e-08, 1e-08), "antenna", "fixed"))
+      good=_inertial(_inertia(0.001, 9e-08, 9e-08, 1e-08), "antenna", "fixed"),
+      fix=FixInfo("sometimes", "unsafe", "when the link's geometry can be measured, the tensor becomes the solid "
+                  "body's at the declared mass (as I006). Unsafe: it assumes a uniform density."))
 def positive_definite(ctx):
     """An inertia tensor must be positive definite (all principal moments > 0).
 
@@ -134,7 +143,7 @@ def positive_definite(ctx):
         if min(ev) < -1e-9 * scale and -min(ev) > ZERO_MOMENT:
             yield Finding(f"link {link.name}: inertia not positive definite, principal moments "
                           + "/".join(f"{e:.4g}" for e in ev), i.loc or link.loc,
-                          {"link": link.name, "principal": list(ev)})
+                          {"link": link.name, "principal": list(ev)}, fix=geometry_fix(ctx, link))
         elif min(ev) <= max(1e-12 * scale, ZERO_MOMENT) and triangle_gap(i) is None:
             if ctx.moving(link.name):         # (0, 0, c) is no rod: I005 reports it
                 yield Finding(f"link {link.name} ({i.mass:g} kg) has a zero principal moment of inertia "
@@ -145,7 +154,11 @@ def positive_definite(ctx):
 @rule("I005", "inertia-triangle", "error",
       bad=_inertial(_inertia(0.05, 0.002, 0, 0)),
       message="link finger: impossible inertia, principal moments 0 + 0 = 0 < 0.002 (triangle inequality)",
-      good=_inertial(_inertia(0.05, 0.002, 0.002, 0.0001)))
+      good=_inertial(_inertia(0.05, 0.002, 0.002, 0.0001)),
+      fix=FixInfo("sometimes", "unsafe", "when the link's geometry can be measured, the tensor becomes the solid "
+                  "body's at the declared mass (as I006); otherwise, for a diagonal tensor, the two smaller "
+                  "moments are raised to half the largest (a flat plate's proportions, the least change that "
+                  "satisfies A + B ≥ C). Unsafe: both are estimates."))
 def triangle(ctx):
     """The principal moments must satisfy the triangle inequality: A + B ≥ C.
 
@@ -165,7 +178,58 @@ def triangle(ctx):
             a, b, c = gap
             yield Finding(f"link {link.name}: impossible inertia, principal moments {a:.4g} + {b:.4g} = {a + b:.4g} "
                           f"< {c:.4g} (triangle inequality)", i.loc or link.loc,
-                          {"link": link.name, "principal": [a, b, c], "declared": _decl(i)})
+                          {"link": link.name, "principal": [a, b, c], "declared": _decl(i)},
+                          fix=geometry_fix(ctx, link) or _rebalanced(i))
+
+
+DEFAULT_DENSITY = 1000.0   # kg/m³: plastic parts, when the robot gives no density of its own
+
+
+def geometry_fix(ctx, link) -> Fix | None:
+    """The solid body's tensor at the declared mass, when the link's geometry can be measured."""
+    s = solids(ctx).get(link.name)
+    if s is None or s.props is None:
+        return None
+    _com, t = s.in_inertial_frame()
+    return tensor_fix(link.inertial, t.tolist(), f"inertia of {link.name} from its {s.source} geometry")
+
+
+def _rebalanced(i) -> Fix | None:
+    """A diagonal tensor breaking A + B >= C: the two smaller moments raised to half the largest."""
+    if i.ixy or i.ixz or i.iyz:
+        return None
+    vals = {"ixx": i.ixx, "iyy": i.iyy, "izz": i.izz}
+    big = max(vals, key=vals.get)
+    half = float(f"{vals[big] / 2:.4g}")
+    edits = tuple(SetValue(i, k, half) for k, v in vals.items() if k != big and v < half)
+    return Fix(edits, "unsafe", f"the two smaller moments raised to {half:g}") if edits else None
+
+
+def robot_density(ctx) -> float:
+    """The median density of the links whose mass and geometry are both known."""
+    d = sorted(s.link.inertial.mass / s.props.volume for s in solids(ctx).values()
+               if s.props is not None and s.props.volume > 0 and not s.marker)
+    return d[len(d) // 2] if d else DEFAULT_DENSITY
+
+
+def mass_fix(ctx, link) -> Fix | None:
+    """I001's fix: an estimated mass (see the rule) and its solid-body inertia."""
+    s = Solid(ctx, link)
+    if s.props is None or s.props.volume <= 0:
+        return None
+    density = robot_density(ctx)
+    mass = float(f"{density * s.props.volume:.3g}")
+    t = (s.props.inertia * mass).tolist()          # props are per kg (Solid measures at 1 kg)
+    title = f"mass {mass:g} kg ({density:.0f} kg/m³ × {s.props.volume:.3g} m³) and its inertia"
+    i = link.inertial
+    if i is None:
+        com = " ".join(f"{float(f'{c:.4g}') + 0.0:g}" for c in s.props.com)
+        line = inertia_line(t)
+        return Fix((InsertInto(link, f'<inertial>\n  <origin xyz="{com}" rpy="0 0 0"/>\n  <mass value="{mass:g}"/>\n'
+                                     f'  {line}\n</inertial>'),), "unsafe", title)
+    if any(i.origin.rpy):
+        return None
+    return Fix((SetValue(i, "mass", mass),) + tensor_fix(i, t, title).edits, "unsafe", title)
 
 
 @rule("I009", "placeholder-inertia", "warning",

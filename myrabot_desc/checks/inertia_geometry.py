@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 
 from myrabot_desc.checks.examples import tetrahedron_stl
-from myrabot_desc.checks.rule import Finding, rule
+from myrabot_desc.checks.rule import Finding, Fix, FixInfo, SetValue, rule
 from myrabot_desc.model import shapes as G
 from myrabot_desc.model.kinematics import pose_matrix, pose_stack
 
@@ -120,7 +120,10 @@ def inertia_line(t) -> str:
       message="link chassis: inertia ixx/iyy/izz 1/1/1 kg·m², but a solid box 0.3×0.25×0.1 m of 1 kg gives "
               "0.00604/0.00833/0.0127 (ratio 166×/120×/79×); fix: "
               '<inertia ixx="0.006042" ixy="0" ixz="0" iyy="0.008333" iyz="0" izz="0.01271"/>',
-      good=_part(_collision(_BOX) + "\n" + _inertial(1, 0.006042, 0.008333, 0.01271)))
+      good=_part(_collision(_BOX) + "\n" + _inertial(1, 0.006042, 0.008333, 0.01271)),
+      fix=FixInfo("always", "unsafe", "the six `<inertia>` values become the solid body's (4 significant digits, "
+                  "as the message prints them). Unsafe: it assumes a uniform density filling the collision "
+                  "geometry, which a hollow shell or a part with a motor inside is not."))
 def inertia_vs_geometry(ctx):
     """The inertia differs more than 10× from the solid body of the link's collision geometry.
 
@@ -170,7 +173,14 @@ def inertia_vs_geometry(ctx):
                 # tuples: the report writes them as lists; the collector stops scanning them (8 lists x 20,000 links)
                 {"link": name, "declared": dd, "computed": cd, "ratios": tuple(ratios),
                  "geometry": s.source, "fix": line, "computed_tensor": comp, "computed_com": com},
-                severity=s.severity)
+                severity=s.severity, fix=tensor_fix(i, comp, f"inertia of {name} from its {s.source} geometry"))
+
+
+def tensor_fix(inertial, t, title: str, safety: str = "unsafe") -> Fix:
+    """Set the six values of ``inertial``'s <inertia> to tensor ``t`` (4 significant digits, as
+    inertia_line prints them)."""
+    keys = (("ixx", 0, 0), ("ixy", 0, 1), ("ixz", 0, 2), ("iyy", 1, 1), ("iyz", 1, 2), ("izz", 2, 2))
+    return Fix(tuple(SetValue(inertial, k, float(f"{t[a][b]:.4g}") + 0.0) for k, a, b in keys), safety, title)
 
 
 def _ratio(r: float) -> str:

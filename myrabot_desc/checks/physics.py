@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from myrabot_desc.checks.examples import drive_example as _drive
-from myrabot_desc.checks.rule import Finding, rule
+from myrabot_desc.checks.rule import Finding, Fix, FixInfo, SetValue, rule
 from myrabot_desc.errors import InputError
 from myrabot_desc.model import drive as D
 from myrabot_desc.model.inertia import eigh3, tensor
@@ -147,7 +147,11 @@ def _tip(ctx, hull, com, zmin):
       bad=_drive(z="0.03"),
       message="with base_link at z 0, collision geometry reaches z -0.05 m (left_wheel, right_wheel): the robot "
               "spawns 50 mm into the ground",
-      good=_drive())
+      good=_drive(),
+      fix=FixInfo("sometimes", "unsafe", "when the root link has no geometry and one child joint (base_footprint "
+                  "→ base_link), that joint's origin z rises by the depth given, so every link below the root "
+                  "rises with it and the lowest geometry touches z = 0. Unsafe: which origin moves is a choice "
+                  "(the spawn height in a launch file is another); the root's other uses of that frame move too."))
 def spawn_penetration(ctx):
     """Collision geometry below the ground when a wheeled robot is spawned with its root at z = 0.
 
@@ -167,7 +171,20 @@ def spawn_penetration(ctx):
         yield Finding(f"with {ctx.robot.root} at z 0, collision geometry reaches z {below[0][0]:.3g} m "
                       f"({', '.join(names)}): the robot spawns {depth * 1000:.0f} mm into the ground",
                       ctx.robot.links[ctx.robot.root].loc, {"links": names, "min_z": below[0][0],
-                                                            "fix": {"raise_by": depth}})
+                                                            "fix": {"raise_by": depth}},
+                      fix=_raise_fix(ctx.robot, depth))
+
+
+def _raise_fix(robot, depth: float) -> Fix | None:
+    """P002's fix: the root's one child joint rises by ``depth`` (root without geometry only)."""
+    root = robot.links[robot.root]
+    kids = robot.child_joints(root.name)
+    if root.visuals or root.collisions or len(kids) != 1:
+        return None
+    j = kids[0]
+    x, y, z = j.origin.xyz
+    return Fix((SetValue(j, "origin.xyz", (x, y, round(z + depth, 6))),), "unsafe",
+               f"joint {j.name} raised by {depth * 1000:.0f} mm")
 
 
 @rule("P003", "dynamics-finite", "error",

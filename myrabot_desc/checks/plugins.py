@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import difflib
+
 from myrabot_desc.checks.examples import ELECTRIC_IMU, MODERN_IMU
 from myrabot_desc.checks.examples import drive_example as _drive
-from myrabot_desc.checks.rule import Finding, rule
+from myrabot_desc.checks.rule import Finding, Fix, FixInfo, InsertInto, RemoveElement, RenameTag, SetValue, rule
 from myrabot_desc.checks.urdf_syntax import local, suggest
 from myrabot_desc.materials.resolve import resolver_for
 from myrabot_desc.model import drive as D
@@ -43,7 +45,11 @@ def _geometry(ctx, d):
       bad=_drive(sep="0.4"),
       message="wheelSeparation 0.4 m, but the wheel joints left_wheel_joint and right_wheel_joint are 0.3 m apart "
               "(y 0.15 and -0.15): the robot turns at 1.33× the commanded rate (before any diameter error)",
-      good=_drive())
+      good=_drive(),
+      fix=FixInfo("sometimes", "safe", "the plugin's separation parameter becomes the distance between the wheel "
+                  "joints, when the plugin writes the parameter (a default is not inserted). Safe: the simulator "
+                  "moves the wheels where the URDF puts them; the plugin's number only has to agree. The other "
+                  "direction (moving the wheels to the plugin's number) is never done: it changes the robot."))
 def wheel_separation(ctx):
     """A diff-drive plugin's wheel separation must match the distance between the wheels in the URDF.
 
@@ -67,14 +73,17 @@ def wheel_separation(ctx):
                           f"{real:.3g} m apart (y {lw.centre[1]:.3g} and {rw.centre[1]:.3g}): the robot turns at "
                           f"{sep / real:.3g}× the commanded rate (before any diameter error)", p.loc,
                           {"plugin": p.name, "param": spec.separation, "value": sep, "urdf": real,
-                           "fix": round(real, 6)})
+                           "fix": round(real, 6)},
+                          fix=_param_fix(p, spec.separation, round(real, 6)))
 
 
 @rule("G002", "drive-wheel-size", "error",
       bad=_drive(dia="0.2"),
       message="wheelDiameter 0.2 m, but wheel left_wheel (joint left_wheel_joint) has a collision diameter of "
               "0.16 m: the robot drives at 0.8× the commanded speed",
-      good=_drive())
+      good=_drive(),
+      fix=FixInfo("sometimes", "safe", "the plugin's wheel diameter (or radius) parameter becomes the wheel's "
+                  "collision size, when the plugin writes it. Safe for the reason G001 gives."))
 def wheel_size(ctx):
     """A diff-drive plugin's wheel diameter (or radius) must match the wheel's collision geometry.
 
@@ -99,7 +108,8 @@ def wheel_size(ctx):
                               f"{real:.3g} m: the robot drives at "
                               f"{f'{real / val:.3g}×' if val else 'an infinite multiple of'} the commanded speed",
                               p.loc,
-                              {"plugin": p.name, "param": key, "value": val, "urdf": real, "fix": round(real, 6)})
+                              {"plugin": p.name, "param": key, "value": val, "urdf": real, "fix": round(real, 6)},
+                              fix=_param_fix(p, key, round(real, 6)))
                 break
 
 
@@ -222,7 +232,10 @@ def drive_axis(ctx):
               "left_wheel_joint (y 0.15) with the right wheel's speed and right_wheel_joint (y -0.15) with the left "
               "one's: the robot turns the wrong way (a commanded 0.5 rad/s turns at -0.5 rad/s, turn ratio -1; the "
               "wheels run at v ± 0.075 m/s the other way round)",
-      good=_drive())
+      good=_drive(),
+      fix=FixInfo("always", "safe", "`<legacyMode>` becomes false (inserted when absent). Safe: the robot then "
+                  "turns the way its URDF and REP-103 say; a package that named its wheels the other way round "
+                  "for legacy mode is not reported, so not changed."))
 def drive_legacy_mode(ctx):
     """A ROS 1 gazebo_ros_diff_drive in legacy mode turns the wrong way.
 
@@ -250,7 +263,8 @@ def drive_legacy_mode(ctx):
                       f"wrong way (a commanded {w:g} rad/s turns at {-w:g} rad/s, turn ratio -1; the wheels run at "
                       f"v ± {w * sep / 2:.3g} m/s the other way round)",
                       p.loc, {"plugin": p.name, "param": "legacyMode", "explicit": d.legacy_explicit,
-                              "turn_ratio": -1.0, "fix": "false"})
+                              "turn_ratio": -1.0, "fix": "false"},
+                      fix=_param_fix(p, "legacyMode", "false", insert=not d.legacy_explicit))
 
 
 @rule("G014", "drive-summary", "info",
@@ -287,7 +301,10 @@ def drive_summary(ctx):
 @rule("G007", "plugin-unknown-parameter", "warning",
       bad=_drive(extra="<torque>5</torque>"),
       message="gazebo_ros_diff_drive (ROS 1) does not read <torque> (ROS 1 gazebo_ros_diff_drive reads wheelTorque)",
-      good=_drive())
+      good=_drive(),
+      fix=FixInfo("sometimes", "safe", "a parameter the plugin does not read is removed (safe: nothing reads it); "
+                  "one that is a near miss of exactly one parameter the plugin reads is renamed to it (unsafe: the "
+                  "plugin starts reading the value). A parameter of another version of the plugin is left alone."))
 def unknown_params(ctx):
     """A parameter that the (recognised) plugin does not read.
 
@@ -316,7 +333,27 @@ def unknown_params(ctx):
                 msg += f" (it is a {other} parameter)"
             if guess and not hint:
                 msg += f"; did you mean <{guess}>?"
-            yield Finding(msg, p.loc, {"plugin": p.name, "param": k, "suggestion": guess})
+            yield Finding(msg, p.loc, {"plugin": p.name, "param": k, "suggestion": guess},
+                          fix=_unread_fix(p, c, k, spec.known, hint, other))
+
+
+def _param_fix(plugin, key: str, value, insert: bool = False) -> Fix | None:
+    """Set the plugin's parameter ``key`` (or add it, with ``insert``)."""
+    if key in plugin.params:
+        return Fix((SetValue(plugin, key, value),), "safe", f"<{key}> {value}")
+    if insert:
+        return Fix((InsertInto(plugin, f"<{key}>{value}</{key}>"),), "safe", f"<{key}>{value}</{key}> added")
+    return None
+
+
+def _unread_fix(plugin, el, key: str, known, hint, other) -> Fix | None:
+    """G007's fix: rename a near miss of exactly one known parameter, else remove what nothing reads."""
+    if other:
+        return None
+    near = difflib.get_close_matches(key, sorted(known), n=2, cutoff=0.8)
+    if len(near) == 1 and not hint:
+        return Fix((RenameTag(el, near[0]),), "unsafe", f"<{key}> renamed <{near[0]}>")
+    return Fix((RemoveElement(el),), "safe", f"<{key}> removed")
 
 
 @rule("G008", "electric-plugin-attribute", "error",

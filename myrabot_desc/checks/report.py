@@ -43,6 +43,7 @@ class FileResult:
     failure_loc: object = None                  # Loc of the failure (the input when nothing better is known)
     suppressions_seen: list = field(default_factory=list)   # (file, line, code) for codes the run checks
     suppressions_used: list = field(default_factory=list)   # those that silenced a finding
+    fixes: list | None = None                   # check --fix/--diff: each fix as data (fix/report.change_data)
 
     def count(self, severity: str) -> int:
         return sum(1 for d in self.diagnostics if d.severity == severity)
@@ -172,6 +173,8 @@ def render_json(results, version: str) -> str:
                  "counts": {s: r.count(s) for s in ("error", "warning", "info")},
                  "diagnostics": [diag_json(d) for d in r.diagnostics],
                  "suggestions": [{"link": l, "inertia": s} for l, s in r.suggestions]}
+        if r.fixes is not None:
+            entry["fixes"] = _plain(r.fixes)
         doc["files"].append(entry)
     return json.dumps(doc, indent=2, ensure_ascii=False) + "\n"
 
@@ -282,6 +285,11 @@ def render_sarif(results, version: str, exit_code: int = 0, help_url: str | None
             props = _plain({k: v for k, v in d.data.items() if k != "rule"})
             if props:
                 item["properties"] = props
+            fixes = [sarif_fix(f, location) for f in (r.fixes or ())
+                     if f.get("edits") and f["status"] in ("proposed", "unsafe")
+                     and (f["code"], f["message"]) == (d.code, d.message)]
+            if fixes:
+                item["fixes"] = fixes
             res.append(item)
     invocation = {"executionSuccessful": exit_code in (0, 1), "exitCode": exit_code,
                   "toolExecutionNotifications": notes}
@@ -295,6 +303,20 @@ def render_sarif(results, version: str, exit_code: int = 0, help_url: str | None
            "results": res}
     doc = {"$schema": SARIF_SCHEMA, "version": "2.1.0", "runs": [run]}
     return json.dumps(doc, indent=2, ensure_ascii=False) + "\n"
+
+
+def sarif_fix(f: dict, location) -> dict:
+    """A proposed fix (fix/report.change_data) as a SARIF fix: one artifactChange per file, each edit a
+    replacement of a byte region."""
+    changes: dict = {}
+    for e in f["edits"]:
+        changes.setdefault(e["file"], []).append(
+            {"deletedRegion": {"byteOffset": e["start"], "byteLength": e["end"] - e["start"]},
+             "insertedContent": {"text": e["new"]}})
+    text = f["title"] + (" (unsafe: --unsafe-fixes)" if f["safety"] == "unsafe" else "")
+    return {"description": {"text": text},
+            "artifactChanges": [{"artifactLocation": location(file, None)["physicalLocation"]["artifactLocation"],
+                                 "replacements": reps} for file, reps in changes.items()]}
 
 
 def merge_sarif(docs: list[dict]) -> dict:

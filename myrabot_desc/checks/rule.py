@@ -69,6 +69,94 @@ class Example:
     note: str = ""                   # one line shown with the example (what the extra files are)
 
 
+# ---------------------------------------------------------------- fixes
+# A rule says what would repair a finding in terms of the model (set this field of this part to this
+# value, remove this attribute...); `check --fix` (fix/) finds where each value was written
+# (Robot.sources) and edits the source there. The intents hold model parts, never file positions.
+
+@dataclass(frozen=True)
+class FixInfo:
+    """A rule's documented fix: ``availability`` always | sometimes | never; ``safety`` safe |
+    unsafe (what ``--fix`` alone applies, as ruff: safe fixes keep the model's meaning or restore one
+    the model states elsewhere); ``how``: what is edited, and why it is safe or not."""
+
+    availability: str
+    safety: str
+    how: str
+
+
+NO_FIX = FixInfo("never", "", "")
+
+
+@dataclass(frozen=True)
+class SetValue:
+    """Set ``field`` of model ``part`` (see model/sources.FIELDS; a plugin's parameter by name) to
+    ``value``: a number, a tuple of numbers or a text."""
+
+    part: object
+    field: str
+    value: object
+
+
+@dataclass(frozen=True)
+class RemoveAttribute:
+    """Remove attribute ``attr`` of the URDF element ``element`` (where it is written)."""
+
+    element: object
+    attr: str
+
+
+@dataclass(frozen=True)
+class RemoveElement:
+    """Remove the child element ``field`` of ``part`` (a plugin parameter: its name), or the part's own
+    element when ``field`` is None."""
+
+    part: object
+    field: str | None = None
+
+
+@dataclass(frozen=True)
+class RenameTag:
+    """Rename the URDF element ``element`` (start and end tag) to ``tag``."""
+
+    element: object
+    tag: str
+
+
+@dataclass(frozen=True)
+class RenameAttribute:
+    """Rename attribute ``attr`` of the URDF element ``element`` to ``new`` (its value stays)."""
+
+    element: object
+    attr: str
+    new: str
+
+
+@dataclass(frozen=True)
+class InsertInto:
+    """Append the XML ``text`` as the last child of ``part``'s element, at its children's indentation."""
+
+    part: object
+    text: str
+
+
+@dataclass(frozen=True)
+class InsertAfter:
+    """Insert the XML ``text`` after ``part``'s element, in the same file, at its indentation."""
+
+    part: object
+    text: str
+
+
+@dataclass(frozen=True)
+class Fix:
+    """What repairs one finding: its edits, applied together or not at all."""
+
+    edits: tuple
+    safety: str = "safe"             # safe | unsafe
+    title: str = ""                  # "wheelSeparation 0.4 -> 0.3"
+
+
 @dataclass
 class Finding:
     """What a rule yields: the message with the numbers, where, and machine data."""
@@ -77,6 +165,7 @@ class Finding:
     loc: object = None               # diagnostics.Loc or None
     data: dict = field(default_factory=dict)
     severity: str | None = None      # overrides the rule's default (documented per rule)
+    fix: Fix | None = None           # how --fix repairs it, when the rule knows
 
 
 @dataclass(frozen=True)
@@ -88,6 +177,7 @@ class Rule:
     example: Example
     needs: str | None = None         # 'meshes' (loads mesh files) or None
     summary: str = ""
+    fix: FixInfo = NO_FIX
 
     @property
     def doc(self) -> str:
@@ -96,13 +186,13 @@ class Rule:
 
 def rule(code: str, name: str, severity: str, *, bad: str, message: str, good: str | None,
          needs: str | None = None, options: tuple = (), files: dict | None = None,
-         filename: str = "robot.urdf", note: str = ""):
-    """Mark ``func`` as rule ``code`` with its example (see the module docstring)."""
+         filename: str = "robot.urdf", note: str = "", fix: FixInfo = NO_FIX):
+    """Mark ``func`` as rule ``code`` with its example (see the module docstring) and its fix."""
 
     def deco(func):
         summary = (func.__doc__ or "").strip().splitlines()[0] if func.__doc__ else name
         ex = Example(bad, message, good, tuple(options), dict(files or {}), filename, note)
-        func.rule = Rule(code, name, severity, func, ex, needs, summary)
+        func.rule = Rule(code, name, severity, func, ex, needs, summary, fix)
         return func
 
     return deco

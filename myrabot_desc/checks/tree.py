@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import math
 
-from myrabot_desc.checks.rule import Finding, rule
-from myrabot_desc.checks.urdf_syntax import suggest
+from myrabot_desc.checks.rule import Finding, Fix, FixInfo, SetValue, rule
+from myrabot_desc.checks.urdf_syntax import only_candidate, suggest
 from myrabot_desc.model.drive import commanded_joints
 from myrabot_desc.model.parts import JOINT_TYPES
 from myrabot_desc.model.tree import cycles
@@ -334,7 +334,10 @@ def axis_normalised(ctx):
 @rule("T016", "joint-type-known", "error",
       bad=_arm('<axis xyz="0 0 1"/>\n' + _LIMIT, "revolut"),
       message="joint shoulder has type 'revolut', not a URDF joint type; did you mean revolute?",
-      good=_arm('<axis xyz="0 0 1"/>\n' + _LIMIT))
+      good=_arm('<axis xyz="0 0 1"/>\n' + _LIMIT),
+      fix=FixInfo("sometimes", "safe", "the type becomes the one URDF joint type it is a near miss of, when there "
+                  "is exactly one. Safe: no URDF parser accepts the file as it is (urdfdom refuses it), so there "
+                  "is no behaviour to keep."))
 def joint_type_known(ctx):
     """A joint's type must be one of revolute, continuous, prismatic, fixed, floating, planar.
 
@@ -345,9 +348,11 @@ def joint_type_known(ctx):
     for j in ctx.robot.joints.values():
         if j.type not in JOINT_TYPES:
             guess = suggest(j.type, JOINT_TYPES)
+            one = only_candidate(j.type, JOINT_TYPES)
             yield Finding(f"joint {j.name} has type '{j.type}', not a URDF joint type"
                           + (f"; did you mean {guess}?" if guess else ""), j.loc,
-                          {"joint": j.name, "type": j.type, "suggestion": guess})
+                          {"joint": j.name, "type": j.type, "suggestion": guess},
+                          fix=Fix((SetValue(j, "type", one),), "safe", f"type {one}") if one else None)
 
 
 def _v(v) -> str:

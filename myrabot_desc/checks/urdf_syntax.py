@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import difflib
 
-from myrabot_desc.checks.rule import Finding, rule
+from myrabot_desc.checks.rule import Finding, Fix, FixInfo, RemoveAttribute, RenameAttribute, RenameTag, rule
 
 # element -> (allowed attributes, allowed children); None = anything (free-form body)
 SCHEMA: dict[str, tuple[set[str], set[str] | None]] = {
@@ -77,6 +77,12 @@ def suggest(word: str, choices) -> str | None:
     return m[0] if m else None
 
 
+def only_candidate(word: str, choices) -> str | None:
+    """The one known name ``word`` is a near miss of, or None when there are none or several."""
+    m = difflib.get_close_matches(word, sorted(choices), n=2, cutoff=0.75)
+    return m[0] if len(m) == 1 else None
+
+
 def _walk(ctx) -> list:
     """(element, parent_tag, problem) for unknown children and attributes; one walk for T005 and T006."""
     found = ctx.__dict__.get("_urdf_syntax_walk")
@@ -110,7 +116,10 @@ def _problems(root) -> list:
 @rule("T005", "unknown-element", "warning",
       bad='<gaezebo reference="base_link">\n  <material>Gazebo/White</material>\n</gaezebo>',
       message='unknown element <gaezebo> in <robot name="example">: URDF parsers ignore it; did you mean <gazebo>?',
-      good='<gazebo reference="base_link">\n  <material>Gazebo/White</material>\n</gazebo>')
+      good='<gazebo reference="base_link">\n  <material>Gazebo/White</material>\n</gazebo>',
+      fix=FixInfo("sometimes", "unsafe", "a misspelt element is renamed to the one element its parent accepts that "
+                  "it is a near miss of (start and end tag), when there is exactly one. Unsafe: parsers ignored "
+                  "the element; after the fix they read it."))
 def unknown_element(ctx):
     """An element URDF does not know (a typo like <gaezebo>): parsers skip it silently.
 
@@ -133,7 +142,9 @@ def unknown_element(ctx):
             msg += f"; {hint}"
         elif guess:
             msg += f"; did you mean <{guess}>?"
-        yield Finding(msg, ctx.loc_of(el), {"element": name, "parent": parent, "suggestion": guess})
+        one = None if hint else only_candidate(name, allowed)
+        yield Finding(msg, ctx.loc_of(el), {"element": name, "parent": parent, "suggestion": guess},
+                      fix=Fix((RenameTag(el, one),), "unsafe", f"<{name}> renamed <{one}>") if one else None)
 
 
 @rule("T006", "unknown-attribute", "warning",
@@ -143,7 +154,11 @@ def unknown_element(ctx):
               'put the rotation on the <origin> of the <visual>/<collision>',
       good='<link name="plate">\n  <visual>\n    <origin xyz="0 0 0" rpy="0 0 0.1"/>\n'
            '    <geometry><box size="0.3 0.24 0.01"/></geometry>\n  </visual>\n'
-           '</link>\n<joint name="plate_joint" type="fixed"><parent link="base_link"/><child link="plate"/></joint>')
+           '</link>\n<joint name="plate_joint" type="fixed"><parent link="base_link"/><child link="plate"/></joint>',
+      fix=FixInfo("always", "safe", "an attribute that is a near miss of exactly one attribute of its element is "
+                  "renamed to it (unsafe: parsers then read the value); any other unknown attribute is removed "
+                  "(safe: no parser reads it). A value that belongs elsewhere (rpy on a <box>) is removed, not moved: "
+                  "put it where the message says by hand if you meant it."))
 def unknown_attribute(ctx):
     """An attribute URDF does not know (fricction=, <box rpy=...>): parsers ignore it.
 
@@ -162,7 +177,10 @@ def unknown_attribute(ctx):
             msg += f"; {hint}"
         elif guess:
             msg += f"; did you mean {guess}=?"
-        yield Finding(msg, ctx.loc_of(el), {"attribute": name, "element": tag, "suggestion": guess})
+        one = None if hint else only_candidate(name, allowed)
+        fix = (Fix((RenameAttribute(el, name, one),), "unsafe", f"{name}= renamed {one}=") if one and one not in el.attrib
+               else Fix((RemoveAttribute(el, name),), "safe", f"{name}= removed"))
+        yield Finding(msg, ctx.loc_of(el), {"attribute": name, "element": tag, "suggestion": guess}, fix=fix)
 
 
 @rule("T007", "ros2-block-outside-plugin", "warning",

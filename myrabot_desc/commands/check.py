@@ -15,6 +15,9 @@ from myrabot_desc.commands.common import input_options
 from myrabot_desc.commands.console import guarded
 from myrabot_desc.commands.options import usage_error
 from myrabot_desc.errors import UsageProblem
+from myrabot_desc.fix.report import summary, unified_diff
+from myrabot_desc.fix.run import fix_tasks
+from myrabot_desc.fix.write import write_fixed
 from myrabot_desc.output import write_output
 
 
@@ -56,9 +59,16 @@ def _progressbar(results, length):
                    "file, or MYRABOT_DESC_CACHE_DIR).")
 @click.option("--merge-sarif", is_flag=True,
               help="The FILEs are SARIF reports (from --shard jobs): merge them into one report.")
+@click.option("--fix", "fix_", is_flag=True,
+              help="Repair the findings whose rule has a safe fix, in the files where the values are written "
+                   "(proven by a rebuild and recheck first; all files written together or none).")
+@click.option("--unsafe-fixes", is_flag=True, help="With --fix or --diff: the unsafe fixes too (docs/rules.md says "
+              "which fixes are unsafe and why).")
+@click.option("--diff", "diff_", is_flag=True,
+              help="Show the fixes as a unified diff and write nothing (exit 1 when there is something to fix).")
 @click.option("--list-rules", is_flag=True, help="List every rule code and exit.")
 def check_cmd(inputs, inertia, suggest, meshes, fmt, select, ignore, strict, output, recursive, config_file,
-              isolated, jobs, shard_spec, quiet, no_cache, merge_sarif, list_rules):
+              isolated, jobs, shard_spec, quiet, no_cache, merge_sarif, fix_, unsafe_fixes, diff_, list_rules):
     """Lint robot models: tree, inertia, sensors and frames, Gazebo plugins, meshes, physics.
 
     Each finding has a stable code (X build, T tree, I inertia, S sensors/frames,
@@ -81,6 +91,8 @@ def check_cmd(inputs, inertia, suggest, meshes, fmt, select, ignore, strict, out
       myrabot-desc check -r . --shard 2/4 --format sarif -o part2.sarif
       myrabot-desc check --merge-sarif part*.sarif -o check.sarif
       myrabot-desc check robot.urdf --select I,P --strict
+      myrabot-desc check --fix robot.urdf.xacro        # repair the safe findings in the sources
+      myrabot-desc check --diff --unsafe-fixes -r .    # show every fix as a diff, write nothing
 
     \b
     Exit codes: 0 no errors (no warnings either with --strict), 1 errors found,
@@ -99,11 +111,15 @@ def check_cmd(inputs, inertia, suggest, meshes, fmt, select, ignore, strict, out
             else:
                 write_output(output, text)
             return
+        if unsafe_fixes and not (fix_ or diff_):
+            raise click.UsageError("--unsafe-fixes goes with --fix or --diff")
         try:
             tasks, help_url = plan(inputs, inertia, suggest, meshes, select, ignore, strict, recursive, config_file,
-                                   isolated, shard_spec, no_cache)
+                                   isolated, shard_spec, no_cache or fix_ or diff_)
         except UsageProblem as exc:
             raise usage_error(exc) from None
+        if fix_ or diff_:
+            sys.exit(_fix(tasks, fmt, output, quiet, help_url, shard_spec, unsafe_fixes, write=not diff_))
         progress = not quiet and sys.stderr.isatty()
         results = run_tasks(tasks, jobs or default_jobs(), _progressbar if progress else None)
         unused_findings(results)
@@ -118,3 +134,39 @@ def check_cmd(inputs, inertia, suggest, meshes, fmt, select, ignore, strict, out
             if r.failure and (fmt != "text" or output != "-"):
                 click.echo(r.failure, err=True)
     sys.exit(code)
+
+
+def _fix(tasks, fmt, output, quiet, help_url, shard_spec, unsafe, write: bool) -> int:
+    """check --fix / --diff (fix/run.py). --fix writes every changed file as one transaction and
+    reports what remains; --diff writes nothing: a unified diff in text format, else the report of the
+    models as they are with each fix proposed (JSON "fixes", SARIF "fixes")."""
+    run = fix_tasks(tasks, unsafe, write)
+    results = run.results
+    unused_findings(results)
+    count = {}
+    for r in results:
+        for f in r.fixes or ():
+            count[f["status"]] = count.get(f["status"], 0) + 1
+    failed = any(r.failure for r in results)
+    remaining = sum(len(f.after) for f in run.fixes if f is not None)
+    if write:
+        write_fixed(run.files)
+        code = exit_code(results)
+    else:
+        code = 2 if failed else (1 if run.files else 0)
+    line = summary(count.get("applied", count.get("proposed", 0)), count.get("unsafe", 0),
+                   count.get("not-editable", 0), count.get("refused", 0), remaining, write)
+    if not write and fmt == "text":
+        text = unified_diff(run.files)
+    else:
+        text = render(fmt, results, __version__, exit_code=code, quiet=quiet, help_url=help_url, shard=shard_spec)
+    if output == "-":
+        click.echo(text, nl=False)
+    else:
+        write_output(output, click.unstyle(text))
+    if not quiet and fmt == "text":
+        click.echo(line, err=True)
+    for r in results:
+        if r.failure and (fmt != "text" or output != "-" or not write):
+            click.echo(r.failure, err=True)
+    return code

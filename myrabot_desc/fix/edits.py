@@ -32,9 +32,11 @@ def apply(data: bytes, edits) -> bytes:
     todo = sorted(set((e.start, e.end, e.new) for e in edits))
     out = []
     pos = 0
-    for i, (start, end, new) in enumerate(todo):
-        if start < pos:
+    last = None
+    for start, end, new in todo:
+        if start < pos or (start, end) == last:
             raise Conflict(f"bytes {start}-{end} are edited twice")
+        last = (start, end)
         out.append(data[pos:start])
         out.append(new.encode("utf-8"))
         pos = end
@@ -50,13 +52,17 @@ def number(x: float, like: str = "", digits: int = 6) -> str:
     if x == 0 or not math.isfinite(x):
         return "0" if x == 0 else repr(x)
     s = f"{x:.{digits}g}"
-    if "e" in s and not _EXP.search(like):
+    if _EXP.search(like):                            # the file writes exponents: 1.271e-02
+        mant, exp = f"{x:.{digits - 1}e}".split("e")
+        if "." in mant:
+            mant = mant.rstrip("0").rstrip(".")
+        s = f"{mant}e{exp}"
+        return s.replace("e", "E") if "E" in like else s
+    if "e" in s:
         decimals = max(0, digits - 1 - math.floor(math.log10(abs(x))))
         s = f"{x:.{decimals}f}"
         if "." in s:
             s = s.rstrip("0").rstrip(".")
-    elif "e" in s and "E" in like:
-        s = s.replace("e", "E")
     if s in ("-0", "0"):
         return "0"
     if re.match(r"^-?\.\d", like.strip()):          # the file writes .26, not 0.26

@@ -181,6 +181,7 @@ class Sources:
         self._index: dict | None = None         # id(output element) -> document-order index
         self._elements: list | None = None
         self._plain_offsets: list | None = None
+        self._counts: dict | None = None
 
     # -------------------------------------------------------- elements
     def _doc_index(self, el) -> int | None:
@@ -240,6 +241,30 @@ class Sources:
         if self.map is None:
             return i
         return self.map.index[i] if i < len(self.map.index) else None
+
+    def data(self, name: str) -> bytes:
+        """The bytes of source file ``name`` as the build read them (b'' when unknown)."""
+        f = self._file(name)
+        return f.data if f is not None else b""
+
+    def files(self) -> dict:
+        """Shown name -> path of every source file the robot was read from."""
+        if self.map is not None:
+            return {name: entry[0] for name, entry in self.map.files.items()}
+        return {self._plain[0]: self._plain[1]} if self._plain is not None else {}
+
+    def expansions(self, el) -> int:
+        """How many elements of the URDF were made from the source element ``el`` was made from (a
+        macro body expanded N times: N; a plain element: 1)."""
+        src = self._source_of(el)
+        if src is None or self.map is None:
+            return 1
+        if self._counts is None:
+            counts: dict = {}
+            for i in self.map.index:
+                counts[i] = counts.get(i, 0) + 1
+            self._counts = counts
+        return self._counts.get(src, 1)
 
     # -------------------------------------------------------- spans
     def tag(self, el) -> Span | None:

@@ -28,8 +28,8 @@ from __future__ import annotations
 
 import re
 
-ONE_NAME = re.compile(r"\$\{\s*([A-Za-z_]\w*)\s*\}")
-ONE_ARG = re.compile(r"\$\(\s*arg\s+([^\s()]+)\s*\)")
+# the whole text is one ${name} (group 1) or one $(arg name) (group 2)
+ONE = re.compile(r"\s*\$(?:\{\s*([A-Za-z_]\w*)\s*\}|\(\s*arg\s+([^\s()]+)\s*\))\s*")
 SRC_ATTR = "_mdsrc"
 XSRC_ATTR = "xacro:mdsrc"
 
@@ -72,17 +72,12 @@ class Tracker:
 
     def classify(self, raw: str, symbols, src, attr):
         """The origin of the text ``raw`` (holding '$'), written at ``src``/``attr``."""
-        m = ONE_NAME.fullmatch(raw.strip())
+        m = ONE.fullmatch(raw)
         if m is not None:
-            org = self.symbol(m.group(1), symbols)
+            name = m.group(1)
+            org = self.symbol(name, symbols) if name is not None else self.arg(m.group(2))
             if org is not None:
                 return org
-        else:
-            m = ONE_ARG.fullmatch(raw.strip())
-            if m is not None:
-                org = self.arg(m.group(1))
-                if org is not None:
-                    return org
         return ("expr", None, src, attr, None)
 
     # -------------------------------------------------------- what eval_all sees

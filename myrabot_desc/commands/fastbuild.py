@@ -56,7 +56,7 @@ def run_build(inputs, output=None, deps=False, resolve_uris=False, allow_errors=
             src = str(bundled_path())
         result = build_file(src, inputs.mappings, packages=inputs.packages, package_paths=inputs.package_paths,
                             legacy=inputs.legacy, unsafe_eval=inputs.unsafe_eval, no_env=inputs.no_env,
-                            allow_paths=inputs.allow_paths, limits=limits)
+                            allow_paths=inputs.allow_paths, limits=limits, sources=False)
         if one_shot:
             gc.freeze()
         for d in result.diagnostics:

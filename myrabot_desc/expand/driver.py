@@ -99,9 +99,12 @@ XACRO_WORDS = {"macro", "property", "include", "insert_block", "arg", "if", "unl
 
 def build_file(path, mappings: dict | None = None, *, packages: dict | None = None, package_paths=(),
                legacy: str = "auto", unsafe_eval: bool = False, no_env: bool = False, allow_paths=(),
-               limits: Limits | None = None, resolve_uris: bool = False, overlay: dict | None = None) -> BuildResult:
+               limits: Limits | None = None, resolve_uris: bool = False, overlay: dict | None = None,
+               sources: bool = True) -> BuildResult:
     """Expand ``path`` into URDF. Raises InputError for input that cannot be built. ``overlay``: resolved
-    path -> bytes read instead of that file (``check --fix`` proves its edits before writing them)."""
+    path -> bytes read instead of that file (``check --fix`` proves its edits before writing them).
+    ``sources``: record where each value was written (``BuildResult.source_map``; the `build` command,
+    which writes the text only, saves the ~3 % it costs)."""
     src = Path(path)
     if not src.exists():
         raise InputError(f"no such file: {src}")
@@ -119,6 +122,7 @@ def build_file(path, mappings: dict | None = None, *, packages: dict | None = No
                        list(allow_paths), limits or Limits(), resolve_uris)
             b.src_name = os.fspath(path)   # as given, like xacro's banner and location lines ("./x.xacro")
             b.overlay = overlay or {}
+            b.tracking = sources
             return b.run()
         finally:
             if gc_was_on:
@@ -148,6 +152,7 @@ class _Build:
         self.track = None                  # provenance.Tracker while xacro expands
         self.source_map = None             # SourceMap, after render
         self.overlay: dict = {}            # resolved path -> bytes to read instead of the file
+        self.tracking = True               # record the source map (provenance.py)
         self.last_loc: Loc | None = None
         self.call_stack: list[tuple[str, Loc | None]] = []
         self.diagnostics: list[Diagnostic] = []
@@ -192,10 +197,11 @@ class _Build:
         if entry is None:
             data = self._read_bytes(path, asked_at)
             fname = display(path)
-            entry = self.trees[key] = [data, domread.parse(data, fname, self.locs, self.offsets), fname]
+            entry = self.trees[key] = [data, domread.parse(data, fname, self.locs, self.offsets if self.tracking
+                                                           else None), fname]
             self.file_data.setdefault(fname, (key, data))
         elif entry[1] is None:       # handed to xacro already (which changes it): parse again
-            entry[1] = domread.parse(entry[0], entry[2], self.locs, self.offsets)
+            entry[1] = domread.parse(entry[0], entry[2], self.locs, self.offsets if self.tracking else None)
         return entry[1]
 
     def read_tree(self, path: Path, asked_at: Loc | None = None):
@@ -445,7 +451,7 @@ class _Build:
         for comment in banner:
             doc.insertBefore(comment, first)
         marks: list = []
-        origins: list = []
+        origins: list | None = [] if self.track is not None else None
         text = pretty_xml(doc, skip_attr=SRC_ATTR, skip_suffix=":mdsrc", marks=marks, origins=origins,
                           recorded=self.track.origins if self.track is not None else None)
         if len(marks) > self.limits.max_output_elements:
@@ -454,7 +460,8 @@ class _Build:
         index = [int(m) if m and m.isdigit() and int(m) < n else None for m in marks]
         locs = self.locs
         locations = [None if i is None else locs[i] for i in index]
-        self.source_map = SourceMap(index, origins, self.locs, self.offsets, self.file_data)
+        if self.tracking:
+            self.source_map = SourceMap(index, origins, self.locs, self.offsets, self.file_data)
         return text, locations
 
     def check_unexpanded(self, doc, locations: list) -> None:
@@ -738,8 +745,8 @@ class _Hooks:
         self.saved_recursion = sys.getrecursionlimit()
         sys.setrecursionlimit(max(self.saved_recursion, b.limits.max_macro_depth * 12 + 2000))
         xacro_fast.reset()
-        track = b.track = xacro_fast._track[0] = Tracker(xacro.Table, b.mappings)
-        pending = track.pending
+        track = b.track = xacro_fast._track[0] = Tracker(xacro.Table, b.mappings) if b.tracking else None
+        unclaimed = track.unclaimed if track is not None else [0]
 
         orig_eval_all = xacro_fast.eval_all   # xacro's eval_all, statement for statement, faster
         orig_macro = xacro.handle_macro_call
@@ -770,20 +777,16 @@ class _Hooks:
                 v = a._value
                 if v.isdigit() and int(v) < len(locs):
                     b.last_loc = locs[int(v)]
-            if pending:
-                track.claim(symbols)
+            if unclaimed[0]:
+                track.claim(symbols, xacro.macrostack[-1] if xacro.macrostack else None)
             orig_eval_all(node, macros, symbols)
 
         def handle_macro_call(node, macros, symbols):
             if not node.tagName.startswith("xacro:"):
                 return False
             dynamic = node.tagName == "xacro:call"     # xacro renames it and comes back here
-            if not dynamic:
-                try:
-                    macro = xacro.resolve_macro(node.tagName[6:], macros, symbols)[2]
-                except Exception:                 # xacro reports it
-                    macro = None
-                track.call(node, macro, symbols)
+            if not dynamic and track is not None:
+                track.call(node, symbols)
             loc = take_xloc(node)
             name = node.tagName[6:]
             if len(b.call_stack) >= b.limits.max_macro_depth:
@@ -795,7 +798,7 @@ class _Hooks:
             try:
                 result = orig_macro(node, macros, symbols)
             finally:
-                if not dynamic:
+                if not dynamic and track is not None:
                     track.done()
             b.call_stack.pop()
             return result
@@ -814,7 +817,7 @@ class _Hooks:
                 macro._md_src = src
 
         def grab_property(elt, table):
-            pre = track.before_property(elt, table)
+            pre = track.before_property(elt, table) if track is not None else None
             take_xloc(elt)
             orig_grab_property(elt, table)
             if pre is not None:

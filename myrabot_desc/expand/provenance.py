@@ -18,7 +18,8 @@ get an origin, decided when xacro evaluates them:
   ``${other}``, a parameter passed ``${prop}``), else None.
 
 A value that is exactly ``${name}`` or ``$(arg name)`` takes the origin of that name; anything
-else is 'expr', written at the element's own attribute. The model turns these tuples into
+else is 'expr', written at the element's own attribute (not recorded: the ``$`` in the source
+text says so). The model turns these tuples into
 source spans (model/sources.py).
 
 Plain tuples and no imports beyond xacro's: this runs inside every build.
@@ -52,6 +53,7 @@ class Tracker:
         self.args: dict = {}             # arg name -> origin of its default
         self.cli_args = set(cli_args)    # args given on the command line
         self.pending: list = []          # macro calls being expanded: [caller symbols, origins, claimed]
+        self.unclaimed = [0]             # how many of them no body table has claimed yet (checked per element)
 
     # -------------------------------------------------------- classification
     def symbol(self, name: str, symbols):
@@ -82,16 +84,21 @@ class Tracker:
 
     # -------------------------------------------------------- what eval_all sees
     def attr(self, node, name: str, raw: str, symbols) -> None:
-        d = self.origins.get(node)
-        if d is None:
-            d = self.origins[node] = {}
-        d[name] = self.classify(raw, symbols, src_index(node), name)
+        """An attribute about to be evaluated. Only a value that is exactly one name or arg is
+        recorded: any other ``$`` text is an expression, which Sources reads off the source itself."""
+        m = ONE.fullmatch(raw)
+        if m is None:
+            return
+        key = m.group(1)
+        org = self.symbol(key, symbols) if key is not None else self.arg(m.group(2))
+        if org is not None:
+            d = self.origins.get(node)
+            if d is None:
+                d = self.origins[node] = {}
+            d[name] = org
 
     def text(self, node, raw: str, symbols) -> None:
-        d = self.origins.get(node)
-        if d is None:
-            d = self.origins[node] = {}
-        d["#text"] = self.classify(raw, symbols, src_index(node), "#text")
+        self.attr(node, "#text", raw, symbols)
 
     def arg_default(self, name: str, src, default: str, symbols) -> None:
         inner = self.classify(default, symbols, src, "default") if "$" in default else None
@@ -135,47 +142,52 @@ class Tracker:
             org_map = target._md_org = {}
         org_map[name] = org
 
-    def call(self, node, macro, symbols) -> None:
-        """A macro call about to expand: the origins of its parameters, claimed by the table of
-        the body's evaluation (``claim``)."""
+    def call(self, node, symbols) -> None:
+        """A macro call about to expand: the origins of the parameters it gives, claimed by the table
+        of the body's evaluation (``claim``), which adds the defaults."""
         src = src_index(node, XSRC_ATTR)
         out = {}
-        given = set()
-        attrs = node._attrs or {}
-        for a in attrs.values():
-            name, raw = a._name, a._value
-            if name.startswith("xacro:"):
-                continue
-            given.add(name)
-            inner = self.classify(raw, symbols, src, name) if "$" in raw else None
-            out[name] = ("param", name, src, name, inner)
+        attrs = node._attrs
+        if attrs:
+            for a in attrs.values():
+                name, raw = a._name, a._value
+                if name.startswith("xacro:"):
+                    continue
+                inner = self.classify(raw, symbols, src, name) if "$" in raw else None
+                out[name] = ("param", name, src, name, inner)
+        self.pending.append([symbols, out, False])
+        self.unclaimed[0] += 1
+
+    def claim(self, symbols, macro) -> None:
+        """The first evaluation under a new table during a call is the body's: its parameters, and
+        the defaults of those the call did not give (``macro``: xacro's, on its macro stack)."""
+        top = self.pending[-1]
+        if top[2] or symbols is top[0] or not isinstance(symbols, self.Table):
+            return
+        top[2] = True
+        self.unclaimed[0] -= 1
+        out, caller = top[1], top[0]
         if macro is not None:
             msrc = getattr(macro, "_md_src", None)
             for param in macro.params:
-                if param in given or param[:1] == "*":
+                if param in out or param[:1] == "*":
                     continue
                 fwd, default = macro.defaultmap.get(param, (None, None))
-                org = self.symbol(fwd, symbols) if fwd is not None else None
+                org = self.symbol(fwd, caller) if fwd is not None else None
                 if org is None and default is not None:
-                    inner = self.classify(default, symbols, msrc, "params") if "$" in default else None
+                    inner = self.classify(default, caller, msrc, "params") if "$" in default else None
                     org = ("default", param, msrc, "params", inner)
                 if org is not None:
                     out[param] = org
-        self.pending.append([symbols, out, False])
-
-    def claim(self, symbols) -> None:
-        """The first evaluation under a new table during a call is the body's: its parameters."""
-        top = self.pending[-1]
-        if not top[2] and symbols is not top[0] and isinstance(symbols, self.Table):
-            top[2] = True
-            org_map = symbols.__dict__.get("_md_org")
-            if org_map is None:
-                symbols._md_org = dict(top[1])
-            else:
-                org_map.update(top[1])
+        org_map = symbols.__dict__.get("_md_org")
+        if org_map is None:
+            symbols._md_org = out
+        else:
+            org_map.update(out)
 
     def done(self) -> None:
-        self.pending.pop()
+        if not self.pending.pop()[2]:
+            self.unclaimed[0] -= 1
 
 
 class SourceMap:

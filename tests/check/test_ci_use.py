@@ -443,7 +443,8 @@ def test_pre_commit_hooks_are_valid():
 
     hooks = yaml.safe_load((ROOT / ".pre-commit-hooks.yaml").read_text())
     ids = {h["id"]: h for h in hooks}
-    assert set(ids) == {"myrabot-desc-check", "myrabot-desc-check-strict"}
+    assert set(ids) == {"myrabot-desc-check", "myrabot-desc-check-strict", "myrabot-desc-fix"}
+    assert ids["myrabot-desc-fix"]["entry"].split()[-1] == "--fix"
     for h in hooks:
         assert h["language"] == "python" and h["pass_filenames"] is False
         assert h["entry"].startswith("myrabot-desc check -r .")

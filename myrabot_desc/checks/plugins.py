@@ -5,7 +5,7 @@ from __future__ import annotations
 from myrabot_desc.checks.examples import ELECTRIC_IMU, MODERN_IMU
 from myrabot_desc.checks.examples import drive_example as _drive
 from myrabot_desc.checks.rule import Finding, rule
-from myrabot_desc.checks.urdf_syntax import local, suggest
+from myrabot_desc.checks.urdf_syntax import suggest
 from myrabot_desc.materials.resolve import resolver_for
 from myrabot_desc.model import drive as D
 from myrabot_desc.model.drive import GZ, ROS1, ROS2
@@ -22,21 +22,13 @@ IGNORED_HINT = {
 
 
 def drives(ctx):
-    """[(plugin, Drive)] for every recognised drive plugin (model/drive.py), cached on the context."""
-    got = getattr(ctx, "_plugin_drives", None)
-    if got is None:
-        got = [(d.plugin, d) for d in D.plugin_drives(ctx.robot)]
-        ctx._plugin_drives = got
-    return got
+    """[(plugin, Drive)] for every recognised drive plugin (model/drive.py)."""
+    return [(d.plugin, d) for d in D.plugin_drives(ctx.robot)]
 
 
 def _geometry(ctx, d):
-    """The drive's wheels measured on the URDF (model/drive.py), cached on the context."""
-    cache = ctx.__dict__.setdefault("_drive_geometry", {})
-    key = id(d.plugin) if d.plugin is not None else d.joints
-    if key not in cache:
-        cache[key] = D.measure(ctx.robot, d)
-    return cache[key]
+    """The drive's wheels measured on the URDF (model/drive.measure, built once per robot)."""
+    return D.measure(ctx.robot, d)
 
 
 @rule("G001", "drive-wheel-separation", "error",
@@ -203,7 +195,7 @@ def drive_axis(ctx):
                 continue
             j = r.joints[w.joint]
             a = w.axis
-            if abs(a[1]) < 0.9:
+            if abs(a[1]) < D.LATERAL:
                 yield Finding(f"{spec.label}: {side} wheel joint {j.name} turns about ({a[0]:.2g} {a[1]:.2g} {a[2]:.2g}) "
                               f"in {r.root}: not across the direction of travel (y)", j.loc,
                               {"joint": j.name, "axis_world": list(a)})
@@ -299,10 +291,10 @@ def unknown_params(ctx):
     for p, d in drives(ctx):
         spec = d.spec
         seen = set()
-        for c in p.element:
-            if not isinstance(c.tag, str) or c.tag.startswith("{"):
+        for c in p.node.elements:
+            if c.ns:                       # namespaced: an extension, not a parameter
                 continue
-            k = local(c.tag)
+            k = c.tag
             if k in spec.known or k in seen:
                 continue
             seen.add(k)

@@ -235,6 +235,7 @@ class Systems:
         self.elements.append(("comment", f"position controllers for the {len(joints)} arm joint(s) "
                                          f"({_ARM_SOURCE[source]}); "
                                          "command topic /model/<model>/joint/<joint>/0/cmd_pos"))
+        rest = r.rest_pose()
         for name in joints:
             j = r.joints[name]
             el = etree.Element("plugin", filename=POSITION[0], name=POSITION[1])
@@ -251,10 +252,8 @@ class Systems:
             else:
                 sub(el, "p_gain", 1)
                 sub(el, "d_gain", 0.1)
-            if j.limit and j.limit.lower is not None and j.limit.upper is not None and j.limit.lower > 0:
-                sub(el, "initial_position", j.limit.lower)
-            elif j.limit and j.limit.upper is not None and j.limit.upper < 0:
-                sub(el, "initial_position", j.limit.upper)
+            if rest.get(name):          # the rest pose: 0, or the nearer limit when 0 is outside the range
+                sub(el, "initial_position", rest[name])
             self.elements.append(("plugin", el))
 
 

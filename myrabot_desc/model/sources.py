@@ -329,16 +329,27 @@ class Sources:
 
     def field(self, part, name: str) -> Origin:
         """Where field ``name`` of a model part was written: ``field(joint, "limit.effort")``,
-        ``field(link.inertial, "ixx")``, ``field(plugin, "wheelSeparation")`` (see FIELDS)."""
+        ``field(link.inertial, "ixx")``, ``field(plugin, "wheelSeparation")`` (see FIELDS).
+
+        A name FIELDS does not list is a path of child elements from the part's element, dotted
+        (``field(plugin, "ros.namespace")``, ``field(sensor, "camera.horizontal_fov")``), read as
+        the text of the last one, or as its ``value=`` when it has no text (``<mu1 value="0.5"/>``);
+        a last step ``@NAME`` is an attribute (``field(node, "@name")``)."""
         el = getattr(part, "ref", None)
-        if el is None:
-            el = getattr(part, "element", None)
         table = FIELDS.get(type(part).__name__)
-        path, attr = table[name] if table and name in table else ((name,), "#text")
+        fallback = not (table and name in table)
+        if fallback:
+            steps = name.split(".")
+            attr = steps.pop()[1:] if steps[-1].startswith("@") else "#text"
+            path = tuple(steps)
+        else:
+            path, attr = table[name]
         for tag in path:
             el = _child(el, tag)
         if el is None:
             return Origin("unknown", None, None, None, None)
+        if fallback and attr == "#text" and not (el.text or "").strip() and el.get("value") is not None:
+            attr = "value"
         return self.origin(el, attr)
 
 
@@ -361,8 +372,8 @@ _GEOMETRY = {"geometry.size": (("geometry", "box"), "size"), "geometry.radius": 
              "geometry.length": (("geometry", "cylinder"), "length"),
              "geometry.filename": (("geometry", "mesh"), "filename"), "geometry.scale": (("geometry", "mesh"), "scale")}
 
-# part type -> field -> (child tags from the part's element, attribute or '#text'). A part type not
-# here (a plugin, a <gazebo> block) reads a name as the text of the child element of that name.
+# part type -> field -> (child tags from the part's element, attribute or '#text'). A name not listed
+# is a dotted path of child elements (a plugin's parameter, a sensor's camera.horizontal_fov), see field().
 FIELDS: dict[str, dict[str, tuple]] = {
     "Link": {"name": ((), "name")},
     "Inertial": {"mass": (("mass",), "value"), **{k: (("inertia",), k) for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")},
@@ -375,6 +386,14 @@ FIELDS: dict[str, dict[str, tuple]] = {
     "Visual": {"name": ((), "name"), **_pose_fields(), **_GEOMETRY, "material": (("material",), "name")},
     "Collision": {"name": ((), "name"), **_pose_fields(), **_GEOMETRY},
     "Material": {"name": ((), "name"), "rgba": (("color",), "rgba"), "texture": (("texture",), "filename")},
+    "Plugin": {"name": ((), "name"), "filename": ((), "filename")},
+    "Sensor": {"name": ((), "name"), "type": ((), "type")},
+    "GazeboBlock": {"reference": ((), "reference")},
+    "Transmission": {"name": ((), "name")},
+    "TransmissionJoint": {"name": ((), "name")},
+    "Actuator": {"name": ((), "name")},
+    "Ros2Control": {"name": ((), "name"), "type": ((), "type")},
+    "ControlJoint": {"name": ((), "name")},
 }
 
 

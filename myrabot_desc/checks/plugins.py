@@ -26,11 +26,6 @@ def drives(ctx):
     return [(d.plugin, d) for d in D.plugin_drives(ctx.robot)]
 
 
-def _geometry(ctx, d):
-    """The drive's wheels measured on the URDF (model/drive.measure, built once per robot)."""
-    return D.measure(ctx.robot, d)
-
-
 @rule("G001", "drive-wheel-separation", "error",
       bad=_drive(sep="0.4"),
       message="wheelSeparation 0.4 m, but the wheel joints left_wheel_joint and right_wheel_joint are 0.3 m apart "
@@ -47,7 +42,7 @@ def wheel_separation(ctx):
     for p, d in drives(ctx):
         spec = d.spec
         sep = d.separation
-        g = _geometry(ctx, d)
+        g = D.measure(ctx.robot, d)
         if sep is None or not g.left or not g.right:
             continue
         lw, rw = g.left[0], g.right[0]
@@ -80,7 +75,7 @@ def wheel_size(ctx):
         val, _ = D.number(p, key)
         if val is None:
             continue
-        g = _geometry(ctx, d)
+        g = D.measure(ctx.robot, d)
         for w in g.left[:1] + g.right[:1]:
             if w.radius is None:
                 continue
@@ -111,7 +106,7 @@ def drive_joints_exist(ctx):
     for p, d in drives(ctx):
         spec = d.spec
         for key in (*spec.left, *spec.right, *spec.fixed_ok):
-            for name in D.values(p, key):
+            for name in p.values(key):
                 if name not in r.joints:
                     guess = suggest(name, r.joints)
                     yield Finding(f"{spec.label}: {key} '{name}' is not a joint of this robot"
@@ -138,7 +133,7 @@ def drive_joints_continuous(ctx):
     for p, d in drives(ctx):
         spec = d.spec
         for key in (*spec.left, *spec.right, *spec.fixed_ok):
-            for name in D.values(p, key):
+            for name in p.values(key):
                 j = r.joints.get(name)
                 if j is None or j.type == "continuous":
                     continue
@@ -176,7 +171,7 @@ def drive_axis(ctx):
     for d in D.find(ctx.robot):
         if d.source not in ("ros_control", "ros2_control"):
             continue
-        for w in _geometry(ctx, d).wheels:
+        for w in D.measure(ctx.robot, d).wheels:
             words = set(re.split(r"[^a-z]+", w.joint.lower()))
             y = w.origin[1]
             named = "left" if "left" in words and "right" not in words else \
@@ -189,7 +184,7 @@ def drive_axis(ctx):
     r = ctx.robot
     for p, d in drives(ctx):
         spec = d.spec
-        g = _geometry(ctx, d)
+        g = D.measure(ctx.robot, d)
         for side, w in (("left", g.left[0] if g.left else None), ("right", g.right[0] if g.right else None)):
             if w is None:
                 continue
@@ -228,7 +223,7 @@ def drive_legacy_mode(ctx):
     for p, d in drives(ctx):
         if not d.legacy:
             continue
-        g = _geometry(ctx, d)
+        g = D.measure(ctx.robot, d)
         if not g.left or not g.right:
             continue
         lw, rw = g.left[0], g.right[0]
@@ -260,7 +255,7 @@ def drive_summary(ctx):
     """
     r = ctx.robot
     for d in D.find(r):
-        g = _geometry(ctx, d)
+        g = D.measure(ctx.robot, d)
         if not g.left or not g.right:
             continue
         nums = []

@@ -260,16 +260,6 @@ class Geometry(NamedTuple):
 
 
 # ------------------------------------------------------------------ the plugins' parameters
-def values(plugin, key: str) -> list[str]:
-    """Every value of a (repeatable) parameter, in order: a direct child's text or ``value=``."""
-    return plugin.values(key)
-
-
-def text(plugin, *keys: str) -> str | None:
-    """The first value of the first key given."""
-    return plugin.text(*keys)
-
-
 def number(plugin, key: str | None):
     """(value, ok) of a numeric parameter: (None, True) when absent, (None, False) when not a
     finite number (model/values.py)."""
@@ -312,14 +302,14 @@ def plugin_spec(p) -> Spec | None:
 
 
 def from_plugin(p, spec: Spec) -> Drive:
-    left = tuple(v for k in spec.left for v in values(p, k))
-    right = tuple(v for k in spec.right for v in values(p, k))
+    left = tuple(v for k in spec.left for v in p.values(k))
+    right = tuple(v for k in spec.right for v in p.values(k))
     bad = []
 
     def num(key):
         v, ok = number(p, key)
         if not ok:
-            bad.append((key, text(p, key)))
+            bad.append((key, p.text(key)))
         return v
 
     sep = num(spec.separation)

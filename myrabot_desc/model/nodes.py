@@ -105,12 +105,8 @@ class Node(NamedTuple):
         return V.boolean(self.text_at(*path), default, spellings)
 
 
-def node(el, loc_of, _ns_of=None) -> Node:
+def node(el, loc_of) -> Node:
     """The Node tree of lxml element ``el``; ``loc_of(el)``: its location (the loader's)."""
-    return _build(el, loc_of)
-
-
-def _build(el, loc_of) -> Node:
     tag = el.tag
     if not isinstance(tag, str):
         from lxml import etree
@@ -123,6 +119,6 @@ def _build(el, loc_of) -> Node:
     ns, local = "", tag
     if tag.startswith("{"):
         ns, local = tag[1:].split("}", 1)
-    children = tuple(_build(c, loc_of) for c in el)
+    children = tuple(node(c, loc_of) for c in el)
     return Node(local, tuple(el.attrib.items()), el.text, children, loc_of(el), el, ns, el.prefix if ns else None,
                 el.tail)

@@ -110,7 +110,7 @@ def rigid_bodies(robot, keep=frozenset(), stop=frozenset()) -> Bodies:
             parent = order[i]
             i += 1
             for j in children.get(parent, []):
-                if j.child in host:
+                if j.child in host or j.child not in robot.links:     # (a joint to no link: T003)
                     continue
                 if j.type == "fixed" and parent not in stop and j.name not in keep:
                     host[j.child] = host[parent]

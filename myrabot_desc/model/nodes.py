@@ -14,24 +14,45 @@ Values inside are text; read them through model/values.py (``node.number("mu1")`
 
 from __future__ import annotations
 
-from typing import Any, NamedTuple
+from typing import Any
 
 from myrabot_desc.diagnostics import Loc
 from myrabot_desc.model import values as V
 
 
-class Node(NamedTuple):
-    tag: str                          # local name ('' for a comment or processing instruction)
-    attrs: tuple = ()                 # ((name, value), ...) in document order (Clark {ns}name when namespaced)
-    text: str | None = None           # text before the first child (a comment's or PI's content)
-    children: tuple = ()              # Node, ...
-    loc: Loc | None = None
-    ref: Any = None                   # the URDF element, for Robot.sources (opaque)
-    ns: str = ""                      # namespace URI ('' for none)
-    prefix: str | None = None         # the namespace prefix as written (Electric 'controller', 'sensor')
-    tail: str | None = None           # text after the element, before its next sibling
-    kind: str = "element"             # 'element' | 'comment' | 'pi' | 'entity'
-    target: str | None = None         # a processing instruction's target
+class Node:
+    """One element (or comment, processing instruction, entity reference) as written. Immutable:
+    its children are read from the element the first time they are asked for (most nodes of a
+    large model are never walked), then kept."""
+
+    __slots__ = ("tag", "attrs", "text", "loc", "ref", "ns", "prefix", "tail", "kind", "target", "_kids", "_loc_of")
+
+    def __init__(self, tag: str, attrs: tuple = (), text: str | None = None, children: tuple | None = (),
+                 loc: Loc | None = None, ref: Any = None, ns: str = "", prefix: str | None = None,
+                 tail: str | None = None, kind: str = "element", target: str | None = None, loc_of=None):
+        self.tag = tag                # local name ('' for a comment or processing instruction)
+        self.attrs = attrs            # ((name, value), ...) in document order (Clark {ns}name when namespaced)
+        self.text = text              # text before the first child (a comment's or PI's content)
+        self.loc = loc                # the xacro file:line it came from
+        self.ref = ref                # the URDF element, for Robot.sources (opaque)
+        self.ns = ns                  # namespace URI ('' for none)
+        self.prefix = prefix          # the namespace prefix as written (Electric 'controller', 'sensor')
+        self.tail = tail              # text after the element, before its next sibling
+        self.kind = kind              # 'element' | 'comment' | 'pi' | 'entity'
+        self.target = target          # a processing instruction's target
+        self._kids = children         # None: not read yet (from ref, with loc_of)
+        self._loc_of = loc_of
+
+    def __repr__(self) -> str:
+        return f"Node(<{self.tag or self.kind}> {dict(self.attrs)!r} at {self.loc})"
+
+    @property
+    def children(self) -> tuple:
+        """The child nodes (elements, comments...), in document order."""
+        k = self._kids
+        if k is None:
+            k = self._kids = tuple(node(c, self._loc_of) for c in self.ref)
+        return k
 
     # ------------------------------------------------------------ reading
     @property
@@ -106,19 +127,19 @@ class Node(NamedTuple):
 
 
 def node(el, loc_of) -> Node:
-    """The Node tree of lxml element ``el``; ``loc_of(el)``: its location (the loader's)."""
+    """The Node of lxml element ``el`` (its children read when first asked for); ``loc_of(el)``:
+    an element's location (the loader's)."""
     tag = el.tag
     if not isinstance(tag, str):
         from lxml import etree
 
         if isinstance(el, etree._Comment):
-            return Node("", text=el.text, tail=el.tail, kind="comment", loc=None)
+            return Node("", text=el.text, tail=el.tail, kind="comment")
         if isinstance(el, etree._ProcessingInstruction):
             return Node("", text=el.text, tail=el.tail, kind="pi", target=el.target)
         return Node(el.text or "", tail=el.tail, kind="entity")       # an entity reference: &name;
     ns, local = "", tag
-    if tag.startswith("{"):
+    if tag[0] == "{":
         ns, local = tag[1:].split("}", 1)
-    children = tuple(node(c, loc_of) for c in el)
-    return Node(local, tuple(el.attrib.items()), el.text, children, loc_of(el), el, ns, el.prefix if ns else None,
-                el.tail)
+    return Node(local, tuple(el.items()), el.text, None if len(el) else (), loc_of(el), el, ns,
+                el.prefix if ns else None, el.tail, loc_of=loc_of)

@@ -70,7 +70,7 @@ def parse_number(text, limit: float | None = None) -> float:
     """The number written in ``text``; ValueProblem when it is not one, not finite, or beyond
     ``limit`` in magnitude."""
     try:
-        v = float(str(text).strip())
+        v = float(text if isinstance(text, str) else str(text))
     except (TypeError, ValueError):
         raise ValueProblem(NOT_A_NUMBER) from None
     if not math.isfinite(v):
@@ -93,7 +93,7 @@ def number(text, default=None):
 def parse_vector(text, n: int | None = None, limit: float | None = None) -> tuple[float, ...]:
     """The numbers of ``text`` (white-space separated); ``n``: how many there must be."""
     try:
-        vals = tuple(float(t) for t in str(text).split())
+        vals = tuple(map(float, (text if isinstance(text, str) else str(text)).split()))
     except (TypeError, ValueError):
         raise ValueProblem(expected(n)) from None
     if (n is not None and len(vals) != n) or not all(map(math.isfinite, vals)):

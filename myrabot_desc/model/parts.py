@@ -205,11 +205,6 @@ class Plugin(NamedTuple):
         """The element's local name: 'plugin', or an Electric controller's kind ('gazebo_ros_create')."""
         return self.node.tag
 
-    @property
-    def element(self):
-        """The raw element (``ref``), for the consumers not yet moved to ``node`` (convert/mjcf.py)."""
-        return self.ref
-
     def values(self, key: str) -> list[str]:
         """Every value of a (repeatable) parameter, in order: a direct child's text or ``value=``."""
         return [v for v in (c.value for c in self.node.all(key)) if v]
@@ -310,11 +305,6 @@ class Sensor(NamedTuple):
     rays: tuple[Ray, ...] = ()        # SDF: one per <ray>/<lidar> element; Electric: one
     sonar: Sonar | None = None
 
-    @property
-    def element(self):
-        """The raw element (``ref``), for the consumers not yet moved to ``node`` (convert/mjcf.py)."""
-        return self.ref
-
     def param(self, *path: str) -> str | None:
         """Text (else ``value=``) of a descendant element by path, e.g. param('camera', 'horizontal_fov')."""
         n = self.node.find(*path)
@@ -341,7 +331,7 @@ class GazeboBlock(NamedTuple):
 
     @property
     def element(self):
-        """The raw element (``ref``), for the consumers not yet moved to ``node`` (convert/mjcf.py)."""
+        """The raw element (``ref``): convert/mjcf.py's, until its rewrite from the typed model."""
         return self.ref
 
 
@@ -376,11 +366,6 @@ class Transmission(NamedTuple):
     node: Node | None = None
     named: tuple[TransmissionJoint, ...] = ()
     actuators: tuple[Actuator, ...] = ()
-
-    @property
-    def element(self):
-        """The raw element (``ref``), for the consumers not yet moved to ``node`` (convert/mjcf.py)."""
-        return self.ref
 
 
 class ControlJoint(NamedTuple):
@@ -488,14 +473,16 @@ class Robot:
     def declared(self, tag: str) -> list[Declared]:
         """Every top-level ``<tag>`` element (link, joint, material) as written, in file order:
         duplicates and nameless ones included (``links``/``joints``/``materials`` keep one per name)."""
-        out = []
-        for el in self.root_element.iterchildren(tag):
-            child = None
-            if tag == "joint":
-                c = next(el.iterchildren("child"), None)
-                child = c.get("link") if c is not None else None
-            out.append(Declared(tag, el.get("name"), child, el, self))
-        return out
+        def build():
+            out = []
+            for el in self.root_element.iterchildren(tag):
+                child = None
+                if tag == "joint":
+                    c = next(el.iterchildren("child"), None)
+                    child = c.get("link") if c is not None else None
+                out.append(Declared(tag, el.get("name"), child, el, self))
+            return tuple(out)
+        return list(self.derive(("declared", tag), build))
 
     def loc_of(self, el) -> Loc | None:
         """Source location of an element of ``root_element`` (None when unknown)."""

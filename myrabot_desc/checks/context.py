@@ -1,12 +1,12 @@
-"""What rules share: the robot, the options, and lazily computed facts (poses, bodies, wheels)."""
+"""What rules share: the robot, the options, and the facts they ask for (the model's, built once per robot)."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import cached_property
 
 from myrabot_desc.diagnostics import Loc
 from myrabot_desc.model import shapes as geometry
+from myrabot_desc.model import tree
 from myrabot_desc.model.kinematics import world_transforms
 
 
@@ -22,90 +22,57 @@ class CheckOptions:
 
 
 class Context:
+    """One run of the rules on one robot. The facts the rules share are the model's (the tree and
+    its rigid bodies: model/tree.py; link poses: model/kinematics.py), built once per robot
+    (``Robot.derive``); ``fact`` keeps check's own the same way, keyed by what they depend on."""
+
     def __init__(self, robot, options: CheckOptions | None = None):
         self.robot = robot
         self.opts = options or CheckOptions()
-        self._mesh_cache: dict = {}
         self.suggestions: list[tuple[str, str]] = []   # (link, "<inertia .../>") for --suggest
         self.suppressions_seen: list = []   # (file, line, code) of inline suppressions (check_robot fills them)
         self.suppressions_used: list = []
         self.fixes: list = []               # (Diagnostic, rule.Fix) of the findings a rule knows how to repair
 
+    def fact(self, name: str, build, meshes: bool = False):
+        """``build()`` once per robot (``Robot.derive``); ``meshes``: it depends on whether meshes
+        are read (--inertia, --meshes), which is then part of its key."""
+        return self.robot.derive(("check", name, self.opts.load_meshes) if meshes else ("check", name), build)
+
     # ---------------------------------------------------------------- locations
     def loc_of(self, el) -> Loc | None:
-        """Source location of a raw URDF element (the loader maps every element of the tree;
-        the robot's own location for anything else)."""
+        """Source location of a raw URDF element, for the raw-syntax rules (checks/urdf_syntax.py);
+        the robot's own location for anything else."""
         return self.robot.loc_of(el) or self.robot.loc
 
-    # ---------------------------------------------------------------- kinematics
-    @cached_property
+    # ---------------------------------------------------------------- kinematics (the model's)
+    @property
     def world(self) -> dict:
         """link -> 4x4 world pose at q = 0 with the root at the origin."""
+        return self.fact("world", lambda: world_transforms(self.robot))
 
-        return world_transforms(self.robot)
-
-    @cached_property
+    @property
     def tree_ok(self) -> bool:
-        """One root, every joint's links exist, each link has at most one parent."""
-        r = self.robot
-        if r.root is None:
-            return False
-        parents: dict[str, int] = {}
-        for j in r.joints.values():
-            if j.parent not in r.links or j.child not in r.links:
-                return False
-            parents[j.child] = parents.get(j.child, 0) + 1
-        if any(n > 1 for n in parents.values()):
-            return False
-        return len(self.reachable) == len(r.links)
+        """One root, every joint's links exist, each link has at most one parent (model/tree.is_tree)."""
+        return tree.is_tree(self.robot)
 
-    @cached_property
+    @property
     def reachable(self) -> set[str]:
-        r = self.robot
-        seen, todo = set(), [r.root] if r.root else []
-        while todo:
-            n = todo.pop()
-            if n in seen:
-                continue
-            seen.add(n)
-            todo.extend(j.child for j in r.child_joints(n))
-        return seen
+        return tree.reachable(self.robot)
 
-    @cached_property
+    @property
     def body_of(self) -> dict[str, str]:
         """link -> the link that heads its rigid body (fixed joints merged upward)."""
-        r = self.robot
-        out: dict[str, str] = {}
-        for name in r.links:
-            cur, hops = name, 0
-            while hops <= len(r.joints):
-                pj = r.parent_joint(cur)
-                if pj is None or pj.type != "fixed" or pj.parent not in r.links:
-                    break
-                cur, hops = pj.parent, hops + 1
-            out[name] = cur
-        return out
+        return tree.rigid_bodies(self.robot).host
 
-    @cached_property
+    @property
     def body_mass(self) -> dict[str, float]:
         """body head link -> total mass of the rigid body (the head plus fixed-attached links)."""
-        out: dict[str, float] = {}
-        for link, head in self.body_of.items():
-            out[head] = out.get(head, 0.0) + max(self.robot.links[link].mass, 0.0)
-        return out
+        return tree.body_masses(self.robot)
 
     def moving(self, link: str) -> bool:
         """True when some non-fixed joint lies between the root and this link."""
-        r = self.robot
-        cur, hops = link, 0
-        while hops <= len(r.joints):
-            pj = r.parent_joint(cur)
-            if pj is None:
-                return False
-            if pj.type != "fixed":
-                return True
-            cur, hops = pj.parent, hops + 1
-        return False
+        return tree.moving(self.robot, link)
 
     # ---------------------------------------------------------------- geometry
     def shapes(self, link, prefer: str = "collision"):
@@ -117,9 +84,7 @@ class Context:
         return ("visual", vis) if vis else ("collision", cols)
 
     def mesh(self, geom):
-        """The MeshFacts of a Mesh geometry (scaled; model/meshes.py), or None / an error string; cached."""
-
-        key = (str(geom.path), tuple(geom.scale))
-        if key not in self._mesh_cache:
-            self._mesh_cache[key] = geometry.load_mesh(geom) if geom.path else None
-        return self._mesh_cache[key]
+        """The MeshFacts of a Mesh geometry (scaled; model/meshes.py), or None / an error string;
+        read once per robot."""
+        return self.robot.derive(("mesh", str(geom.path), tuple(geom.scale)),
+                                 lambda: geometry.load_mesh(geom) if geom.path else None)

@@ -6,6 +6,8 @@ import math
 
 from myrabot_desc.checks.rule import Finding, Fix, FixInfo, InsertAfter, InsertInto, SetValue, rule
 from myrabot_desc.checks.urdf_syntax import local, suggest
+from myrabot_desc.model import values as V
+from myrabot_desc.model.gazebo import preserved_joints
 
 FRAME_PARAMS = ("bodyName", "frameName", "frameId", "frame_name", "robotBaseFrame", "robot_base_frame",
                 "gz_frame_id", "ignition_frame_id", "optical_frame_id")
@@ -243,9 +245,7 @@ def massless_sensor_link(ctx):
     Fix: give the sensor link a small inertial (1 g, 1e-6 kg·m²).
     """
     r = ctx.robot
-    lump_off = {g.reference for g in r.gazebo
-                if (g.properties.get("preserveFixedJoint", "").lower() in ("true", "1")
-                    or g.properties.get("disableFixedJointLumping", "").lower() in ("true", "1"))}
+    lump_off = preserved_joints(r)
     for s in r.sensors():
         link = r.links.get(s.reference or "")
         if link is None or link.mass > 0 or r.child_joints(link.name):
@@ -268,25 +268,22 @@ def _r(x: float) -> str:
     return f"{v + 0.0:g}"
 
 
-def _num(v):
-    try:
-        return float(v)
-    except (TypeError, ValueError):
-        return None
-
-
 def _ranges(s):
-    """(min, max, label) pairs of a sensor, both dialects."""
+    """(min, max, label) pairs of a sensor, both dialects (its typed rays and camera)."""
     out = []
+    cam = s.camera
     if s.dialect == "electric":
-        if s.type == "ray":
-            out.append((_num(s.param("minRange")), _num(s.param("maxRange")), "minRange/maxRange"))
-        if s.type == "camera":
-            out.append((_num(s.param("nearClip")), _num(s.param("farClip")), "nearClip/farClip"))
+        if s.type == "ray" and s.rays:
+            out.append((s.rays[0].range_min, s.rays[0].range_max, "minRange/maxRange"))
+        if s.type == "camera" and cam is not None:
+            out.append((cam.near, cam.far, "nearClip/farClip"))
     else:
         for root in ("ray", "lidar"):
-            out.append((_num(s.param(root, "range", "min")), _num(s.param(root, "range", "max")), f"{root}/range"))
-        out.append((_num(s.param("camera", "clip", "near")), _num(s.param("camera", "clip", "far")), "camera/clip"))
+            ray = next((r for r in s.rays if r.tag == root), None)
+            if ray is not None:
+                out.append((ray.range_min, ray.range_max, f"{root}/range"))
+        if cam is not None:
+            out.append((cam.near, cam.far, "camera/clip"))
     return [(a, b, lab) for a, b, lab in out if a is not None or b is not None]
 
 
@@ -315,14 +312,6 @@ RADIAN_PARAMS = {"fov": "sensor_msgs/Range.field_of_view"}
 FULL_TURN = 2 * math.pi
 
 
-def _child(el, *path):
-    """The descendant element at path (local names), or None."""
-
-    for p in path:
-        el = next((c for c in el if local(c.tag) == p), None) if el is not None else None
-    return el
-
-
 def _slack(text: str | None) -> float:
     """Half a unit of the last digit written: 2π written as 6.28319 (or 6.2832, 6.3) is a full turn,
     not a value past it."""
@@ -348,26 +337,27 @@ def angle_units(ctx):
     """
     for s in ctx.robot.sensors():
         checks = []
+        node = s.node
         if s.dialect == "electric":
-            hf = _num(s.param("hfov"))
+            hf = V.number(s.param("hfov"))
             if hf is not None and not 0 < hf < 180:
-                checks.append(("hfov", hf, "degrees in (0, 180)", _child(s.element, "hfov")))
+                checks.append(("hfov", hf, "degrees in (0, 180)", node.child("hfov")))
         else:
-            el = _child(s.element, "camera", "horizontal_fov")
-            hf = _num(s.param("camera", "horizontal_fov"))
+            el = node.find("camera", "horizontal_fov")
+            hf = V.number(s.param("camera", "horizontal_fov"))
             if hf is not None and not 0 < hf <= FULL_TURN + _slack(el.text if el is not None else None):
                 checks.append(("camera/horizontal_fov", hf, "radians in (0, 2π]", el))
             for root in ("ray", "lidar"):
                 for axis in ("horizontal", "vertical"):
                     for k in ("min_angle", "max_angle"):
-                        el = _child(s.element, root, "scan", axis, k)
-                        v = _num(s.param(root, "scan", axis, k))
+                        el = node.find(root, "scan", axis, k)
+                        v = V.number(s.param(root, "scan", axis, k))
                         if v is not None and abs(v) > FULL_TURN + _slack(el.text if el is not None else None):
                             checks.append((f"{root}/scan/{axis}/{k}", v, "radians in [-2π, 2π]", el))
         for p in s.plugins:
             for key, what in RADIAN_PARAMS.items():
-                el = _child(p.element, key)
-                v = _num(p.params.get(key))
+                el = p.param(key)
+                v = V.number(p.params.get(key))
                 if v is not None and v > FULL_TURN + _slack(p.params.get(key)):
                     checks.append((f"plugin {p.name or p.library} {key}", v, f"radians ({what})", el))
         fallback = next((p.loc for p in s.plugins if p.loc), s.loc)
@@ -379,7 +369,7 @@ def angle_units(ctx):
                 fix = math.radians(v)
                 msg = (f"sensor {s.name}: {label} {v:g} looks like degrees; expected {expected}: "
                        f"{v:g}° = {fix:.4g} rad")
-            yield Finding(msg, (ctx.loc_of(el) if el is not None else None) or fallback,
+            yield Finding(msg, ((el.loc or ctx.robot.loc) if el is not None else None) or fallback,
                           {"sensor": s.name, "param": label, "value": v, "fix": fix})
 
 
@@ -396,7 +386,7 @@ def camera_fov(ctx):
     for s in ctx.robot.sensors():
         if s.dialect == "electric" or s.type not in ("camera", "depth", "depth_camera", "rgbd_camera", "multicamera"):
             continue
-        hf = _num(s.param("camera", "horizontal_fov"))
+        hf = s.camera.hfov if s.camera is not None else None
         if hf is not None and 0 < hf <= 2 * math.pi and not 0.05 <= hf < math.pi:
             yield Finding(f"camera {s.name}: horizontal_fov {hf:g} rad ({math.degrees(hf):.0f}°) is outside a pinhole "
                           "camera's range", s.loc, {"sensor": s.name, "horizontal_fov": hf})

@@ -114,12 +114,6 @@ def mass_positive(ctx):
                           i.loc or link.loc, {"link": link.name}, severity="warning")
 
 
-def principal(i) -> list[float]:
-    """Principal moments, ascending: pure Python (model.inertia), so a plain check never imports numpy."""
-
-    return principal_moments(i)
-
-
 @rule("I004", "inertia-positive-definite", "error",
       bad=_inertial(_inertia(0.001, 9e-08, 3.5e-08, 1e-08, ixz=6.3e-08), "antenna", "fixed"),
       message="link antenna: inertia not positive definite, principal moments -2.463e-08/3.5e-08/1.246e-07",
@@ -138,7 +132,7 @@ def positive_definite(ctx):
         i = link.inertial
         if i is None or i.mass <= 0:
             continue
-        ev = principal(i)
+        ev = principal_moments(i)
         scale = max(max(abs(e) for e in ev), 1e-300)
         if min(ev) < -1e-9 * scale and -min(ev) > ZERO_MOMENT:
             yield Finding(f"link {link.name}: inertia not positive definite, principal moments "
@@ -276,7 +270,7 @@ def triangle_gap(i):
     """
     if i is None or i.mass <= 0:
         return None
-    a, b, c = sorted(float(e) for e in principal(i))
+    a, b, c = sorted(float(e) for e in principal_moments(i))
     if c <= ZERO_MOMENT:
         return None
     noise = NOISE * c

@@ -95,14 +95,9 @@ class Solid:
 
 
 def solids(ctx) -> dict:
-    cache = getattr(ctx, "_solids", None)
-    if cache is None:
-        cache = {}
-        for link in ctx.robot.links.values():
-            if link.inertial and link.inertial.mass > 0:
-                cache[link.name] = Solid(ctx, link)
-        ctx._solids = cache
-    return cache
+    """link -> its Solid, for every link with mass (built once per robot and mesh option)."""
+    return ctx.fact("solids", lambda: {link.name: Solid(ctx, link) for link in ctx.robot.links.values()
+                                       if link.inertial and link.inertial.mass > 0}, meshes=True)
 
 
 def fmt(x: float) -> str:
@@ -251,11 +246,14 @@ def radius_of_gyration(ctx):
 
 
 def hull_points(ctx) -> dict:
-    """link -> _hull_points(ctx, link) for every link of solids(ctx), None when unknown; built once for
-    I007 and I010, with one stacked product per shape size (the same bits as one product per shape)."""
-    cache = getattr(ctx, "_hull_points", None)
-    if cache is not None:
-        return cache
+    """link -> points bounding its geometry (link frame; see _hull_items), None when unknown, for every
+    link of solids(ctx); the callers take extremes (extents, farthest distances), which every vertex
+    gives as well as a hull would. Built once for I007 and I010, with one stacked product per shape
+    size (the same bits as one product per shape)."""
+    return ctx.fact("hull_points", lambda: _stack_hull_points(ctx), meshes=True)
+
+
+def _stack_hull_points(ctx) -> dict:
     import numpy as np
 
     parts: dict[str, list | None] = {}
@@ -286,53 +284,19 @@ def hull_points(ctx) -> dict:
         placed = local @ np.swapaxes(T[:, :3, :3], 1, 2) + T[:, None, :3, 3]
         for (_, _, name, slot), pts in zip(group, placed):
             parts[name][slot] = pts
-    cache = {name: (np.vstack(p) if p is not None else None) for name, p in parts.items()}
-    ctx._hull_points = cache
-    return cache
+    return {name: (np.vstack(p) if p is not None else None) for name, p in parts.items()}
 
 
 def _hull_items(link):
-    """The shapes _hull_points measures (see there), or None."""
+    """The shapes hull_points measures, or None: collision and visual shapes of a primitive-only
+    link (cheap, lenient); when meshes are involved only the collision shapes (visual meshes are
+    the slow ones to load), else the visuals."""
     cols = [c for c in link.collisions if c.geometry is not None]
     vis = [v for v in link.visuals if v.geometry is not None]
     items = cols + vis
     if any(it.geometry.kind == "mesh" for it in items):
         items = cols or vis
     return items or None
-
-
-def _hull_points(ctx, link):
-    """Points bounding the link's geometry (link frame), None if unknown; the callers take
-    extremes (extents, farthest distances), which every vertex gives as well as a hull would.
-
-    Primitive-only links use collision ∪ visual (cheap, lenient). When meshes are involved only
-    the collision shapes are used (visual meshes are the slow ones to load), else the visuals.
-    """
-    import numpy as np
-
-    out = []
-    cols = [c for c in link.collisions if c.geometry is not None]
-    vis = [v for v in link.visuals if v.geometry is not None]
-    items = cols + vis
-    if any(it.geometry.kind == "mesh" for it in items):
-        items = cols or vis
-    if not items:
-        return None
-    for it in items:
-        g = it.geometry
-        mesh = None
-        if g.kind == "mesh":
-            if not ctx.opts.load_meshes:
-                return None
-            mesh = ctx.mesh(g)
-            if mesh is None or isinstance(mesh, str):
-                return None
-            local = np.asarray(mesh.vertices)    # the rules use extremes only: no hull needed (nor scipy)
-        else:
-            local = np.asarray(G.surface_points(g, 32))
-        T = pose_matrix(it.origin)
-        out.append(local @ T[:3, :3].T + T[:3, 3])
-    return np.vstack(out)
 
 
 @rule("I008", "density-plausible", "warning",
@@ -415,7 +379,7 @@ def origin_inside(ctx):
 
 
 def _with_visuals(ctx, link, pts):
-    """``pts`` (the shapes _hull_points measured) and the link's visual shapes, for a link whose
+    """``pts`` (the shapes hull_points measured) and the link's visual shapes, for a link whose
     centre of mass fell outside the first: a partial collision (a quadruped's hip: a cylinder
     off to one side, the motor by the joint only in the visual mesh) bounds only part of the body.
     Visual meshes are read here only for such links (few), so I010 stays cheap."""

@@ -10,7 +10,7 @@ from myrabot_desc.model.inertia import eigh3, tensor
 from myrabot_desc.model.kinematics import center_of_mass, pose_matrix
 from myrabot_desc.model.parts import JOINT_TYPES
 from myrabot_desc.model.shapes import surface_points
-from myrabot_desc.model.support import ground_support, lowest, placed_collisions, signed_distance
+from myrabot_desc.model.support import lowest, placed_collisions, signed_distance, stance
 
 _FINGER = """<link name="finger">{inertial}</link>
 <joint name="finger_joint" type="revolute">
@@ -31,28 +31,12 @@ def _collision_world(ctx):
     return placed_collisions(ctx.robot, ctx.world, (lambda g, loc: ctx.mesh(g)) if ctx.opts.load_meshes else None)
 
 
-def wheels(ctx) -> list[str]:
-    """The wheel joints (model/drive.py's answer, the one convert and sim get)."""
-
-    return D.wheel_joints(ctx.robot)
-
-
-def is_mobile(ctx) -> bool:
-    return D.is_mobile(ctx.robot)
-
-
 def support(ctx):
-    """What the robot stands on at q = 0 (model/support.py: the same function sim and the viewer
-    use): (Support, centre of mass, mass), or None without collision geometry or mass."""
+    """What the robot stands on at q = 0 (model/support.stance: the same function sim and the viewer
+    use), or None without collision geometry or mass."""
 
-    got = ctx.__dict__.get("_support", False)
-    if got is not False:
-        return got
-    s = ground_support(ctx.robot, meshes=ctx.mesh if ctx.opts.load_meshes else False, world=ctx.world)
-    mass, com = center_of_mass(ctx.robot)
-    got = None if s is None or not mass > 0 else (s, com, mass)
-    ctx.__dict__["_support"] = got
-    return got
+    return ctx.fact("support", lambda: stance(ctx.robot, meshes=ctx.mesh if ctx.opts.load_meshes else False,
+                                              world=ctx.world), meshes=True)
 
 
 @rule("P001", "static-support", "error",
@@ -71,14 +55,14 @@ def static_support(ctx):
     caster (a small sphere collision on a fixed joint reaching the ground) on the side
     the robot tips to, or move the wheels under the centre of mass.
     """
-    if not ctx.tree_ok or not is_mobile(ctx):
+    if not ctx.tree_ok or not D.is_mobile(ctx.robot):
         return
     s = support(ctx)
     if s is None:
         return
 
-    sup, com, mass = s
-    zmin, hull, names = sup.ground_z, sup.polygon, sup.links
+    com = s.com
+    zmin, hull, names = s.ground_z, s.polygon, s.links
     d = signed_distance(hull, com[:2])
     if d >= 0.005 or (len(hull) >= 3 and d > 0):
         return
@@ -111,7 +95,7 @@ def _tip(ctx, hull, com, zmin):
     import numpy as np
 
     r = ctx.robot
-    wheel_joints = [r.joints[n] for n in wheels(ctx) if n in r.joints]
+    wheel_joints = [r.joints[n] for n in D.wheel_joints(ctx.robot) if n in r.joints]
     centres = [(ctx.world[j.parent] @ pose_matrix(j.origin))[:3, 3] for j in wheel_joints if j.parent in ctx.world]
     if len(centres) < 2:
         return None
@@ -159,7 +143,7 @@ def spawn_penetration(ctx):
     a wheel reaching below it starts inside the ground and Gazebo pushes the model out
     with a jump. Fix: raise the base joint so the wheels touch z = 0 (the depth is given).
     """
-    if not ctx.tree_ok or not is_mobile(ctx):
+    if not ctx.tree_ok or not D.is_mobile(ctx.robot):
         return
 
     below = [(z, name) for z, _, name in lowest(ctx.robot, ctx.world, ctx.mesh if ctx.opts.load_meshes else False)
@@ -289,9 +273,9 @@ def mass_summary(ctx):
         yield Finding("the robot has no mass at all", ctx.robot.loc, {"mass": 0.0}, severity="warning")
         return
     ground = None
-    if is_mobile(ctx):
+    if D.is_mobile(ctx.robot):
         s = support(ctx)
-        ground = s[0].ground_z if s else None
+        ground = s.ground_z if s else None
     h = com[2] - (ground or 0.0)
     where = "above the ground contacts" if ground is not None else f"above {ctx.robot.root}'s origin"
     yield Finding(f"total mass {mass:.4g} kg; centre of mass ({com[0]:.3g} {com[1]:.3g} {com[2]:.3g}) m in "

@@ -24,21 +24,8 @@ IGNORED_HINT = {
 
 
 def drives(ctx):
-    """[(plugin, Drive)] for every recognised drive plugin (model/drive.py), cached on the context."""
-    got = getattr(ctx, "_plugin_drives", None)
-    if got is None:
-        got = [(d.plugin, d) for d in D.plugin_drives(ctx.robot)]
-        ctx._plugin_drives = got
-    return got
-
-
-def _geometry(ctx, d):
-    """The drive's wheels measured on the URDF (model/drive.py), cached on the context."""
-    cache = ctx.__dict__.setdefault("_drive_geometry", {})
-    key = id(d.plugin) if d.plugin is not None else d.joints
-    if key not in cache:
-        cache[key] = D.measure(ctx.robot, d)
-    return cache[key]
+    """[(plugin, Drive)] for every recognised drive plugin (model/drive.py)."""
+    return [(d.plugin, d) for d in D.plugin_drives(ctx.robot)]
 
 
 @rule("G001", "drive-wheel-separation", "error",
@@ -61,7 +48,7 @@ def wheel_separation(ctx):
     for p, d in drives(ctx):
         spec = d.spec
         sep = d.separation
-        g = _geometry(ctx, d)
+        g = D.measure(ctx.robot, d)
         if sep is None or not g.left or not g.right:
             continue
         lw, rw = g.left[0], g.right[0]
@@ -97,7 +84,7 @@ def wheel_size(ctx):
         val, _ = D.number(p, key)
         if val is None:
             continue
-        g = _geometry(ctx, d)
+        g = D.measure(ctx.robot, d)
         for w in g.left[:1] + g.right[:1]:
             if w.radius is None:
                 continue
@@ -129,7 +116,7 @@ def drive_joints_exist(ctx):
     for p, d in drives(ctx):
         spec = d.spec
         for key in (*spec.left, *spec.right, *spec.fixed_ok):
-            for name in D.values(p, key):
+            for name in p.values(key):
                 if name not in r.joints:
                     guess = suggest(name, r.joints)
                     yield Finding(f"{spec.label}: {key} '{name}' is not a joint of this robot"
@@ -156,7 +143,7 @@ def drive_joints_continuous(ctx):
     for p, d in drives(ctx):
         spec = d.spec
         for key in (*spec.left, *spec.right, *spec.fixed_ok):
-            for name in D.values(p, key):
+            for name in p.values(key):
                 j = r.joints.get(name)
                 if j is None or j.type == "continuous":
                     continue
@@ -194,7 +181,7 @@ def drive_axis(ctx):
     for d in D.find(ctx.robot):
         if d.source not in ("ros_control", "ros2_control"):
             continue
-        for w in _geometry(ctx, d).wheels:
+        for w in D.measure(ctx.robot, d).wheels:
             words = set(re.split(r"[^a-z]+", w.joint.lower()))
             y = w.origin[1]
             named = "left" if "left" in words and "right" not in words else \
@@ -207,13 +194,13 @@ def drive_axis(ctx):
     r = ctx.robot
     for p, d in drives(ctx):
         spec = d.spec
-        g = _geometry(ctx, d)
+        g = D.measure(ctx.robot, d)
         for side, w in (("left", g.left[0] if g.left else None), ("right", g.right[0] if g.right else None)):
             if w is None:
                 continue
             j = r.joints[w.joint]
             a = w.axis
-            if abs(a[1]) < 0.9:
+            if abs(a[1]) < D.LATERAL:
                 yield Finding(f"{spec.label}: {side} wheel joint {j.name} turns about ({a[0]:.2g} {a[1]:.2g} {a[2]:.2g}) "
                               f"in {r.root}: not across the direction of travel (y)", j.loc,
                               {"joint": j.name, "axis_world": list(a)})
@@ -249,7 +236,7 @@ def drive_legacy_mode(ctx):
     for p, d in drives(ctx):
         if not d.legacy:
             continue
-        g = _geometry(ctx, d)
+        g = D.measure(ctx.robot, d)
         if not g.left or not g.right:
             continue
         lw, rw = g.left[0], g.right[0]
@@ -282,7 +269,7 @@ def drive_summary(ctx):
     """
     r = ctx.robot
     for d in D.find(r):
-        g = _geometry(ctx, d)
+        g = D.measure(ctx.robot, d)
         if not g.left or not g.right:
             continue
         nums = []
@@ -316,10 +303,10 @@ def unknown_params(ctx):
     for p, d in drives(ctx):
         spec = d.spec
         seen = set()
-        for c in p.element:
-            if not isinstance(c.tag, str) or c.tag.startswith("{"):
+        for c in p.node.elements:
+            if c.ns:                       # namespaced: an extension, not a parameter
                 continue
-            k = local(c.tag)
+            k = c.tag
             if k in spec.known or k in seen:
                 continue
             seen.add(k)

@@ -100,9 +100,9 @@ class SetValue:
 
 @dataclass(frozen=True)
 class RemoveAttribute:
-    """Remove attribute ``attr`` of the URDF element ``element`` (where it is written)."""
+    """Remove attribute ``attr`` of the URDF element ``ref`` (where it is written)."""
 
-    element: object
+    ref: object
     attr: str
 
 
@@ -117,17 +117,17 @@ class RemoveElement:
 
 @dataclass(frozen=True)
 class RenameTag:
-    """Rename the URDF element ``element`` (start and end tag) to ``tag``."""
+    """Rename the URDF element ``ref`` (start and end tag) to ``tag``."""
 
-    element: object
+    ref: object
     tag: str
 
 
 @dataclass(frozen=True)
 class RenameAttribute:
-    """Rename attribute ``attr`` of the URDF element ``element`` to ``new`` (its value stays)."""
+    """Rename attribute ``attr`` of the URDF element ``ref`` to ``new`` (its value stays)."""
 
-    element: object
+    ref: object
     attr: str
     new: str
 

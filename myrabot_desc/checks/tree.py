@@ -105,19 +105,16 @@ def no_cycle(ctx):
     joint per link and close the loop in the simulator's own format.
     """
     r = ctx.robot
-    raw = r.root_element.findall("joint")
-    first_named: dict = {}               # joint name -> its first element
+    first_named: dict = {}               # joint name -> its first declaration
     children = []                        # (child link, joint name), in document order
-    for j in raw:
-        name = j.get("name")
-        first_named.setdefault(name, j)
-        c = next(j.iterchildren("child"), None)          # = j.find("child"), without parsing a path
-        if c is not None and c.get("link") is not None:
-            children.append((c.get("link"), name))
+    for j in r.declared("joint"):        # every <joint> as written: the typed joints keep one per name
+        first_named.setdefault(j.name, j)
+        if j.child is not None:
+            children.append((j.child, j.name))
     for link, js in sorted(_repeats(children).items()):
         names = ", ".join(n if n is not None else "(unnamed)" for n in js)
         yield Finding(f"link {link} is the child of {len(js)} joints ({names}): a link has one parent",
-                      ctx.loc_of(first_named[js[1]]), {"link": link, "joints": js})
+                      first_named[js[1]].loc or r.loc, {"link": link, "joints": js})
     # cycles: each link walked once (model/tree.py; the walk per link was cubic in a chain's length)
 
     for cyc in cycles({j.child: j.parent for j in r.joints.values()}, r.links):
@@ -160,12 +157,12 @@ def unique_names(ctx):
     unique"); lenient parsers keep one of them silently. Typical cause: a xacro macro
     instantiated twice without a prefix. Fix: rename, or add a prefix parameter to the macro.
     """
-    root = ctx.robot.root_element
+    r = ctx.robot
     for tag in ("link", "joint", "material"):
-        named = ((e.get("name"), e) for e in root.iterchildren(tag) if e.get("name") is not None)
-        for name, els in sorted(_repeats(named).items()):
-            yield Finding(f"{len(els)} top-level <{tag}> elements are named '{name}'", ctx.loc_of(els[1]),
-                          {"kind": tag, "name": name, "count": len(els)})
+        named = ((d.name, d) for d in r.declared(tag) if d.name is not None)
+        for name, ds in sorted(_repeats(named).items()):
+            yield Finding(f"{len(ds)} top-level <{tag}> elements are named '{name}'", ds[1].loc or r.loc,
+                          {"kind": tag, "name": name, "count": len(ds)})
 
 
 def _is_limited(j) -> bool:

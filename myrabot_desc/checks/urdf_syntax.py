@@ -4,6 +4,11 @@ URDF parsers ignore what they do not know, so a typo silently removes a feature.
 We walk the URDF tree against the URDF schema plus the extensions that real models
 use (PyBullet's <contact>, ros2_control, Aldebaran limit extras, ...). <gazebo>,
 <transmission>, <ros2_control> and URDF <sensor> bodies are free-form and not walked.
+
+These rules (T005, T006, T007) judge the XML itself: what the typed model cannot hold because
+no reader keeps it (an element or attribute nobody knows, a ``<ros>`` block where nobody reads
+it). So they, and only they outside model/, read the robot's raw XML (``Robot.root_element``,
+``Context.loc_of``); tests/model/test_raw_xml.py holds every other module to the typed model.
 """
 
 from __future__ import annotations
@@ -85,10 +90,7 @@ def only_candidate(word: str, choices) -> str | None:
 
 def _walk(ctx) -> list:
     """(element, parent_tag, problem) for unknown children and attributes; one walk for T005 and T006."""
-    found = ctx.__dict__.get("_urdf_syntax_walk")
-    if found is None:
-        found = ctx.__dict__["_urdf_syntax_walk"] = _problems(ctx.robot.root_element)
-    return found
+    return ctx.fact("urdf_syntax.walk", lambda: _problems(ctx.robot.root_element))
 
 
 def _problems(root) -> list:

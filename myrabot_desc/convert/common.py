@@ -6,6 +6,7 @@ from dataclasses import dataclass, field
 
 from lxml import etree
 
+from myrabot_desc.model import values as V
 from myrabot_desc.model.transforms import rpy_of
 
 
@@ -42,34 +43,8 @@ def nums(values) -> str:
 
 
 def to_float(text, default=None):
-    if text is None:
-        return default
-    try:
-        return float(str(text).strip())
-    except ValueError:
-        return default
-
-
-def to_floats(text) -> list[float] | None:
-    if text is None:
-        return None
-    try:
-        return [float(t) for t in str(text).split()]
-    except ValueError:
-        return None
-
-
-def to_bool(text, default=None):
-    if text is None:
-        return default
-    t = str(text).strip().lower()
-    if t in ("1", "true", "yes", "on"):
-        return True
-    if t in ("0", "false", "no", "off"):
-        return False
-    return default
-
-
+    """model/values.number (convert/mjcf.py's name for it, until its rewrite)."""
+    return V.number(text, default)
 
 
 def pose_text(T) -> str:
@@ -105,18 +80,54 @@ def comment(parent, text: str):
 
 
 def local(tag) -> str:
-    return tag.rsplit("}", 1)[-1] if isinstance(tag, str) else ""
+    """A tag without its namespace (convert/mjcf.py's, on its copy of the robot, until its rewrite)."""
+    return etree.QName(tag).localname if isinstance(tag, str) else ""
 
 
+def element_of(node, parent=None):
+    """A new lxml element (with its subtree) from a model node (model/nodes.Node): markup that
+    convert carries into SDF as it is. Under ``parent`` when given (the node's tail kept)."""
+    if node.kind == "comment":
+        el = etree.Comment(node.text)
+    elif node.kind == "pi":
+        el = etree.ProcessingInstruction(node.target, node.text)
+    elif node.kind == "entity":
+        el = etree.Entity(node.tag.strip("&;"))
+    else:
+        tag = f"{{{node.ns}}}{node.tag}" if node.ns else node.tag
+        if parent is None:
+            el = etree.Element(tag, nsmap=_namespaces(node) or None)
+        else:
+            el = etree.SubElement(parent, tag)
+        for k, v in node.attrs:
+            el.set(k, v)
+        el.text = node.text
+        for c in node.children:
+            element_of(c, el)
+        if parent is not None:
+            el.tail = node.tail
+        return el
+    if parent is not None:
+        parent.append(el)
+        el.tail = node.tail
+    return el
 
-def xml_text(el) -> str:
-    """An element as compact one-line-ish XML text (for comments)."""
-    import copy
 
-    e = copy.deepcopy(el)
+def _namespaces(node) -> dict:
+    """prefix -> namespace of every namespaced element below ``node``, in document order (what a
+    copy of the element declares on its top)."""
+    out: dict = {}
+    for n in node.iter():
+        if n.ns and n.ns not in out.values():
+            out.setdefault(n.prefix, n.ns)
+    return out
+
+
+def xml_text(node) -> str:
+    """A model node (model/nodes.Node) as compact one-line-ish XML text (for comments)."""
+    e = element_of(node)
     etree.cleanup_namespaces(e)
-    text = etree.tostring(e, encoding="unicode", with_tail=False)
-    return text
+    return etree.tostring(e, encoding="unicode", with_tail=False)
 
 
 def pretty(root, xml_declaration: bool = True) -> str:

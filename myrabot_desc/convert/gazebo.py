@@ -1,15 +1,15 @@
 """Per-link and per-joint ``<gazebo reference=...>`` properties in SDF terms.
 
 Both spellings of the seed are accepted: ``<mu1>0.5</mu1>`` and ``<mu1 value="10"/>``
-(the model's ``properties`` already reads either), ``fdir`` as well as ``fdir1``.
-Several blocks for the same reference merge in document order (later wins).
+(the model's ``properties`` already reads either), ``fdir`` as well as ``fdir1``; values are the
+model's typed ones (``GazeboBlock.values``: numbers, vectors, and flags as sdformat spells them,
+model/gazebo.py). Several blocks for the same reference merge in document order (later wins).
 """
 
 from __future__ import annotations
 
-import copy
-
-from myrabot_desc.convert.common import local, sub, to_bool, to_float, to_floats
+from myrabot_desc.convert.common import element_of, sub
+from myrabot_desc.model.gazebo import preserved_joints
 
 STEP = 0.001        # gz-sim's default physics step, for the Gazebo 0.x stopKp/stopKd conversion
 
@@ -31,16 +31,19 @@ class GazeboProps:
 
     def __init__(self, robot, notes):
         self.by_ref: dict[str | None, dict[str, str]] = {}
-        self.blobs: dict[str | None, list] = {}       # reference -> [<visual>|<collision> element]
+        self.typed: dict[str | None, dict] = {}       # reference -> the typed values (GazeboBlock.values)
+        self.blobs: dict[str | None, list] = {}       # reference -> [<visual>|<collision> node]
         self.locs: dict[str | None, object] = {}
+        self.preserved = preserved_joints(robot)
         unknown: dict[str, object] = {}
         for block in robot.gazebo:
             ref = block.reference
             props = self.by_ref.setdefault(ref, {})
             props.update(block.properties)
+            self.typed.setdefault(ref, {}).update(block.values)
             self.locs.setdefault(ref, block.loc)
-            for child in block.element:
-                if local(child.tag) in ("visual", "collision") and not _ns(child):
+            for child in block.node.elements:
+                if child.tag in ("visual", "collision") and not child.ns:
                     self.blobs.setdefault(ref, []).append(child)
             known = MODEL_KEYS if ref is None else (LINK_KEYS if ref in robot.links else JOINT_KEYS)
             for key in block.properties:
@@ -52,31 +55,37 @@ class GazeboProps:
             notes.warn(f"gazebo properties with no SDF equivalent, not converted: {names}")
 
     def get(self, ref) -> dict[str, str]:
+        """The properties of a reference as written (text)."""
         return self.by_ref.get(ref, {})
 
+    def values(self, ref) -> dict:
+        """The properties of a reference, typed (model/gazebo.py)."""
+        return self.typed.get(ref, {})
+
     def blob_children(self, ref, kind: str) -> list:
-        """Children of injected ``<visual>``/``<collision>`` elements for this link."""
+        """Children of injected ``<visual>``/``<collision>`` nodes for this link."""
         out = []
-        for el in self.blobs.get(ref, []):
-            if local(el.tag) == kind:
-                out.extend(c for c in el if isinstance(c.tag, str))
+        for n in self.blobs.get(ref, []):
+            if n.tag == kind:
+                out.extend(n.elements)
         return out
 
     # ------------------------------------------------------------ link level
     def apply_link(self, link_el, ref) -> None:
-        p = self.get(ref)
-        gravity_off = to_bool(p.get("turnGravityOff"))
+        p = self.values(ref)
+        gravity_off = p.get("turnGravityOff")
         if gravity_off is not None:
             sub(link_el, "gravity", not gravity_off)
-        elif p.get("gravity") is not None and to_bool(p.get("gravity")) is not None:
-            sub(link_el, "gravity", to_bool(p["gravity"]))
-        sc = to_bool(p.get("selfCollide"))
+        elif p.get("gravity") is not None:
+            sub(link_el, "gravity", p["gravity"])
+        sc = p.get("selfCollide")
         if sc is not None:
             sub(link_el, "self_collide", sc)
-        if to_bool(p.get("kinematic")) is not None:
-            sub(link_el, "kinematic", to_bool(p["kinematic"]))
-        lin = to_float(p.get("dampingFactor"), to_float(p.get("linearDamping")))
-        ang = to_float(p.get("angularDamping"))
+        if p.get("kinematic") is not None:
+            sub(link_el, "kinematic", p["kinematic"])
+        lin = p.get("dampingFactor")
+        lin = lin if lin is not None else p.get("linearDamping")
+        ang = p.get("angularDamping")
         if lin is not None or ang is not None:
             vd = sub(link_el, "velocity_decay")
             if lin is not None:
@@ -86,24 +95,24 @@ class GazeboProps:
 
     # ------------------------------------------------------------ collisions
     def apply_collision(self, coll_el, ref) -> None:
-        p = self.get(ref)
-        laser = to_float(p.get("laserRetro"))
+        p = self.values(ref)
+        laser = p.get("laserRetro")
         if laser is not None:
             sub(coll_el, "laser_retro", laser)
-        mc = to_float(p.get("maxContacts"))
+        mc = p.get("maxContacts")
         if mc is not None:
             sub(coll_el, "max_contacts", int(mc))
-        mu1, mu2 = to_float(p.get("mu1")), to_float(p.get("mu2"))
-        fdir = to_floats(p.get("fdir1") or p.get("fdir"))
-        slip1, slip2 = to_float(p.get("slip1")), to_float(p.get("slip2"))
-        kp, kd = to_float(p.get("kp")), to_float(p.get("kd"))
-        max_vel, min_depth = to_float(p.get("maxVel")), to_float(p.get("minDepth"))
+        mu1, mu2 = p.get("mu1"), p.get("mu2")
+        fdir = p.get("fdir1") if self.get(ref).get("fdir1") else p.get("fdir")
+        slip1, slip2 = p.get("slip1"), p.get("slip2")
+        kp, kd = p.get("kp"), p.get("kd")
+        max_vel, min_depth = p.get("maxVel"), p.get("minDepth")
         injected = self.blob_children(ref, "collision")
         if any(v is not None for v in (mu1, mu2, fdir, slip1, slip2, kp, kd, max_vel, min_depth)):
             surface = sub(coll_el, "surface")
             if any(v is not None for v in (mu1, mu2, fdir, slip1, slip2)):
                 ode = sub(sub(surface, "friction"), "ode")
-                for tag, v in (("mu", mu1), ("mu2", mu2), ("fdir1", fdir if fdir and len(fdir) == 3 else None),
+                for tag, v in (("mu", mu1), ("mu2", mu2), ("fdir1", fdir),
                                ("slip1", slip1), ("slip2", slip2)):
                     if v is not None:
                         sub(ode, tag, v)
@@ -117,15 +126,15 @@ class GazeboProps:
 
     def apply_visual(self, vis_el, ref) -> None:
         for child in self.blob_children(ref, "visual"):
-            if local(child.tag) == "material":   # the resolved explicit material wins
+            if child.tag == "material":   # the resolved explicit material wins
                 continue
             _merge(vis_el, child)
 
     # ------------------------------------------------------------ joints
     def apply_joint(self, joint_el, axis_el, ref) -> None:
-        p = self.get(ref)
+        p = self.values(ref)
         if axis_el is not None:
-            sr, ss = to_float(p.get("springReference")), to_float(p.get("springStiffness"))
+            sr, ss = p.get("springReference"), p.get("springStiffness")
             if sr is not None or ss is not None:
                 dyn = axis_el.find("dynamics")
                 if dyn is None:
@@ -134,18 +143,19 @@ class GazeboProps:
                     sub(dyn, "spring_reference", sr)
                 if ss is not None:
                     sub(dyn, "spring_stiffness", ss)
-        fb = to_bool(p.get("provideFeedback"))
-        cfm, erp = to_float(p.get("stopCfm")), to_float(p.get("stopErp"))
-        kp, kd = to_float(p.get("stopKp")), to_float(p.get("stopKd"))
+        fb = p.get("provideFeedback")
+        cfm, erp = p.get("stopCfm"), p.get("stopErp")
+        kp, kd = p.get("stopKp"), p.get("stopKd")
         if (cfm is None and erp is None) and (kp is not None or kd is not None):
             # Gazebo 0.x stop stiffness/damping -> ODE erp/cfm at the default 1 ms step:
             # erp = h kp / (h kp + kd), cfm = 1 / (h kp + kd)
             h, kp, kd = STEP, kp or 0.0, kd or 0.0
             if h * kp + kd > 0:
                 erp, cfm = h * kp / (h * kp + kd), 1.0 / (h * kp + kd)
-        j_erp, j_cfm = to_float(p.get("erp")), to_float(p.get("cfm"))
-        isd = to_bool(p.get("implicitSpringDamper"), to_bool(p.get("cfmDamping")))
-        fudge = to_float(p.get("fudgeFactor"))
+        j_erp, j_cfm = p.get("erp"), p.get("cfm")
+        isd = p.get("implicitSpringDamper")
+        isd = isd if isd is not None else p.get("cfmDamping")
+        fudge = p.get("fudgeFactor")
         if any(v is not None for v in (fb, cfm, erp, isd, fudge, j_erp, j_cfm)):
             phys = sub(joint_el, "physics")
             ode = sub(phys, "ode")
@@ -165,22 +175,19 @@ class GazeboProps:
                 sub(phys, "provide_feedback", fb)
 
     def preserve_fixed(self, joint_name: str) -> bool:
-        p = self.get(joint_name)
-        return bool(to_bool(p.get("preserveFixedJoint")) or to_bool(p.get("disableFixedJointLumping")))
-
-
-def _ns(el) -> bool:
-    return isinstance(el.tag, str) and el.tag.startswith("{")
+        """Fixed-joint lumping is off for this joint (model/gazebo.preserved_joints)."""
+        return joint_name in self.preserved
 
 
 def _merge(target, child) -> None:
-    """Deep-merge an injected SDF fragment: same-named children merge, leaves replace."""
-    existing = target.find(child.tag)
-    if existing is None or len(child) == 0:
+    """Deep-merge an injected SDF fragment (a model node): same-named children merge, leaves replace."""
+    existing = target.find(f"{{{child.ns}}}{child.tag}" if child.ns else child.tag)
+    if existing is None or not child.children:
         if existing is not None:
             target.remove(existing)
-        target.append(copy.deepcopy(child))
+        el = element_of(child)
+        el.tail = child.tail
+        target.append(el)
         return
-    for c in child:
-        if isinstance(c.tag, str):
-            _merge(existing, c)
+    for c in child.elements:
+        _merge(existing, c)

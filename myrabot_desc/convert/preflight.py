@@ -13,9 +13,12 @@ from __future__ import annotations
 from pathlib import Path
 from typing import NamedTuple
 
+from lxml import etree
+
 from myrabot_desc.errors import InputError
 from myrabot_desc.expand.packages import unresolved_reason
 from myrabot_desc.model import meshes as meshio
+from myrabot_desc.model import tree
 from myrabot_desc.safety import parse_xml_bytes
 
 # loader issues that no URDF reader would accept (urdfdom refuses the document): the text is not a
@@ -36,12 +39,10 @@ class Problem(NamedTuple):
 
 
 def tree_problems(robot) -> list[Problem]:
-    """Several roots, a link with two parents, links on a cycle (unreachable from the root)."""
+    """Several roots, a link with two parents, links on a cycle (unreachable from the root): the
+    model's tree facts (model/tree.py), said as convert refuses them."""
     out: list[Problem] = []
-    parents: dict[str, list] = {}
-    for j in robot.joints.values():
-        parents.setdefault(j.child, []).append(j)
-    for child, js in parents.items():
+    for child, js in tree.parents(robot).items():
         if len(js) > 1:
             out.append(Problem(f"link '{child}' is the child of {len(js)} joints ("
                                + ", ".join(f"'{j.name}'" for j in js) + "): not a tree", js[1].loc, "link", child))
@@ -49,14 +50,7 @@ def tree_problems(robot) -> list[Problem]:
     if len(roots) > 1:
         out.append(Problem(f"the model has {len(roots)} root links ({', '.join(repr(r) for r in roots[:5])}"
                            f"{', ...' if len(roots) > 5 else ''}): a URDF is one tree", robot.loc, "model"))
-    children = robot.joints_by_parent()
-    seen = set(roots)
-    todo = list(roots)
-    while todo:
-        for j in children.get(todo.pop(), ()):
-            if j.child not in seen:
-                seen.add(j.child)
-                todo.append(j.child)
+    seen = tree.reachable(robot)
     lost = [n for n in robot.links if n not in seen]
     if lost:
         j = next((j for j in robot.joints.values() if j.child in lost), None)
@@ -134,7 +128,7 @@ def triangle_problem(path, size: int) -> str | None:
     except InputError as exc:
         return f"{path.name} is not readable COLLADA: {exc.message}"
     for el in root.iter():
-        tag = el.tag.rsplit("}", 1)[-1] if isinstance(el.tag, str) else ""
+        tag = etree.QName(el).localname if isinstance(el.tag, str) else ""
         if tag in ("triangles", "polylist", "polygons", "trifans", "tristrips") and el.get("count", "0") != "0":
             return None
     return f"{path.name} holds no triangles (no <triangles>, <polylist> or <polygons> with a count)"

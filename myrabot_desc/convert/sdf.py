@@ -11,7 +11,6 @@ gz-sim reads it as well.
 
 from __future__ import annotations
 
-import copy
 from dataclasses import dataclass
 
 from lxml import etree
@@ -20,19 +19,21 @@ from myrabot_desc.convert.appearance import Appearance, material_element
 from myrabot_desc.convert.common import (
     Notes,
     comment,
+    element_of,
     pose_text,
     pretty,
     sub,
-    to_bool,
     warn_load_issues,
 )
 from myrabot_desc.convert.gazebo import GazeboProps
 from myrabot_desc.convert.report import Report, part_name, seed
-from myrabot_desc.convert.sensors import plugin_kind, translate_sensor
+from myrabot_desc.convert.sensors import translate_sensor
 from myrabot_desc.convert.systems import Systems
 from myrabot_desc.convert.uris import UriMapper
 from myrabot_desc.errors import InputError
+from myrabot_desc.model import plugins
 from myrabot_desc.model.inertia import describe, repaired
+from myrabot_desc.model.tree import rigid_bodies
 from myrabot_desc.model.transforms import (
     EYE3,
     IDENTITY,
@@ -156,39 +157,23 @@ def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = Non
 
     world_links = {n for n, l in robot.links.items()
                    if n == "world" and not l.visuals and not l.collisions and l.inertial is None}
-    mp = props.get(None)
-    if to_bool(mp.get("static")) is not None:
-        sub(model, "static", to_bool(mp["static"]))
-    sc = to_bool(mp.get("selfCollide"), to_bool(mp.get("self_collide")))
+    mp = props.values(None)
+    if mp.get("static") is not None:
+        sub(model, "static", mp["static"])
+    sc = mp.get("selfCollide")
+    sc = sc if sc is not None else mp.get("self_collide")
     if sc is not None:
         sub(model, "self_collide", sc)
 
-    # ---- which link hosts each URDF link (itself, or the link it is lumped into)
-    host: dict[str, str] = {}
-    host_T: dict[str, object] = {}
-    lumped_joints = []
-    children = robot.joints_by_parent()
-    order = [r for r in robot.roots]
-    for r in order:
-        host[r], host_T[r] = r, IDENTITY
-    i = 0
-    while i < len(order):
-        parent = order[i]
-        i += 1
-        for j in children.get(parent, []):
-            if j.child in host:
-                continue
-            if (opts.lump and j.type == "fixed" and parent not in world_links
-                    and not props.preserve_fixed(j.name)):
-                host[j.child] = host[parent]
-                host_T[j.child] = compose(host_T[parent], pose_T(j.origin))
-                lumped_joints.append(j)
-            else:
-                host[j.child], host_T[j.child] = j.child, IDENTITY
-            order.append(j.child)
-    for n in robot.links:          # links outside the tree (cycles): keep them as they are
-        if n not in host:
-            host[n], host_T[n] = n, IDENTITY
+    # ---- which link hosts each URDF link (itself, or the link it is lumped into: model/tree.rigid_bodies,
+    # lumping off for the joints <gazebo> keeps, and never into the world)
+    if opts.lump:
+        bodies = rigid_bodies(robot, keep=props.preserved, stop=frozenset(world_links))
+        host, host_T, lumped_joints = bodies.host, bodies.offset, list(bodies.merged)
+    else:
+        host = {n: n for n in robot.links}
+        host_T = dict.fromkeys(robot.links, IDENTITY)
+        lumped_joints = []
 
     kept = [n for n in robot.links if host[n] == n and n not in world_links]
     members: dict = {n: [] for n in kept}          # one pass: a 20,000-link robot was quadratic here
@@ -225,7 +210,7 @@ def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = Non
             sensor_outs.append(out)
         sensor_fates[id(s)] = (("translated", f"an SDF sensor on '{out.link}'" + (f" ({out.comments[0]})"
                                                                                  if out.comments else ""))
-                               if out is not None and out.element is not None else
+                               if out is not None and out.sdf is not None else
                                ("dropped", "; ".join(out.comments) if out is not None and out.comments
                                 else "not converted"))
     systems = Systems(robot, model_name, notes)
@@ -289,24 +274,25 @@ def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = Non
             if so.link in host and host[so.link] == n:
                 for text in so.comments:
                     comment(el, text)
-                if so.element is None:
+                se = so.sdf
+                if se is None:
                     continue
                 P = compose(host_T[so.link], so.T)
-                old = so.element.find("pose")
+                old = se.find("pose")
                 if old is not None:
-                    so.element.remove(old)
+                    se.remove(old)
                 if not is_identity(P):
-                    so.element.insert(0, etree.Element("pose"))
-                    so.element[0].text = pose_text(P)
-                base, k = so.element.get("name") or "sensor", 2
-                while so.element.get("name") in link_sensor_names:      # sdformat: unique in a link
-                    so.element.set("name", f"{base}_{k}")
+                    se.insert(0, etree.Element("pose"))
+                    se[0].text = pose_text(P)
+                base, k = se.get("name") or "sensor", 2
+                while se.get("name") in link_sensor_names:      # sdformat: unique in a link
+                    se.set("name", f"{base}_{k}")
                     k += 1
-                if so.element.get("name") != base:
-                    notes.warn(f"two sensors named '{base}' on link '{n}': the second is '{so.element.get('name')}'")
-                link_sensor_names.add(so.element.get("name"))
-                el.append(so.element)
-                sensor_names.append(so.element.get("name"))
+                if se.get("name") != base:
+                    notes.warn(f"two sensors named '{base}' on link '{n}': the second is '{se.get('name')}'")
+                link_sensor_names.add(se.get("name"))
+                el.append(se)
+                sensor_names.append(se.get("name"))
     for so in sensor_outs:
         if so.link not in host or host[so.link] not in kept:
             notes.warn(f"sensor on '{so.link}' dropped: that link is not in the model")
@@ -369,7 +355,8 @@ def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = Non
                 notes.warn(f"mimic on joint '{j.name}' not converted (SDF 1.9 has no mimic)", j.loc)
         props.apply_joint(je, axis, j.name)
         for sn in joint_sensors.pop(j.name, ()):
-            el = copy.deepcopy(sn.element)
+            el = element_of(sn.node)
+            el.tail = sn.node.tail
             for pl in [c for c in el if isinstance(c.tag, str) and c.tag == "plugin"]:
                 el.remove(pl)
             je.append(el)
@@ -421,18 +408,17 @@ MODEL_CHILDREN = ("joint", "link", "frame", "model", "include", "gripper")
 def _model_extras(model, robot, notes, report, taken) -> list[str]:
     """Joints, links, frames... declared in model-level ``<gazebo>`` blocks (a parallel linkage's
     closing joint, a screw joint): copied into the model as ``ign sdf -p`` does."""
-    import copy
-
     out = []
     for g in robot.gazebo:
         if g.reference is not None:
             continue
-        for c in g.element:
-            if not isinstance(c.tag, str) or c.tag.startswith("{") or c.tag not in MODEL_CHILDREN:
+        for c in g.node.elements:
+            if c.ns or c.tag not in MODEL_CHILDREN:
                 continue
             name = c.get("name") or ""
-            loc = robot.loc_of(c) or g.loc
-            el = copy.deepcopy(c)
+            loc = c.loc or g.loc
+            el = element_of(c)
+            el.tail = c.tail
             if name and name in taken:
                 # PR2's grippers: a <gazebo> joint named like a URDF joint (ign keeps only one of the two)
                 new = _unique(f"{name}_gazebo", taken)
@@ -498,7 +484,7 @@ def _report_sdf(robot, report, opts, host, world_links, frame_names, joint_names
             else:
                 report.set("gazebo", f"{ref}/{key}", "translated", "SDF link/collision/joint property", g.loc)
         for pl in g.plugins:
-            kind = plugin_kind(pl)
+            kind = plugins.kind(pl)
             fate, detail = {
                 "imu": ("translated", "an SDF imu sensor"),
                 "joint_state": ("translated", "gz-sim JointStatePublisher"),

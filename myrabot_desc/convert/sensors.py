@@ -9,22 +9,15 @@ publish on ``<topic>`` themselves) and their topic and frame are carried over.
 
 from __future__ import annotations
 
-import copy
 import math
 from dataclasses import dataclass, field
 
 from lxml import etree
 
-from myrabot_desc.convert.common import (
-    local,
-    num,
-    sub,
-    to_bool,
-    to_float,
-    to_floats,
-    xml_text,
-)
+from myrabot_desc.convert.common import element_of, num, sub, xml_text
 from myrabot_desc.model import plugins as P
+from myrabot_desc.model import values as V
+from myrabot_desc.model.parts import Sonar
 from myrabot_desc.model.transforms import transform
 
 SONAR_NOTE = ("gz-sim has no sonar sensor: this is a narrow gpu_lidar with the seed's rays; the old plugin "
@@ -35,26 +28,9 @@ SONAR_NOTE = ("gz-sim has no sonar sensor: this is a narrow gpu_lidar with the s
 class SensorOut:
     link: str                       # the URDF link it is attached to
     T: object                       # pose in that link's frame: a common.Tf (R, p)
-    element: object                 # the <sensor> element
+    sdf: object                     # the SDF <sensor> element written (None: not converted)
     comments: list[str] = field(default_factory=list)
     source: str = ""                # 'electric' | 'sdf' | 'controller'
-
-
-# what a plugin is and the topics it uses live with the model (check's G010 asks the same)
-plugin_kind = P.kind
-_plugin_key = P.key
-pparam = P.param
-ros_remap = P.remap
-
-
-# ---------------------------------------------------------------- small readers
-def eparam(el, *names):
-    """Text (or value=) of the first direct child with one of these local names."""
-    for c in el:
-        if isinstance(c.tag, str) and local(c.tag) in names:
-            t = (c.text or "").strip()
-            return t if t else c.get("value")
-    return None
 
 
 def noise_el(parent, stddev, attr=False):
@@ -82,24 +58,27 @@ def _header(name, type_, always_on=True, rate=None, visualize=None, topic=None, 
 
 
 # ---------------------------------------------------------------- Electric dialect
+def _or(value, default):
+    return default if value is None else value
+
+
 def _electric_camera(sensor, notes):
-    el = sensor.element
+    cam = sensor.camera
     ctrl = sensor.plugins[0] if sensor.plugins else None
-    kind = plugin_kind(ctrl) if ctrl else None
+    kind = P.kind(ctrl) if ctrl else None
     comments = []
-    size = to_floats(eparam(el, "imageSize")) or [to_float(eparam(el, "imageWidth"), 320),
-                                                   to_float(eparam(el, "imageHeight"), 240)]
-    hfov_deg = to_float(eparam(el, "hfov"), 60.0)
-    near, far = to_float(eparam(el, "nearClip"), 0.1), to_float(eparam(el, "farClip"), 100.0)
-    rate = to_float(eparam(el, "updateRate"))
-    fmt = eparam(el, "imageFormat") or "R8G8B8"
+    size = (_or(cam.width, 320), _or(cam.height, 240))
+    hfov_deg = _or(cam.hfov, 60.0)
+    near, far = _or(cam.near, 0.1), _or(cam.far, 100.0)
+    rate = sensor.update_rate
+    fmt = cam.format or "R8G8B8"
     type_ = "camera"
     topic = frame = None
     if ctrl is not None:
-        rate = to_float(pparam(ctrl, "updateRate"), rate)
-        image_topic = pparam(ctrl, "imageTopicName")
-        cam_name = pparam(ctrl, "cameraName")
-        frame = pparam(ctrl, "frameName")
+        rate = V.number(P.param(ctrl, "updateRate"), rate)
+        image_topic = P.param(ctrl, "imageTopicName")
+        cam_name = P.param(ctrl, "cameraName")
+        frame = P.param(ctrl, "frameName")
         loaded = not (ctrl.dialect == "electric" and ctrl.file_attr == "filename")
         if kind == "openni_kinect" and loaded:
             type_ = "rgbd_camera"
@@ -108,8 +87,8 @@ def _electric_camera(sensor, notes):
             comments.append(f"openni_kinect controller '{ctrl.name}' -> rgbd_camera: "
                             f"gz-sim publishes {topic}/image, {topic}/depth_image, {topic}/points, "
                             f"{topic}/camera_info; the seed's ROS topics were "
-                            + ", ".join(v for v in (image_topic, pparam(ctrl, "pointCloudTopicName"),
-                                                    pparam(ctrl, "cameraInfoTopicName")) if v)
+                            + ", ".join(v for v in (image_topic, P.param(ctrl, "pointCloudTopicName"),
+                                                    P.param(ctrl, "cameraInfoTopicName")) if v)
                             + " (map them with ros_gz_bridge)")
         else:
             topic = P.resolve(image_topic, cam_name) or cam_name
@@ -119,7 +98,7 @@ def _electric_camera(sensor, notes):
                                 f"image topic {image_topic}")
                 notes.warn(f"Electric controller '{ctrl.name}' uses filename= (ignored by Gazebo 1.0): "
                            "sensor converted as a plain camera", ctrl.loc)
-        dist = {k: to_float(pparam(ctrl, f"distortion_{k}"), 0.0) for k in ("k1", "k2", "k3", "t1", "t2")}
+        dist = {k: V.number(P.param(ctrl, f"distortion_{k}"), 0.0) for k in ("k1", "k2", "k3", "t1", "t2")}
     else:
         dist = {}
     s = _header(sensor.name or "camera", type_, True, rate, None, topic, frame)
@@ -140,36 +119,37 @@ def _electric_camera(sensor, notes):
         sub(cam, "optical_frame_id", frame)
     comments.insert(0, f"from Electric <sensor:camera name=\"{sensor.name}\">: hfov {num(hfov_deg)} deg = "
                        f"{num(math.radians(hfov_deg))} rad")
-    T = transform(to_floats(eparam(el, "origin")) or (0, 0, 0))
+    T = transform(sensor.pose or (0, 0, 0))
     return s, comments, T
 
 
 def _electric_ray(sensor, notes):
-    el = sensor.element
+    ray = sensor.rays[0]
+    h, v = ray.horizontal, ray.vertical
     ctrl = sensor.plugins[0] if sensor.plugins else None
-    kind = plugin_kind(ctrl) if ctrl else None
-    rays = int(to_float(eparam(el, "rayCount"), 1))
-    ranges = int(to_float(eparam(el, "rangeCount"), rays))
-    amin, amax = to_float(eparam(el, "minAngle"), 0.0), to_float(eparam(el, "maxAngle"), 0.0)
-    vrays = to_float(eparam(el, "verticalRayCount"))
-    vmin, vmax = to_float(eparam(el, "verticalMinAngle"), 0.0), to_float(eparam(el, "verticalMaxAngle"), 0.0)
-    rmin, rmax = to_float(eparam(el, "minRange"), 0.0), to_float(eparam(el, "maxRange"), 10.0)
-    rres = to_float(eparam(el, "resRange"), 0.01)
-    rate = to_float(eparam(el, "updateRate"))
-    vis = eparam(el, "displayRays")
+    kind = P.kind(ctrl) if ctrl else None
+    rays = int(_or(h.samples, 1))
+    ranges = int(_or(ray.range_count, rays))
+    amin, amax = _or(h.min_angle, 0.0), _or(h.max_angle, 0.0)
+    vrays = v.samples if v is not None else None
+    vmin, vmax = (_or(v.min_angle, 0.0), _or(v.max_angle, 0.0)) if v is not None else (0.0, 0.0)
+    rmin, rmax = _or(ray.range_min, 0.0), _or(ray.range_max, 10.0)
+    rres = _or(ray.range_resolution, 0.01)
+    rate = sensor.update_rate
+    vis = sensor.visualize
     comments = []
     topic = frame = noise = None
     if ctrl is not None:
-        rate = to_float(pparam(ctrl, "updateRate"), rate)
-        topic = pparam(ctrl, "topicName")
-        frame = pparam(ctrl, "frameName", "frameId")
-        noise = to_float(pparam(ctrl, "gaussianNoise"))
+        rate = V.number(P.param(ctrl, "updateRate"), rate)
+        topic = P.param(ctrl, "topicName")
+        frame = P.param(ctrl, "frameName", "frameId")
+        noise = V.number(P.param(ctrl, "gaussianNoise"))
     sonar = kind == "sonar"
     if ctrl is None:
         topic = sensor.name
         comments.append(f"Electric <sensor:ray name=\"{sensor.name}\"> had no controller (the base plugin read "
                         "it by name); published here on its own topic")
-    s = _header(sensor.name or "ray", "gpu_lidar", to_bool(eparam(el, "alwaysActive"), True), rate,
+    s = _header(sensor.name or "ray", "gpu_lidar", _or(sensor.always_on, True), rate,
                 vis not in (None, "false", "0"), topic, frame)
     lidar = sub(s, "lidar")
     scan = sub(lidar, "scan")
@@ -195,9 +175,9 @@ def _electric_ray(sensor, notes):
         what += f" by {num(vmin)}..{num(vmax)} deg"
     comments.insert(0, f"from Electric <sensor:ray name=\"{sensor.name}\">: {what} (radians below)")
     if sonar:
-        comments.append(SONAR_NOTE + (f"; plugin fov {pparam(ctrl, 'fov')}, radiation {pparam(ctrl, 'radiation')}"
-                                      if pparam(ctrl, 'fov') else ""))
-    T = transform(to_floats(eparam(el, "origin")) or (0, 0, 0))
+        comments.append(SONAR_NOTE + (f"; plugin fov {P.param(ctrl, 'fov')}, radiation {P.param(ctrl, 'radiation')}"
+                                      if P.param(ctrl, 'fov') else ""))
+    T = transform(sensor.pose or (0, 0, 0))
     return s, comments, T
 
 
@@ -207,34 +187,26 @@ _TYPE_MAP = {"ray": "gpu_lidar", "gpu_ray": "gpu_lidar", "lidar": "gpu_lidar", "
 
 
 def _sdf_sensor(sensor, notes, folded=()):
-    src = sensor.element
-    s = copy.deepcopy(src)
+    s = element_of(sensor.node)
     etree.strip_attributes(s, "reference")
     old_type = (s.get("type") or "").strip()
     new_type = _TYPE_MAP.get(old_type, old_type)
     if new_type != old_type:
         s.set("type", new_type)
     comments = []
-    pose = None
-    for child in list(s):
-        if not isinstance(child.tag, str):
-            continue
-        tag = local(child.tag)
-        if tag == "pose":
-            pose = to_floats(child.text) or [0] * 6
+    for child, n in zip(list(s), sensor.node.children):
+        if n.tag == "pose" or n.tag == "plugin":
             s.remove(child)
-        elif tag == "ray":
+        elif n.tag == "ray":
             child.tag = "lidar"
-        elif tag == "plugin":
-            s.remove(child)
+    pose = sensor.pose
     if old_type == "sonar":
-        son = s.find("sonar")
-        rmin = to_float(son.findtext("min"), 0.0) if son is not None else 0.0
-        rmax = to_float(son.findtext("max"), 5.0) if son is not None else 5.0
-        radius = to_float(son.findtext("radius"), 0.1) if son is not None else 0.1
+        son = sensor.sonar or Sonar()
+        rmin, rmax, radius = _or(son.min, 0.0), _or(son.max, 5.0), _or(son.radius, 0.1)
         half = math.atan2(radius, rmax)
-        if son is not None:
-            s.remove(son)
+        old = s.find("sonar")
+        if old is not None:
+            s.remove(old)
         lidar = sub(s, "lidar")
         scan = sub(lidar, "scan")
         for axis in ("horizontal", "vertical"):
@@ -259,20 +231,20 @@ def _sdf_sensor(sensor, notes, folded=()):
         comments.append(f"classic type '{old_type}' -> '{new_type}'")
     topic = frame = None
     for p in sensor.plugins:
-        kind = plugin_kind(p)
+        kind = P.kind(p)
         topic = topic or P.sensor_topic(p)
         if kind in P.CAMERA_KINDS:
-            frame = frame or pparam(p, "frameName", "frame_name")
+            frame = frame or P.param(p, "frameName", "frame_name")
         elif kind in P.RAY_KINDS:
-            frame = frame or pparam(p, "frameName", "frame_name", "frameId")
+            frame = frame or P.param(p, "frameName", "frame_name", "frameId")
             if kind == "imu":
-                frame = frame or pparam(p, "bodyName")
+                frame = frame or P.param(p, "bodyName")
         comments.append(f"ROS plugin '{p.name}' ({p.library}) dropped: gz-sim sensors publish themselves; "
                         "its topic and frame are used here")
     for p in folded:             # a model-level IMU plugin measuring this sensor's link: one sensor, not two
         topic = topic or P.sensor_topic(p, default="imu")
-        frame = frame or pparam(p, "frameName", "frame_name") or _imu_body(p)
-        rate = to_float(pparam(p, "updateRate", "update_rate"))
+        frame = frame or P.param(p, "frameName", "frame_name") or _imu_body(p)
+        rate = V.number(P.param(p, "updateRate", "update_rate"))
         if rate and s.find("update_rate") is None:
             sub(s, "update_rate", rate)
         noise = _imu_noise(s, p)
@@ -280,7 +252,7 @@ def _sdf_sensor(sensor, notes, folded=()):
                         "frame, rate" + (" and gaussianNoise (as the stddev)" if noise else "")
                         + " kept (gz-sim sensors publish themselves)")
     for p in sensor.plugins:     # a ROS IMU sensor plugin adds its own gaussianNoise to the readings
-        noise = _imu_noise(s, p) if plugin_kind(p) == "imu" else None
+        noise = _imu_noise(s, p) if P.kind(p) == "imu" else None
         if noise:
             comments.append(f"the plugin's gaussianNoise {num(noise)} is the stddev of every axis")
     if topic and s.find("topic") is None:
@@ -298,7 +270,7 @@ def _sdf_sensor(sensor, notes, folded=()):
 def _imu_noise(s, p):
     """The IMU plugin ``p``'s gaussianNoise as the stddev of every axis of sensor ``s`` (as the
     plugins used it), unless ``s`` already has an ``<imu>`` block; returns the noise applied."""
-    noise = to_float(pparam(p, "gaussianNoise", "gaussian_noise"))
+    noise = V.number(P.param(p, "gaussianNoise", "gaussian_noise"))
     if not noise or s.find("imu") is not None:
         return None
     imu = sub(s, "imu")
@@ -310,7 +282,7 @@ def _imu_noise(s, p):
 
 
 def _imu_body(p):
-    return pparam(p, "bodyName", "body_name", "frameName", "frame_name") or p.reference
+    return P.param(p, "bodyName", "body_name", "frameName", "frame_name") or p.reference
 
 
 def _imu_sensor(robot, link):
@@ -329,7 +301,7 @@ def _folded_imu_plugins(sensor, robot):
     if sensor.type != "imu" or _imu_sensor(robot, sensor.reference) is not sensor:
         return ()
     return tuple(p for g in robot.gazebo for p in g.plugins
-                 if plugin_kind(p) == "imu" and _imu_body(p) == sensor.reference)
+                 if P.kind(p) == "imu" and _imu_body(p) == sensor.reference)
 
 
 def imu_from_plugin(p, robot, notes) -> SensorOut | None:
@@ -338,15 +310,15 @@ def imu_from_plugin(p, robot, notes) -> SensorOut | None:
     if body not in robot.links:
         notes.warn(f"IMU plugin '{p.name}': body '{body}' is not a link; IMU not converted", p.loc)
         return None
-    rate = to_float(pparam(p, "updateRate", "update_rate"))
+    rate = V.number(P.param(p, "updateRate", "update_rate"))
     topic = P.sensor_topic(p, default="imu")
-    s = _header(f"{p.name or 'imu'}", "imu", True, rate, None, topic, pparam(p, "frameName", "frame_name") or body)
+    s = _header(f"{p.name or 'imu'}", "imu", True, rate, None, topic, P.param(p, "frameName", "frame_name") or body)
     _imu_noise(s, p)
-    xyz = to_floats(pparam(p, "xyzOffsets", "xyzOffset")) or [0, 0, 0]
+    xyz = V.vector(P.param(p, "xyzOffsets", "xyzOffset")) or [0, 0, 0]
     # the plugin built a Quaternion from this vector: radians, even in the Electric dialect
-    rpy = to_floats(pparam(p, "rpyOffsets", "rpyOffset")) or [0, 0, 0]
+    rpy = V.vector(P.param(p, "rpyOffsets", "rpyOffset")) or [0, 0, 0]
     comments = [f"from {'Electric controller' if p.dialect == 'electric' else 'plugin'} '{p.name}' "
-                f"({_plugin_key(p)}) on {body}; gaussianNoise used as the stddev, as the plugin did"]
+                f"({P.key(p)}) on {body}; gaussianNoise used as the stddev, as the plugin did"]
     return SensorOut(body, transform(xyz, rpy), s, comments, "controller")
 
 
@@ -363,9 +335,9 @@ def translate_sensor(sensor, robot, notes) -> SensorOut | None:
         else:
             notes.warn(f"Electric sensor type '{sensor.type}' has no gz-sim equivalent; kept as a comment",
                        sensor.loc)
-            return SensorOut(link, transform(), None, [f"not converted: {xml_text(sensor.element)}"], "electric")
+            return SensorOut(link, transform(), None, [f"not converted: {xml_text(sensor.node)}"], "electric")
         for p in sensor.plugins[1:]:
-            comments.append(f"extra controller not converted: {xml_text(p.element)}")
+            comments.append(f"extra controller not converted: {xml_text(p.node)}")
         return SensorOut(link, T, s, comments, "electric")
     s, comments, T = _sdf_sensor(sensor, notes, _folded_imu_plugins(sensor, robot))
     return SensorOut(link, T, s, comments, "sdf")

@@ -13,20 +13,13 @@
 
 from __future__ import annotations
 
-import copy
-
 from lxml import etree
 
-from myrabot_desc.convert.common import local, num, sub, to_bool, xml_text
-from myrabot_desc.convert.sensors import (
-    imu_from_plugin,
-    imu_sensor_on,
-    plugin_kind,
-    pparam,
-    ros_remap,
-)
+from myrabot_desc.convert.common import element_of, num, sub, xml_text
+from myrabot_desc.convert.sensors import imu_from_plugin, imu_sensor_on
 from myrabot_desc.model import drive as D
 from myrabot_desc.model import plugins as P
+from myrabot_desc.model import values as V
 
 DIFF_DRIVE = ("gz-sim-diff-drive-system", "gz::sim::systems::DiffDrive")
 JOINT_STATES = ("gz-sim-joint-state-publisher-system", "gz::sim::systems::JointStatePublisher")
@@ -50,13 +43,13 @@ class Systems:
     def translate(self, plugins) -> None:
         drives = {id(d.plugin): d for d in D.plugin_drives(self.robot)}
         for p in plugins:
-            kind = plugin_kind(p)
+            kind = P.kind(p)
             if id(p) in drives:
                 self._diff_drive(p, drives[id(p)])
             elif kind == "imu":
                 merged = imu_sensor_on(p, self.robot)
                 if merged is not None:
-                    self.elements.append(("comment", f"IMU plugin '{p.name}' ({p.library or local(p.element.tag)}): "
+                    self.elements.append(("comment", f"IMU plugin '{p.name}' ({p.library or p.tag}): "
                                                      f"folded into the imu sensor '{merged}' of its link"))
                 else:
                     out = imu_from_plugin(p, self.robot, self.notes)
@@ -64,9 +57,9 @@ class Systems:
                         self.sensors.append(out)
                 self.has_control = True
             elif kind in ("diff_drive", "skid_steer"):
-                self.unknown.append(f"{p.name or '?'} ({p.library or local(p.element.tag)})")
+                self.unknown.append(f"{p.name or '?'} ({p.library or p.tag})")
                 self.elements.append(("comment", f"not converted (a drive plugin whose parameters are not known): "
-                                                 f"{xml_text(p.element)}"))
+                                                 f"{xml_text(p.node)}"))
             elif kind == "joint_state":
                 self.wants_joint_states = True
                 self.has_control = True
@@ -78,12 +71,13 @@ class Systems:
                                                  "publisher"))
             elif kind == "gz":
                 self.elements.append(("comment", f"kept from the source ({p.loc})" if p.loc else "kept from the source"))
-                el = copy.deepcopy(p.element)
+                el = element_of(p.node)
+                el.tail = p.node.tail
                 self.elements.append(("plugin", el))
                 self.has_control = True
             else:
-                self.unknown.append(f"{p.name or '?'} ({p.library or local(p.element.tag)})")
-                self.elements.append(("comment", f"not converted (no gz-sim equivalent known): {xml_text(p.element)}"))
+                self.unknown.append(f"{p.name or '?'} ({p.library or p.tag})")
+                self.elements.append(("comment", f"not converted (no gz-sim equivalent known): {xml_text(p.node)}"))
         self._velocity_wheels()
         self._arm()
         if self.wants_joint_states:
@@ -105,7 +99,7 @@ class Systems:
             self.notes.warn(f"diff-drive plugin '{p.name}': wheel joints {missing or 'not given'} not found; "
                             "kept as a comment", p.loc)
             self.unknown.append(f"{p.name} ({p.library})")
-            self.elements.append(("comment", f"not converted (wheel joints missing): {xml_text(p.element)}"))
+            self.elements.append(("comment", f"not converted (wheel joints missing): {xml_text(p.node)}"))
             return
         self.drive_joints.update(lefts + rights)
         g = D.measure(r, d)
@@ -120,24 +114,19 @@ class Systems:
         if sep is None or rad is None:
             self.notes.warn(f"diff-drive plugin '{p.name}': cannot tell the wheel separation/radius; kept as a "
                             "comment", p.loc)
-            self.elements.append(("comment", f"not converted: {xml_text(p.element)}"))
+            self.elements.append(("comment", f"not converted: {xml_text(p.node)}"))
             return
         for what, said, got in (("wheel_separation", d.separation, sep), ("wheel_radius", d.radius, rad)):
             if said is not None and abs(said - got) > 5e-4:
                 self.notes.warn(f"diff-drive '{p.name}': the plugin says {what} {num(said)} m but the URDF's "
                                 f"wheels give {num(got)} m; using the URDF", p.loc)
-        ns = P.namespace(p)
         # kobuki-style base plugins subscribe <base_prefix>/commands/velocity (base_prefix: mobile_base)
         vendor = "mobile_base/commands/velocity" if d.spec is D.VENDOR else None
-        cmd = (pparam(p, "commandTopic", "command_topic", "topic") or ros_remap(p, "cmd_vel", "/cmd_vel") or vendor
-               or "cmd_vel")
-        odom = (pparam(p, "odometryTopic", "odometry_topic", "odom_topic") or ros_remap(p, "odom", "/odom") or "odom")
-        cmd, odom = P.resolve(cmd, ns), P.resolve(odom, ns)        # as the plugin's node resolved them
-        el = self._drive_element(lefts, rights, sep, rad, cmd, odom,
-                                 pparam(p, "odometryFrame", "odometry_frame", "frame_id") or "odom",
-                                 pparam(p, "robotBaseFrame", "robot_base_frame", "child_frame_id") or (r.root or "base_link"),
+        cmd, odom = P.drive_topics(p, vendor)          # as the plugin's node resolved them
+        frame, child = P.drive_frames(p, r.root or "base_link")
+        el = self._drive_element(lefts, rights, sep, rad, cmd, odom, frame, child,
                                  d.update_rate, d.accel, d.spec.accel_unit if d.spec else "")
-        note = (f"from '{p.name}' ({p.library or local(p.element.tag)}): wheel_separation and wheel_radius "
+        note = (f"from '{p.name}' ({p.library or p.tag}): wheel_separation and wheel_radius "
                 f"measured on the URDF ({lefts[0]}/{rights[0]})")
         if d.skid:
             note += f"; a skid-steer base: one DiffDrive over its {len(lefts)} left and {len(rights)} right wheels"
@@ -149,7 +138,7 @@ class Systems:
         if d.legacy:
             note += ("; the ROS 1 plugin ran in legacy mode (legacyMode " + ("true" if d.legacy_explicit else
                      "not given, default true") + "), which swaps the wheels: this DiffDrive turns the way REP-103 says")
-        nn = pparam(p, "node_namespace")
+        nn = P.param(p, "node_namespace")
         if nn:
             note += (f"; the Electric plugin listened on {nn}/cmd_vel while the seed's programs publish cmd_vel: "
                      "cmd_vel is used")
@@ -158,7 +147,7 @@ class Systems:
         # Create/Roomba and the classic plugin with publishWheelJointState publish joint states
         if d.spec is not None and d.spec.dialect != "skid" and (
                 p.dialect == "electric" or "roomba" in _lib(p) or "create" in _lib(p)
-                or to_bool(pparam(p, "publishWheelJointState", "publish_wheel_joint_state"))):
+                or V.boolean(P.param(p, "publishWheelJointState", "publish_wheel_joint_state"))):
             self.wants_joint_states = True
 
     def _drive_element(self, lefts, rights, sep, rad, cmd, odom, frame, child, rate, accel, unit):
@@ -246,6 +235,7 @@ class Systems:
         self.elements.append(("comment", f"position controllers for the {len(joints)} arm joint(s) "
                                          f"({_ARM_SOURCE[source]}); "
                                          "command topic /model/<model>/joint/<joint>/0/cmd_pos"))
+        rest = r.rest_pose()
         for name in joints:
             j = r.joints[name]
             el = etree.Element("plugin", filename=POSITION[0], name=POSITION[1])
@@ -262,10 +252,8 @@ class Systems:
             else:
                 sub(el, "p_gain", 1)
                 sub(el, "d_gain", 0.1)
-            if j.limit and j.limit.lower is not None and j.limit.upper is not None and j.limit.lower > 0:
-                sub(el, "initial_position", j.limit.lower)
-            elif j.limit and j.limit.upper is not None and j.limit.upper < 0:
-                sub(el, "initial_position", j.limit.upper)
+            if rest.get(name):          # the rest pose: 0, or the nearer limit when 0 is outside the range
+                sub(el, "initial_position", rest[name])
             self.elements.append(("plugin", el))
 
 
@@ -274,4 +262,4 @@ _ARM_SOURCE = {"transmission": "from the transmissions", "ros2_control": "positi
 
 
 def _lib(p) -> str:
-    return ((p.filename or "") + " " + (local(p.element.tag) if p.element is not None else "")).lower()
+    return ((p.filename or "") + " " + p.tag).lower()

@@ -27,7 +27,6 @@ from myrabot_desc.checks.rule import (
     SetValue,
 )
 from myrabot_desc.fix.edits import Edit, number, numbers, removal
-from myrabot_desc.model.sources import _child
 
 
 class Change(NamedTuple):
@@ -65,13 +64,11 @@ def _text(value, like: str) -> str:
     return str(value)
 
 
-def _element(part, field):
-    el = getattr(part, "ref", None)
-    if el is None:
-        el = getattr(part, "element", None)
-    if el is None and hasattr(part, "tag"):
-        el = part                      # a raw element (the syntax rules)
-    return _child(el, field) if field is not None else el
+def _element(sources, part, field):
+    """The handle of ``part``'s element (a part's ``ref``, or a handle the syntax rules pass as it is),
+    or of its child named ``field``."""
+    ref = getattr(part, "ref", part)
+    return sources.child(ref, field) if field is not None else ref
 
 
 def _child_indent(data: bytes, span, outer: str) -> str:
@@ -108,18 +105,7 @@ class Planner:
     def uses(self, key) -> list:
         """Every value (element, attribute) of the URDF produced by the literal at ``key`` (file, start)."""
         if self._uses is None:
-            found: dict = {}
-            for el in self.robot.root_element.iter():
-                if not isinstance(el.tag, str):
-                    continue
-                names = list(el.attrib)
-                if (el.text or "").strip() and len(el) == 0:
-                    names.append("#text")
-                for a in names:
-                    o = self.sources.origin(el, a)
-                    if o.written is not None:
-                        found.setdefault((o.written.file, o.written.start), []).append((el, a))
-            self._uses = found
+            self._uses = self.sources.uses()
         return self._uses.get(key, [])
 
     def plan(self, fixes) -> tuple[list[Change], list[NotFixed]]:
@@ -170,7 +156,7 @@ class Planner:
         key = (e.file, e.start)
         values = self.uses(key) if self._uses is None or key in self._uses else []
         if values:
-            others = sorted({_describe(el, a) for el, a in values})
+            others = sorted({self.sources.describe(el, a) for el, a in values})
             return (f"{e.file}:{self._line(e)} makes {len(values)} values ({', '.join(others[:6])}"
                     + (", ..." if len(others) > 6 else "") + "): each of them changes")
         return f"{e.file}:{self._line(e)} is in a macro body expanded {uses} times: each expansion changes"
@@ -182,7 +168,7 @@ class Planner:
         """(Edit, origin kind, note, span of an edited literal or None) or NotFixed."""
         src = self.sources
         if isinstance(intent, SetValue):
-            el = _element(intent.part, None)
+            el = _element(src, intent.part, None)
             o = src.field(intent.part, intent.field) if el is not None else None
             if o is None or o.kind == "unknown" or (o.written is None and o.expr is None and not o.from_command_line):
                 return NotFixed("", "", f"{intent.field}: where it is written is not known")
@@ -205,20 +191,20 @@ class Planner:
                 note = f"edits {what} at {_where(w)}"
             return [Edit(w.file, w.path, w.start, w.end, new)], last, note, len(self.uses((w.file, w.start)))
         if isinstance(intent, RemoveAttribute):
-            span = src.attribute(intent.element, intent.attr)
+            span = src.attribute(intent.ref, intent.attr)
             if span is None:
                 return NotFixed("", "", f"attribute {intent.attr}: where it is written is not known")
             s, e = removal(src.data(span.file), span.start, span.end)
-            return [Edit(span.file, span.path, s, e, "")], "literal", None, src.expansions(intent.element)
+            return [Edit(span.file, span.path, s, e, "")], "literal", None, src.expansions(intent.ref)
         if isinstance(intent, RenameAttribute):
-            span = src.attribute(intent.element, intent.attr)
+            span = src.attribute(intent.ref, intent.attr)
             if span is None:
                 return NotFixed("", "", f"attribute {intent.attr}: where it is written is not known")
             return [Edit(span.file, span.path, span.start, span.start + len(intent.attr.encode()), intent.new)], \
-                "literal", None, src.expansions(intent.element)
+                "literal", None, src.expansions(intent.ref)
         if isinstance(intent, InsertInto):
-            el = _element(intent.part, None)
-            span = src.element(el) if el is not None else None
+            el = _element(src, intent.part, None)
+            span = src.element_span(el) if el is not None else None
             if span is None:
                 return NotFixed("", "", "where to insert is not known")
             data = src.data(span.file)
@@ -238,8 +224,8 @@ class Planner:
                 at, text = closing, nl + inner + body + nl + outer
             return [Edit(span.file, span.path, at, at, text)], "literal", None, src.expansions(el)
         if isinstance(intent, RemoveElement):
-            el = _element(intent.part, intent.field)
-            span = src.element(el) if el is not None else None
+            el = _element(src, intent.part, intent.field)
+            span = src.element_span(el) if el is not None else None
             if span is None:
                 return NotFixed("", "", f"<{intent.field}>: where it is written is not known")
             s, e = removal(src.data(span.file), span.start, span.end)
@@ -247,8 +233,8 @@ class Planner:
         if isinstance(intent, RenameTag):
             return self._rename(intent)
         if isinstance(intent, InsertAfter):
-            el = _element(intent.part, None)
-            span = src.element(el) if el is not None else None
+            el = _element(src, intent.part, None)
+            span = src.element_span(el) if el is not None else None
             if span is None:
                 return NotFixed("", "", "where to insert is not known")
             data = src.data(span.file)
@@ -263,8 +249,8 @@ class Planner:
 
     def _rename(self, intent):
         src = self.sources
-        tag = src.tag(intent.element)
-        whole = src.element(intent.element)
+        tag = src.tag(intent.ref)
+        whole = src.element_span(intent.ref)
         if tag is None or whole is None:
             return NotFixed("", "", "where the element is written is not known")
         data = src.data(whole.file)
@@ -272,14 +258,4 @@ class Planner:
         closing = data.rfind(b"</", whole.start, whole.end)
         if closing > tag.end and data[closing + 2:closing + 2 + len(tag.text)] == tag.text.encode():
             edits.append(Edit(tag.file, tag.path, closing + 2, closing + 2 + len(tag.text), intent.tag))
-        return edits, "literal", None, src.expansions(intent.element)
-
-
-def _describe(el, attr) -> str:
-    """'<inertia ixx>' of link base_link' style, short: the element and its owning link/joint."""
-    owner = el
-    while owner is not None and owner.tag not in ("link", "joint", "gazebo", "material"):
-        owner = owner.getparent()
-    who = f"{owner.tag} {owner.get('name') or owner.get('reference') or ''}".strip() if owner is not None else ""
-    a = "text" if attr == "#text" else attr
-    return f"<{el.tag} {a}>" + (f" of {who}" if who else "")
+        return edits, "literal", None, src.expansions(intent.ref)

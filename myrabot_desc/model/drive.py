@@ -44,6 +44,7 @@ import math
 from typing import NamedTuple
 
 from myrabot_desc.errors import InputError
+from myrabot_desc.model import values as V
 from myrabot_desc.model.shapes import surface_points
 from myrabot_desc.model.transforms import IDENTITY, compose, pose_T, rotate
 
@@ -70,6 +71,25 @@ class Spec(NamedTuple):
     fixed_ok: tuple[str, ...] = ()    # keys that may name non-wheel joints (casters)
     known: frozenset = frozenset()
     defaults: tuple = ()              # ((key, value), ...) the plugin's own defaults
+
+    def units(self) -> dict[str, str]:
+        """Each numeric parameter's key -> its unit (as the plugin reads it)."""
+        out = {}
+        for key, unit in ((self.separation, "m"), (self.diameter, "m"), (self.radius, "m"), (self.torque, "N·m"),
+                          (self.accel, self.accel_unit), (self.rate, "Hz")):
+            if key:
+                out[key] = unit
+        return out
+
+
+class Quantity(NamedTuple):
+    """A drive plugin's numeric parameter: its value (None when it is not a number), unit and the
+    parameter as written (a Node: ``loc``, ``text``; ``robot.origin(drive.plugin, key)`` for its span)."""
+
+    key: str
+    value: float | None
+    unit: str
+    node: object = None
 
 
 COMMON_CLASSIC = {"robotNamespace"}
@@ -164,6 +184,48 @@ class Drive(NamedTuple):
     def missing(self, robot) -> list[str]:
         return [j for j in self.joints if j not in robot.joints]
 
+    @property
+    def name(self) -> str | None:
+        """The plugin's name (else its element's tag or library); None for a drive without a plugin."""
+        p = self.plugin
+        return None if p is None else (p.name or p.tag or p.library)
+
+    @property
+    def library(self) -> str | None:
+        p = self.plugin
+        return None if p is None else (p.library or p.tag)
+
+    def quantities(self) -> dict[str, Quantity]:
+        """The numeric parameters the plugin gives, with their units (``Spec.units``)."""
+        p, spec = self.plugin, self.spec
+        if p is None or spec is None:
+            return {}
+        out = {}
+        for key, unit in spec.units().items():
+            node = p.param(key)
+            if node is not None:
+                out[key] = Quantity(key, number(p, key)[0], unit, node)
+        return out
+
+    def with_defaults(self):
+        """(this drive with the plugin's own defaults where it gives no separation or wheel size,
+        notes saying which defaults were used): the numbers the plugin runs with."""
+        spec = self.spec
+        if spec is None:
+            return self, []
+        defaults = dict(spec.defaults)
+        notes = []
+        sep, rad = self.separation, self.radius
+        if sep is None and spec.separation in defaults:
+            sep = defaults[spec.separation]
+            notes.append(f"the plugin gives no {spec.separation}: it uses its default {sep:g} m")
+        if rad is None:
+            key = spec.radius or spec.diameter
+            if key in defaults:
+                rad = defaults[key] if spec.radius else defaults[key] / 2
+                notes.append(f"the plugin gives no {key}: it uses its default {defaults[key]:g} m")
+        return self._replace(separation=sep, radius=rad), notes
+
 
 class Wheel(NamedTuple):
     """One wheel as built (root frame, q = 0)."""
@@ -197,53 +259,19 @@ class Geometry(NamedTuple):
         return self.left + self.right
 
 
-# ------------------------------------------------------------------ the one plugin parameter parser
-def _local(tag) -> str:
-    return tag.rsplit("}", 1)[-1] if isinstance(tag, str) else ""
-
-
-def values(plugin, key: str) -> list[str]:
-    """Every value of a (repeatable) parameter, in order: a direct child's text or ``value=``."""
-    el = getattr(plugin, "element", None)
-    if el is None:
-        v = (plugin.params or {}).get(key)
-        return [v.strip()] if v and v.strip() else []
-    out = []
-    for c in el:
-        if _local(c.tag) == key:
-            v = (c.text or "").strip() or (c.get("value") or "").strip()
-            if v:
-                out.append(v)
-    return out
-
-
-def text(plugin, *keys: str) -> str | None:
-    """The first value of the first key given."""
-    for k in keys:
-        v = values(plugin, k)
-        if v:
-            return v[0]
-    return None
-
-
+# ------------------------------------------------------------------ the plugins' parameters
 def number(plugin, key: str | None):
-    """(value, ok) of a numeric parameter: (None, True) when absent, (None, False) when not a number."""
+    """(value, ok) of a numeric parameter: (None, True) when absent, (None, False) when not a
+    finite number (model/values.py)."""
     if key is None:
         return None, True
-    t = text(plugin, key)
+    t = plugin.text(key)
     if t is None:
         return None, True
     try:
-        v = float(t)
-    except ValueError:
+        return V.parse_number(t), True
+    except V.ValueProblem:
         return None, False
-    return (v, True) if math.isfinite(v) else (None, False)
-
-
-def to_bool(t: str | None, default: bool) -> bool:
-    if t is None:
-        return default
-    return t.strip().lower() in ("1", "true")
 
 
 # ------------------------------------------------------------------ which plugin is a drive
@@ -251,7 +279,7 @@ def plugin_spec(p) -> Spec | None:
     """The dialect of a drive plugin, or None when the plugin does not drive wheels."""
     lib = (p.library or "").lower()
     name = (p.name or "").lower()
-    tag = _local(getattr(p.element, "tag", "")).lower()
+    tag = p.tag.lower()
     if p.dialect == "electric":
         if any(k in s for s in (lib, name, tag) for k in ("create", "roomba")):
             return CREATE
@@ -274,14 +302,14 @@ def plugin_spec(p) -> Spec | None:
 
 
 def from_plugin(p, spec: Spec) -> Drive:
-    left = tuple(v for k in spec.left for v in values(p, k))
-    right = tuple(v for k in spec.right for v in values(p, k))
+    left = tuple(v for k in spec.left for v in p.values(k))
+    right = tuple(v for k in spec.right for v in p.values(k))
     bad = []
 
     def num(key):
         v, ok = number(p, key)
         if not ok:
-            bad.append((key, text(p, key)))
+            bad.append((key, p.text(key)))
         return v
 
     sep = num(spec.separation)
@@ -292,9 +320,10 @@ def from_plugin(p, spec: Spec) -> Drive:
         rad = dia / 2 if dia is not None else None
     legacy = explicit = False
     if spec is ROS1:
-        t = text(p, "legacyMode")
+        t = p.text("legacyMode")
         explicit = t is not None
-        legacy = to_bool(t, True)
+        # the plugin reads it with sdf's Get<bool>: true/1, else false (a misspelling is false)
+        legacy = V.boolean(t, False) if explicit else True
     return Drive("plugin", spec.label, left, right, spec, p, sep, rad, num(spec.torque), num(spec.accel),
                  num(spec.rate), legacy, explicit, p.loc, tuple(bad))
 
@@ -309,29 +338,20 @@ def velocity_joints(robot) -> tuple[list[str], str | None]:
     where they were declared ('ros_control' transmissions or 'ros2_control' blocks)."""
     out, source = [], None
     for t in robot.transmissions:
-        el = t.element
-        if el is None:
-            continue
-        for j in el.iter():
-            if _local(j.tag) != "joint" or not j.get("name"):
+        for j in t.named:
+            if j.tag != "joint":
                 continue
-            ifaces = [(h.text or "").strip().rsplit("/", 1)[-1] for h in j if _local(h.tag) == "hardwareInterface"]
+            ifaces = [i.rsplit("/", 1)[-1] for i in j.interfaces]
             if any(i in VELOCITY_IFACES for i in ifaces) and not any(i in POSITION_IFACES for i in ifaces) \
-                    and j.get("name") not in out:
-                out.append(j.get("name"))
+                    and j.name not in out:
+                out.append(j.name)
                 source = source or "ros_control"
-    root = robot.root_element
-    if root is not None:
-        for block in root:                      # <ros2_control> sits directly in <robot>
-            if _local(block.tag) != "ros2_control":
-                continue
-            for j in block:
-                if _local(j.tag) != "joint" or not j.get("name"):
-                    continue
-                cmds = [c.get("name") for c in j if _local(c.tag) == "command_interface"]
-                if "velocity" in cmds and "position" not in cmds and j.get("name") not in out:
-                    out.append(j.get("name"))
-                    source = source or "ros2_control"
+    for block in robot.ros2_control:
+        for j in block.joints:
+            cmds = j.command_interfaces
+            if "velocity" in cmds and "position" not in cmds and j.name not in out:
+                out.append(j.name)
+                source = source or "ros2_control"
     return out, source
 
 
@@ -341,15 +361,9 @@ def commanded_joints(robot) -> set[str]:
     its actuators (then nobody can tell a passive joint from an actuated one)."""
     out = {n for t in robot.transmissions for n in t.joints}
     for t in robot.transmissions:      # PR2's wrist and gripper transmissions: <flexJoint>, <gap_joint>...
-        if t.element is not None:
-            out |= {e.get("name") for e in t.element.iter() if isinstance(e.tag, str)
-                    and _local(e.tag).lower().endswith("joint") and e.get("name")}
-    root = robot.root_element
-    if root is not None:
-        for block in root:
-            if _local(block.tag) == "ros2_control":
-                out |= {j.get("name") for j in block if _local(j.tag) == "joint" and j.get("name")
-                        and any(_local(c.tag) == "command_interface" for c in j)}
+        out |= {j.name for j in t.named}
+    for block in robot.ros2_control:
+        out |= {j.name for j in block.joints if j.command_interfaces}
     for d in find(robot):
         out |= set(d.joints)
     return {n for n in out if n in robot.joints}
@@ -358,16 +372,10 @@ def commanded_joints(robot) -> set[str]:
 def position_joints(robot) -> list[str]:
     """Joints commanded in position by ros2_control (a ``position`` command interface), in file order."""
     out = []
-    root = robot.root_element
-    if root is None:
-        return out
-    for block in root:
-        if _local(block.tag) != "ros2_control":
-            continue
-        for j in block:
-            if _local(j.tag) == "joint" and j.get("name") and j.get("name") not in out and \
-                    "position" in [c.get("name") for c in j if _local(c.tag) == "command_interface"]:
-                out.append(j.get("name"))
+    for block in robot.ros2_control:
+        for j in block.joints:
+            if j.name not in out and "position" in j.command_interfaces:
+                out.append(j.name)
     return out
 
 
@@ -419,16 +427,18 @@ def guess_drive(robot) -> Drive | None:
 
 def find(robot) -> list[Drive]:
     """Every drive the model declares, plugins first (in file order), then ros_control velocity wheels
-    (unless a plugin already drives those joints)."""
-    out = []
-    for p in robot.plugins():
-        s = plugin_spec(p)
-        if s is not None:
-            out.append(from_plugin(p, s))
-    rc = from_velocity_joints(robot)
-    if rc is not None and not any(set(rc.joints) & set(d.joints) for d in out):
-        out.append(rc)
-    return out
+    (unless a plugin already drives those joints). Built once per robot."""
+    def build():
+        out = []
+        for p in robot.plugins():
+            s = plugin_spec(p)
+            if s is not None:
+                out.append(from_plugin(p, s))
+        rc = from_velocity_joints(robot)
+        if rc is not None and not any(set(rc.joints) & set(d.joints) for d in out):
+            out.append(rc)
+        return tuple(out)
+    return list(robot.derive("drive.find", build))
 
 
 def plugin_drives(robot) -> list[Drive]:
@@ -452,22 +462,19 @@ def main_drive(robot, left=(), right=(), guess: bool = False) -> Drive | None:
 def wheel_joints(robot) -> list[str]:
     """Joints that drive or carry wheels: those of every declared drive, then continuous joints
     whose child's collision is a cylinder about a level joint axis (an undeclared wheel; a
-    rotor's cylinder spins about a vertical axis and is no wheel). Kept on ``robot.derived``."""
-    cache = getattr(robot, "derived", None)
-    if cache is not None and "drive.wheel_joints" in cache:
-        return list(cache["drive.wheel_joints"])
-    out: list[str] = []
-    for d in find(robot):
-        out += [n for n in d.joints if n in robot.joints and n not in out]
-    T = link_transforms(robot)
-    for j in robot.joints.values():
-        if j.type == "continuous" and j.name not in out:
-            w = wheel(robot, j.name, T, read_meshes=False)      # a cylinder about the axle: no mesh needed
-            if w is not None and w.round and w.shape.geometry.kind == "cylinder" and abs(w.axis[2]) < LEVEL:
-                out.append(j.name)
-    if cache is not None:
-        cache["drive.wheel_joints"] = tuple(out)
-    return out
+    rotor's cylinder spins about a vertical axis and is no wheel). Built once per robot."""
+    def build():
+        out: list[str] = []
+        for d in find(robot):
+            out += [n for n in d.joints if n in robot.joints and n not in out]
+        T = link_transforms(robot)
+        for j in robot.joints.values():
+            if j.type == "continuous" and j.name not in out:
+                w = wheel(robot, j.name, T, read_meshes=False)      # a cylinder about the axle: no mesh needed
+                if w is not None and w.round and w.shape.geometry.kind == "cylinder" and abs(w.axis[2]) < LEVEL:
+                    out.append(j.name)
+        return tuple(out)
+    return list(robot.derive("drive.wheel_joints", build))
 
 
 def is_mobile(robot) -> bool:
@@ -478,25 +485,22 @@ def is_mobile(robot) -> bool:
 
 # ------------------------------------------------------------------ geometry (pure Python)
 def link_transforms(robot) -> dict:
-    """World transform (R, p) of every link at q = 0 with each root at the origin."""
-    cache = getattr(robot, "derived", None)
-    if cache is not None and "drive.link_transforms" in cache:
-        return cache["drive.link_transforms"]
-    out = {}
-    todo = list(robot.roots)
-    for r in todo:
-        out[r] = IDENTITY
-    children = robot.joints_by_parent()
-    while todo:
-        link = todo.pop()
-        for j in children.get(link, []):
-            if j.child in out:
-                continue
-            out[j.child] = compose(out[link], pose_T(j.origin))
-            todo.append(j.child)
-    if cache is not None:
-        cache["drive.link_transforms"] = out
-    return out
+    """World transform (R, p) of every link at q = 0 with each root at the origin (built once)."""
+    def build():
+        out = {}
+        todo = list(robot.roots)
+        for r in todo:
+            out[r] = IDENTITY
+        children = robot.joints_by_parent()
+        while todo:
+            link = todo.pop()
+            for j in children.get(link, []):
+                if j.child in out:
+                    continue
+                out[j.child] = compose(out[link], pose_T(j.origin))
+                todo.append(j.child)
+        return out
+    return robot.derive("drive.link_transforms", build)
 
 
 def _unit(v):
@@ -596,12 +600,15 @@ def separation(left: tuple[Wheel, ...], right: tuple[Wheel, ...]) -> float | Non
 
 
 def measure(robot, drive: Drive) -> Geometry:
-    """The drive's wheels measured on the URDF (joints that do not exist are left out)."""
-    T = link_transforms(robot)
-    left = tuple(w for w in (wheel(robot, n, T) for n in drive.left) if w is not None)
-    right = tuple(w for w in (wheel(robot, n, T) for n in drive.right) if w is not None)
-    radii = [w.radius for w in left + right if w.radius is not None]
-    return Geometry(left, right, separation(left, right), sum(radii) / len(radii) if radii else None)
+    """The drive's wheels measured on the URDF (joints that do not exist are left out); built once
+    per robot and pair of wheel sets."""
+    def build():
+        T = link_transforms(robot)
+        left = tuple(w for w in (wheel(robot, n, T) for n in drive.left) if w is not None)
+        right = tuple(w for w in (wheel(robot, n, T) for n in drive.right) if w is not None)
+        radii = [w.radius for w in left + right if w.radius is not None]
+        return Geometry(left, right, separation(left, right), sum(radii) / len(radii) if radii else None)
+    return robot.derive(("drive.measure", tuple(drive.left), tuple(drive.right)), build)
 
 
 def turn_sign(drive: Drive) -> float:

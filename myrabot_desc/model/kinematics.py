@@ -219,6 +219,70 @@ def center_of_mass(robot: Robot, q: dict[str, float] | None = None) -> tuple[flo
     return total, (acc / total if total > 0 else np.full(3, np.nan))
 
 
+def centers_of_mass(robot: Robot, q: dict) -> tuple[float, np.ndarray]:
+    """``center_of_mass`` at many configurations at once: ``q`` maps joint names to equal-length
+    sequences of positions (the other joints at 0, mimic joints following); the total mass and an
+    (n, 3) array of centres of mass. The same walk and formulas as ``world_transforms``, each tree
+    level one stacked product over every configuration (sim's arm sweeps hundreds of poses)."""
+    import numpy as np
+
+    q = {k: np.asarray(v, dtype=float).ravel() for k, v in q.items()}
+    n = len(next(iter(q.values()))) if q else 1
+    for j in robot.joints.values():
+        if j.mimic and j.mimic.joint in q and j.name not in q:
+            q[j.name] = q[j.mimic.joint] * j.mimic.multiplier + j.mimic.offset
+    children = robot.joints_by_parent()
+    order: list[str] = []
+    via: dict[str, Joint | None] = {}
+    for root in robot.roots or list(robot.links)[:1]:
+        stack: list[tuple[str, Joint | None]] = [(root, None)]
+        while stack:
+            link, j = stack.pop()
+            if link in via:
+                continue
+            via[link] = j
+            order.append(link)
+            for c in children.get(link, []):
+                if c.child not in via:
+                    stack.append((c.child, c))
+    eye = np.broadcast_to(np.eye(4), (n, 4, 4))
+    out: dict[str, np.ndarray] = {link: eye for link in order if via[link] is None}
+    level = list(out)
+    kids: dict[str, list[Joint]] = {}
+    for link in order:
+        j = via[link]
+        if j is not None:
+            kids.setdefault(j.parent, []).append(j)
+    while level:
+        joints = [j for link in level for j in kids.get(link, ())]
+        if not joints:
+            break
+        moving = [j for j in joints if j.type in _MOVING]
+        norm = dict(zip(map(id, moving), _norms([j.axis for j in moving])))
+        flat: list[float] = []
+        for j in joints:
+            flat.extend(_motion_flat(j, norm.get(id(j), 0.0), 0.0))
+        M = np.broadcast_to(np.array(flat, dtype=float).reshape(1, -1, 4, 4), (n, len(joints), 4, 4)).copy()
+        for k, j in enumerate(joints):
+            if j.name in q:
+                nj = norm.get(id(j), 0.0)
+                M[:, k] = np.array([_motion_flat(j, nj, float(v)) for v in q[j.name]], dtype=float).reshape(-1, 4, 4)
+        parents = np.stack([out[j.parent] for j in joints], axis=1)
+        T = parents @ pose_stack(j.origin for j in joints) @ M
+        level = []
+        for k, j in enumerate(joints):
+            out[j.child] = T[:, k]
+            level.append(j.child)
+    links = [link for name, link in robot.links.items()
+             if link.inertial is not None and name in out and link.inertial.mass > 0]
+    total, acc = 0.0, np.zeros((n, 3))
+    for link in links:
+        m = link.inertial.mass
+        total += m
+        acc = acc + m * (out[link.name] @ pose_matrix(link.inertial.origin))[:, :3, 3]
+    return total, (acc / total if total > 0 else np.full((n, 3), np.nan))
+
+
 def require_tree(robot: Robot) -> str:
     """The root link, or InputError when the joints do not form one tree over the links.
 

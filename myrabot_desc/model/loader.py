@@ -6,7 +6,6 @@ the ``myrabot_description`` package shipped with this tool).
 
 from __future__ import annotations
 
-import math
 import re
 from pathlib import Path
 
@@ -22,9 +21,15 @@ from myrabot_desc.expand.packages import (  # noqa: F401  (BUNDLED_ASSEMBLY, bun
     resolve_resource_uri,
     split_package_uri,
 )
+from myrabot_desc.model import values as V
+from myrabot_desc.model.gazebo import typed_properties
+from myrabot_desc.model.nodes import node
 from myrabot_desc.model.parts import (
+    Actuator,
     Box,
+    Camera,
     Collision,
+    ControlJoint,
     Cylinder,
     Dynamics,
     GazeboBlock,
@@ -35,13 +40,19 @@ from myrabot_desc.model.parts import (
     Material,
     Mesh,
     Mimic,
+    Noise,
     Plugin,
     Pose,
+    Ray,
     Robot,
+    Ros2Control,
+    ScanAxis,
     Sensor,
+    Sonar,
     SourceLines,
     Sphere,
     Transmission,
+    TransmissionJoint,
     Visual,
 )
 from myrabot_desc.safety import Limits, parse_xml_bytes, read_input
@@ -180,34 +191,20 @@ class _Reader:
         if raw is None:
             return default
         try:
-            v = float(raw)
-        except ValueError:
-            self.issue(el, f"<{el.tag} {attr}=\"{raw}\">: not a number")
+            return V.parse_number(raw, limit)
+        except V.ValueProblem as exc:
+            self.issue(el, V.problem(el.tag, raw, exc.reason, attr))
             return default
-        if not math.isfinite(v):
-            self.issue(el, f"<{el.tag} {attr}=\"{raw}\">: not a finite number")
-            return default
-        if limit is not None and abs(v) > limit:
-            self.issue(el, f"<{el.tag} {attr}=\"{raw}\">: out of range (more than {limit:g} in magnitude)")
-            return default
-        return v
 
     def vec(self, el, attr: str, default=(0.0, 0.0, 0.0), n: int = 3) -> tuple:
         raw = el.get(attr) if el is not None else None
         if raw is None:
             return default
         try:
-            vals = tuple(map(float, raw.split()))
-        except ValueError:
-            self.issue(el, f"<{el.tag} {attr}=\"{raw}\">: expected {n} numbers")
+            return V.parse_vector(raw, n, MAX_MAGNITUDE)
+        except V.ValueProblem as exc:
+            self.issue(el, V.problem(el.tag, raw, exc.reason, attr))
             return default
-        if len(vals) != n or not all(map(math.isfinite, vals)):
-            self.issue(el, f"<{el.tag} {attr}=\"{raw}\">: expected {n} finite numbers")
-            return default
-        if max(map(abs, vals)) > MAX_MAGNITUDE:
-            self.issue(el, f"<{el.tag} {attr}=\"{raw}\">: out of range (more than {MAX_MAGNITUDE:g} in magnitude)")
-            return default
-        return vals
 
     def pose(self, el, kids: dict | None = None) -> Pose:
         """The <origin> of ``el``; ``kids``: _kids(el) when the caller has it."""
@@ -401,14 +398,13 @@ def _read_model(root, text, src: Path, locations, package_roots, build_warnings,
                              dynamics, r.loc(el), el)
 
     gazebo = tuple(_gazebo_block(r, g) for g in top["gazebo"])
-    transmissions = tuple(
-        Transmission(t.get("name"), t, tuple(j.get("name", "") for j in t.findall("joint")), r.loc(t))
-        for t in top["transmission"])
+    transmissions = tuple(_transmission(r, t) for t in top["transmission"])
+    ros2_control = tuple(_ros2_control(r, b) for b in root if isinstance(b.tag, str) and _local(b) == "ros2_control")
 
     return Robot(name=root.get("name", ""), links=links, joints=joints, materials=materials, gazebo=gazebo,
                  transmissions=transmissions, root_element=root, source=src, urdf_text=text, loc=r.loc(root),
                  package_roots=roots, build_warnings=build_warnings, from_xacro=from_xacro, load_issues=r.issues,
-                 element_locs=r.loc_of, _elements=r._keep)
+                 element_locs=r.loc_of, _elements=r._keep, ros2_control=ros2_control)
 
 
 # ---------------------------------------------------------------- gazebo extensions
@@ -435,16 +431,70 @@ def _params(el) -> dict[str, str]:
 
 
 def _plugin(r: _Reader, el, reference, sensor) -> Plugin:
+    n = node(el, r.loc)
     if _ns(el).endswith("#controller"):
         fattr = "plugin" if el.get("plugin") is not None else ("filename" if el.get("filename") is not None else None)
-        return Plugin(el.get("name"), el.get(fattr) if fattr else _local(el), "electric", _params(el), el,
-                      reference, sensor, fattr, r.loc(el))
+        return Plugin(el.get("name"), el.get(fattr) if fattr else _local(el), "electric", _params(el), n,
+                      reference, sensor, fattr, r.loc(el), el)
     fn = el.get("filename") or ""
     name = el.get("name") or ""
     dialect = "gz" if fn.startswith(("gz-sim", "ignition-gazebo", "libgz-sim", "libignition-gazebo")) or \
         name.startswith(("gz::sim", "ignition::gazebo")) else "classic"
-    return Plugin(el.get("name"), el.get("filename"), dialect, _params(el), el, reference, sensor,
-                  "filename" if el.get("filename") is not None else None, r.loc(el))
+    return Plugin(el.get("name"), el.get("filename"), dialect, _params(el), n, reference, sensor,
+                  "filename" if el.get("filename") is not None else None, r.loc(el), el)
+
+
+def _axis(n, *path) -> ScanAxis | None:
+    a = n.find(*path)
+    if a is None:
+        return None
+    return ScanAxis(a.number("samples"), a.number("resolution"), a.number("min_angle"), a.number("max_angle"))
+
+
+def _noise(n) -> Noise | None:
+    if n is None:
+        return None
+    return Noise(n.text_at("type") or n.get("type"), n.number("mean"), n.number("stddev"))
+
+
+def _typed_sensor(n, electric: bool, stype: str) -> dict:
+    """The typed fields of a sensor (model/parts.Sensor) from its node."""
+    if electric:
+        out = {"update_rate": n.number("updateRate"), "always_on": n.boolean("alwaysActive"),
+               "visualize": n.text_at("displayRays"), "pose": n.vector("origin")}
+        if stype == "camera":
+            size = n.vector("imageSize")
+            w, h = (size[0], size[1] if len(size) > 1 else None) if size else (n.number("imageWidth"),
+                                                                            n.number("imageHeight"))
+            out["camera"] = Camera(n.number("hfov"), w, h, n.text_at("imageFormat"), n.number("nearClip"),
+                                   n.number("farClip"), "deg")
+        elif stype == "ray":
+            vrays = n.number("verticalRayCount")
+            out["rays"] = (Ray("electric", ScanAxis(n.number("rayCount"), None, n.number("minAngle"), n.number("maxAngle")),
+                               ScanAxis(vrays, None, n.number("verticalMinAngle"), n.number("verticalMaxAngle"))
+                               if vrays is not None else None,
+                               n.number("minRange"), n.number("maxRange"), n.number("resRange"), None, "deg",
+                               n.number("rangeCount")),)
+        return out
+    out = {"update_rate": n.number("update_rate"), "always_on": n.boolean("always_on"),
+           "visualize": n.text_at("visualize"), "topic": n.text_at("topic"), "pose": n.vector("pose")}
+    cams = n.all("camera")
+    if cams:
+        c = cams[0]
+        out["camera"] = Camera(c.number("horizontal_fov"), c.number("image", "width"), c.number("image", "height"),
+                               c.text_at("image", "format"), c.number("clip", "near"), c.number("clip", "far"),
+                               "rad", len(cams))
+    rays = []
+    for c in n.elements:
+        if c.tag in ("ray", "lidar"):
+            rays.append(Ray(c.tag, _axis(c, "scan", "horizontal"), _axis(c, "scan", "vertical"),
+                            c.number("range", "min"), c.number("range", "max"), c.number("range", "resolution"),
+                            _noise(c.child("noise"))))
+    out["rays"] = tuple(rays)
+    son = n.child("sonar")
+    if son is not None:
+        out["sonar"] = Sonar(son.number("min"), son.number("max"), son.number("radius"))
+    return out
 
 
 def _sensor(r: _Reader, el, reference) -> Sensor:
@@ -456,7 +506,9 @@ def _sensor(r: _Reader, el, reference) -> Sensor:
             continue
         if _ns(c).endswith("#controller") or _local(c) == "plugin":
             plugins.append(_plugin(r, c, reference, el.get("name")))
-    return Sensor(el.get("name"), stype, "electric" if electric else "sdf", reference, el, tuple(plugins), r.loc(el))
+    n = node(el, r.loc)
+    return Sensor(el.get("name"), stype, "electric" if electric else "sdf", reference, n, tuple(plugins), r.loc(el),
+                  el, **_typed_sensor(n, electric, stype))
 
 
 def _gazebo_block(r: _Reader, g) -> GazeboBlock:
@@ -473,4 +525,35 @@ def _gazebo_block(r: _Reader, g) -> GazeboBlock:
             plugins.append(_plugin(r, c, ref, None))
         elif len(c) == 0:
             props.setdefault(name, _text(c))
-    return GazeboBlock(ref, g, props, tuple(plugins), tuple(sensors), r.loc(g))
+    return GazeboBlock(ref, node(g, r.loc), props, tuple(plugins), tuple(sensors), r.loc(g), g,
+                       typed_properties(props))
+
+
+# ---------------------------------------------------------------- transmissions, ros2_control
+def _transmission(r: _Reader, t) -> Transmission:
+    n = node(t, r.loc)
+    named = tuple(TransmissionJoint(e.get("name"), e.tag, tuple((c.text or "").strip() for c in e.all("hardwareInterface")),
+                                    e.loc, e.ref)
+                  for e in n.iter() if e.tag.lower().endswith("joint") and e.get("name"))
+    actuators = tuple(Actuator(a.get("name"), tuple((c.text or "").strip() for c in a.all("hardwareInterface")),
+                               a.number("mechanicalReduction"), a.loc, a.ref) for a in n.all("actuator"))
+    return Transmission(t.get("name"), tuple(j.get("name", "") for j in t.findall("joint")),
+                        n.text_at("type") or t.get("type"), r.loc(t), t, n, named, actuators)
+
+
+def _control_item(n, kind: str) -> ControlJoint:
+    return ControlJoint(n.get("name"), tuple(c.get("name", "") for c in n.all("command_interface")),
+                        tuple(c.get("name", "") for c in n.all("state_interface")),
+                        {p.get("name"): (p.text or "").strip() for p in n.all("param") if p.get("name")},
+                        n.loc, n.ref, kind)
+
+
+def _ros2_control(r: _Reader, b) -> Ros2Control:
+    n = node(b, r.loc)
+    hw = n.child("hardware")
+    return Ros2Control(b.get("name"), b.get("type"), hw.text_at("plugin") if hw is not None else None,
+                       {p.get("name"): (p.text or "").strip() for p in hw.all("param") if p.get("name")}
+                       if hw is not None else {},
+                       tuple(_control_item(j, "joint") for j in n.all("joint") if j.get("name")),
+                       tuple(_control_item(j, c) for c in ("sensor", "gpio") for j in n.all(c) if j.get("name")),
+                       r.loc(b), b, n)

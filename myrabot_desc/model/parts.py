@@ -2,10 +2,13 @@
 
 Built once (``load_robot`` in loader.py) from a URDF lxml tree; every item keeps
 its source location (the xacro file:line it came from when the URDF was built
-from xacro). Checks, converters, the simulator and ``info`` read this model;
-none of them parses the XML again. Raw lxml elements are kept where a consumer
-needs the original markup (``<gazebo>`` blocks, the Electric ``controller:`` /
-``sensor:`` dialect, transmissions).
+from xacro) and ``ref``, the element it was read from, an opaque handle for
+``Robot.sources`` (where each value was written). Checks, converters, the
+simulator, the viewer and ``info`` read this model; none of them reads the XML
+(only the raw-syntax rules of checks/urdf_syntax.py, which judge the XML itself).
+Markup that convert carries into SDF as it is (a sensor's body, a plugin, a
+``<gazebo>`` block's ``<visual>`` or ``<joint>``) is an immutable node tree
+(model/nodes.py); values are read through one parser (model/values.py).
 
 Pure Python on purpose (no numpy at import): ``build`` and ``--help`` stay fast.
 The parts are immutable records (``typing.NamedTuple``): read-only like frozen
@@ -22,6 +25,8 @@ from typing import Any, NamedTuple
 
 from myrabot_desc.diagnostics import Loc
 from myrabot_desc.expand.packages import resolve_resource_uri
+from myrabot_desc.model import values as V
+from myrabot_desc.model.nodes import Node
 from myrabot_desc.model.pin_model import build_model
 from myrabot_desc.model.sources import Sources
 from myrabot_desc.model.tree import maps
@@ -173,63 +178,235 @@ class Plugin(NamedTuple):
     ``dialect``: 'electric' for ``<controller:NAME plugin|filename=...>``, 'classic' for
     ``<plugin name filename>`` (Gazebo classic, ROS 1/2), 'gz' for gz-sim systems
     (``filename="gz-sim-..."`` or ``name="gz::sim::systems::..."``).
-    ``params``: direct child element name -> text (first occurrence; attribute
-    ``value=`` is accepted as text). ``element`` is the raw lxml element.
+    ``params``: direct child element name -> its value (text, else ``value=``; the first
+    occurrence of each childless element). ``node``: the whole element (model/nodes.Node), which
+    convert copies or quotes as it is. Numbers, booleans and vectors of a parameter are read
+    through model/values.py (``number``, ``boolean``, ``vector``); ``robot.origin(plugin, KEY)``
+    says where a parameter was written.
     """
 
     name: str | None
     filename: str | None
     dialect: str
     params: dict[str, str]
-    element: Any
+    node: Node
     reference: str | None = None      # the <gazebo reference> it sits in, or the sensor's link
     sensor: str | None = None         # name of the enclosing sensor, if any
     file_attr: str | None = None      # which attribute carried the library: 'filename' or 'plugin'
     loc: Loc | None = None
+    ref: Any = None                   # the URDF element it was read from, for Robot.sources (opaque)
 
     @property
     def library(self) -> str:
         return (self.filename or "").rsplit("/", 1)[-1]
 
+    @property
+    def tag(self) -> str:
+        """The element's local name: 'plugin', or an Electric controller's kind ('gazebo_ros_create')."""
+        return self.node.tag
+
+    def values(self, key: str) -> list[str]:
+        """Every value of a (repeatable) parameter, in order: a direct child's text or ``value=``."""
+        return [v for v in (c.value for c in self.node.all(key)) if v]
+
+    def text(self, *keys: str) -> str | None:
+        """The first value of the first of ``keys`` the plugin gives."""
+        for k in keys:
+            v = self.values(k)
+            if v:
+                return v[0]
+        return None
+
+    def param(self, key: str):
+        """The parameter's element (a Node: its loc, text, children), None when not given."""
+        return self.node.child(key)
+
+    def number(self, key: str, default=None):
+        return V.number(self.text(key), default)
+
+    def vector(self, key: str, n: int | None = None, default=None):
+        return V.vector(self.text(key), n, default)
+
+    def boolean(self, key: str, default=None):
+        """A boolean parameter as the plugin reads it (sdf::Element::Get<bool>: model/values.SDF)."""
+        return V.boolean(self.text(key), default)
+
+
+class Camera(NamedTuple):
+    """A sensor's camera as written: ``<camera>`` (SDF, radians) or the Electric
+    ``<sensor:camera>``'s own parameters (``hfov`` in degrees: ``unit``)."""
+
+    hfov: float | None = None         # horizontal field of view, in ``unit``
+    width: float | None = None        # pixels
+    height: float | None = None
+    format: str | None = None
+    near: float | None = None         # clip planes (m)
+    far: float | None = None
+    unit: str = "rad"                 # 'rad' (SDF) or 'deg' (Electric)
+    count: int = 1                    # <camera> elements (a multicamera has several)
+
+
+class ScanAxis(NamedTuple):
+    samples: float | None = None
+    resolution: float | None = None
+    min_angle: float | None = None    # in the ray's ``unit``
+    max_angle: float | None = None
+
+
+class Noise(NamedTuple):
+    type: str | None = None
+    mean: float | None = None
+    stddev: float | None = None
+
+
+class Ray(NamedTuple):
+    """A ray (laser, sonar) sensor's scan and range as written: SDF ``<ray>`` or ``<lidar>``
+    (``tag``, radians) or the Electric ``<sensor:ray>`` (``tag`` 'electric', degrees)."""
+
+    tag: str                          # 'ray' | 'lidar' | 'electric'
+    horizontal: ScanAxis | None = None
+    vertical: ScanAxis | None = None
+    range_min: float | None = None    # m
+    range_max: float | None = None
+    range_resolution: float | None = None
+    noise: Noise | None = None
+    unit: str = "rad"                 # 'rad' or 'deg'
+    range_count: float | None = None  # Electric rangeCount (ranges returned over rayCount rays)
+
+
+class Sonar(NamedTuple):
+    """An SDF ``<sonar>`` (Gazebo classic's sonar sensor): a cone of ``radius`` at ``max``."""
+
+    min: float | None = None
+    max: float | None = None
+    radius: float | None = None
+
 
 class Sensor(NamedTuple):
-    """A ``<sensor type=...>`` (classic/SDF) or Electric ``<sensor:camera|ray ...>``."""
+    """A ``<sensor type=...>`` (classic/SDF) or Electric ``<sensor:camera|ray ...>``.
+
+    Typed: what check and convert read (rate, topic, pose, camera, rays, sonar); ``node`` is the
+    whole element (convert carries an SDF sensor's body into SDF as it is)."""
 
     name: str | None
     type: str                         # 'camera', 'ray', 'depth', 'imu', ... (Electric: 'camera', 'ray')
     dialect: str                      # 'electric' or 'sdf'
     reference: str | None             # link the sensor is attached to
-    element: Any
+    node: Node
     plugins: tuple[Plugin, ...] = ()
     loc: Loc | None = None
+    ref: Any = None                   # the URDF element it was read from, for Robot.sources (opaque)
+    update_rate: float | None = None  # Hz (SDF <update_rate>, Electric <updateRate>)
+    always_on: bool | None = None     # SDF <always_on>, Electric <alwaysActive>
+    visualize: str | None = None      # SDF <visualize>, Electric <displayRays> ('true', 'fan'...), as written
+    topic: str | None = None          # SDF <topic>
+    pose: tuple | None = None         # SDF <pose> (x y z roll pitch yaw), Electric <origin> (x y z)
+    camera: Camera | None = None
+    rays: tuple[Ray, ...] = ()        # SDF: one per <ray>/<lidar> element; Electric: one
+    sonar: Sonar | None = None
 
     def param(self, *path: str) -> str | None:
-        """Text of a descendant element by path, e.g. param('camera', 'horizontal_fov')."""
-        el = self.element
-        for p in path:
-            el = next((c for c in el if _local(c.tag) == p), None)
-            if el is None:
-                return None
-        return (el.text or "").strip() or el.get("value")
+        """Text (else ``value=``) of a descendant element by path, e.g. param('camera', 'horizontal_fov')."""
+        n = self.node.find(*path)
+        if n is None:
+            return None
+        return (n.text or "").strip() or n.get("value")
 
 
 class GazeboBlock(NamedTuple):
-    """One ``<gazebo>`` element. ``properties``: simple children such as material,
-    mu1, mu2, kp, kd, fdir1/fdir, selfCollide, turnGravityOff (text or value=)."""
+    """One ``<gazebo>`` element. ``properties``: its childless children such as material, mu1,
+    mu2, kp, kd, fdir1/fdir, selfCollide, turnGravityOff, as written (text or ``value=``);
+    ``values``: the same typed as their reader takes them (model/gazebo.py: numbers, vectors,
+    flags with sdformat's spellings). ``node``: the whole block (its ``<visual>``, ``<collision>``,
+    ``<joint>``... which convert copies into SDF)."""
 
     reference: str | None
-    element: Any
+    node: Node
     properties: dict[str, str]
     plugins: tuple[Plugin, ...] = ()
     sensors: tuple[Sensor, ...] = ()
     loc: Loc | None = None
+    ref: Any = None                   # the URDF element it was read from, for Robot.sources (opaque)
+    values: dict = {}
+
+    @property
+    def element(self):
+        """The raw element (``ref``): convert/mjcf.py's, until its rewrite from the typed model."""
+        return self.ref
+
+
+class TransmissionJoint(NamedTuple):
+    """A joint a transmission names: ``<joint>`` or a vendor's ``<flexJoint>``, ``<gap_joint>``..."""
+
+    name: str
+    tag: str
+    interfaces: tuple[str, ...] = ()  # <hardwareInterface> texts as written ('hardware_interface/VelocityJointInterface')
+    loc: Loc | None = None
+    ref: Any = None
+
+
+class Actuator(NamedTuple):
+    name: str | None
+    interfaces: tuple[str, ...] = ()
+    reduction: float | None = None    # <mechanicalReduction>
+    loc: Loc | None = None
+    ref: Any = None
 
 
 class Transmission(NamedTuple):
+    """A ros_control ``<transmission>``: ``joints`` the names of its ``<joint>`` children (as
+    urdfdom reads them), ``named`` every element below it that names a joint (PR2's
+    ``<flexJoint>``, ``<gap_joint>``...), ``actuators`` its actuators."""
+
     name: str | None
-    element: Any
     joints: tuple[str, ...] = ()
+    type: str | None = None           # <type> text or type= (ROS 1 old style)
     loc: Loc | None = None
+    ref: Any = None
+    node: Node | None = None
+    named: tuple[TransmissionJoint, ...] = ()
+    actuators: tuple[Actuator, ...] = ()
+
+
+class ControlJoint(NamedTuple):
+    """A ``<joint>`` (or ``<sensor>``, ``<gpio>``) of a ``<ros2_control>`` block."""
+
+    name: str
+    command_interfaces: tuple[str, ...] = ()    # their name= ('' for a nameless one)
+    state_interfaces: tuple[str, ...] = ()
+    params: dict = {}
+    loc: Loc | None = None
+    ref: Any = None
+    kind: str = "joint"
+
+
+class Ros2Control(NamedTuple):
+    """A ``<ros2_control>`` block: its hardware plugin and the joints it commands."""
+
+    name: str | None
+    type: str | None = None
+    hardware: str | None = None       # <hardware><plugin> text
+    hardware_params: dict = {}
+    joints: tuple[ControlJoint, ...] = ()
+    sensors: tuple[ControlJoint, ...] = ()
+    loc: Loc | None = None
+    ref: Any = None
+    node: Node | None = None
+
+
+class Declared:
+    """A top-level ``<link>``, ``<joint>`` or ``<material>`` as written, duplicates and nameless ones
+    included (the typed dicts keep one per name): what check's T002 and T004 judge. ``loc`` is
+    looked up when asked (a 20,000-link file has 40,000 of these and few duplicates)."""
+
+    __slots__ = ("tag", "name", "child", "ref", "_robot")
+
+    def __init__(self, tag: str, name: str | None, child: str | None, ref, robot):
+        self.tag, self.name, self.child, self.ref, self._robot = tag, name, child, ref, robot
+
+    @property
+    def loc(self) -> Loc | None:
+        return self._robot.loc_of(self.ref)
 
 
 # ---------------------------------------------------------------- the robot
@@ -278,9 +455,34 @@ class Robot:
     # URDF read from one file its bytes: Robot.sources reads spans from them when asked.
     source_map: Any = field(default=None, repr=False, compare=False)
     source_bytes: bytes | None = field(default=None, repr=False, compare=False)
-    # Facts derived from the robot, built once by whoever needs them first (sim/prepared.py);
-    # the robot is not modified after loading, so they stay true for its lifetime.
+    # Facts derived from the robot, built once by whoever needs them first (``derive``); the robot
+    # is not modified after loading, so they stay true for its lifetime.
     derived: dict = field(default_factory=dict, repr=False, compare=False)
+    ros2_control: tuple = ()                                        # Ros2Control blocks, in file order
+
+    def derive(self, key, build):
+        """``build()``, built once for this robot under ``key``: the one cache of facts derived from
+        a robot (its tree maps, transforms, drives, source spans, check's and sim's facts). A key
+        names what the fact depends on besides the robot (check's mesh reading, sim's wheels)."""
+        d = self.derived
+        if key in d:
+            return d[key]
+        value = d[key] = build()
+        return value
+
+    def declared(self, tag: str) -> list[Declared]:
+        """Every top-level ``<tag>`` element (link, joint, material) as written, in file order:
+        duplicates and nameless ones included (``links``/``joints``/``materials`` keep one per name)."""
+        def build():
+            out = []
+            for el in self.root_element.iterchildren(tag):
+                child = None
+                if tag == "joint":
+                    c = next(el.iterchildren("child"), None)
+                    child = c.get("link") if c is not None else None
+                out.append(Declared(tag, el.get("name"), child, el, self))
+            return tuple(out)
+        return list(self.derive(("declared", tag), build))
 
     def loc_of(self, el) -> Loc | None:
         """Source location of an element of ``root_element`` (None when unknown)."""
@@ -291,13 +493,12 @@ class Robot:
     @property
     def sources(self):
         """Where each value was written (model/sources.Sources): ``robot.sources.origin(part.ref, attr)``."""
-        s = self.derived.get("sources")
-        if s is None:
+        def build():
             plain = None
             if self.source_map is None and self.source_bytes is not None:
                 plain = (str(self.loc.file) if self.loc else str(self.source), self.source, self.source_bytes)
-            s = self.derived["sources"] = Sources(self.root_element, self.source_map, plain)
-        return s
+            return Sources(self.root_element, self.source_map, plain)
+        return self.derive("sources", build)
 
     def origin(self, part, field: str):
         """Where ``field`` of ``part`` was written (model/sources.Origin): ``robot.origin(joint, "limit.effort")``."""
@@ -397,14 +598,3 @@ class Robot:
 
         return yourdfpy.URDF(robot=yourdfpy.URDF._parse_robot(xml_element=root), build_scene_graph=build_scene_graph,
                              load_meshes=load_meshes, filename_handler=filename)
-
-
-def _local(tag) -> str:
-    """Element tag without namespace; Electric 'sensor:camera' keeps its prefix name."""
-    if not isinstance(tag, str):
-        return ""
-    return tag.rsplit("}", 1)[-1]
-
-
-def deg(x: float) -> float:
-    return math.degrees(x)

@@ -31,16 +31,17 @@ _KINDS = (
     ("ros_control", ("gazebo_ros_control", "gazebo_ros_controller_manager", "gazebo_ros2_control", "gz_ros2_control",
                      "ign_ros2_control", "gz_ros2_control-system", "ign_ros2_control-system")),
 )
-# Parameters that name a topic the plugin uses (commandTopic is subscribed: subscribers may share)
+# Parameters that name a topic the plugin uses (the command topics are subscribed: subscribers may share)
 TOPIC_KEYS = ("topicName", "topic", "imageTopicName", "cameraInfoTopicName", "pointCloudTopicName",
-              "depthImageTopicName", "depthImageCameraInfoTopicName", "odometryTopic", "commandTopic",
-              "odom_topic", "tf_topic")
-SUBSCRIBED = ("commandTopic",)
-
-
-def _local(tag) -> str:
-    return tag.rsplit("}", 1)[-1] if isinstance(tag, str) else ""
-
+              "depthImageTopicName", "depthImageCameraInfoTopicName", "odometryTopic", "odometry_topic",
+              "commandTopic", "command_topic", "odom_topic", "tf_topic")
+SUBSCRIBED = ("commandTopic", "command_topic")
+# A drive plugin's command and odometry topics and frames, every dialect's name for each, in the
+# order they are looked for (ROS 1, ROS 2 / vendor, gz-sim)
+COMMAND_KEYS = ("commandTopic", "command_topic", "topic")
+ODOMETRY_KEYS = ("odometryTopic", "odometry_topic", "odom_topic")
+ODOMETRY_FRAME_KEYS = ("odometryFrame", "odometry_frame", "frame_id")
+BASE_FRAME_KEYS = ("robotBaseFrame", "robot_base_frame", "child_frame_id")
 
 def key(p) -> str:
     """The plugin's library without lib/.so (Electric controllers: the tag; gz systems: the name)."""
@@ -52,8 +53,8 @@ def key(p) -> str:
             lib = lib[: -len(ext)]
     if lib:
         return lib.lower()
-    if p.dialect == "electric" and p.element is not None:
-        return _local(p.element.tag).lower()
+    if p.dialect == "electric":
+        return p.tag.lower()
     return (p.name or "").rsplit("::", 1)[-1].lower()
 
 
@@ -82,19 +83,16 @@ def namespace(p) -> str:
     """The plugin's ROS namespace ('' for none or '/'; an absolute one keeps its leading slash):
     ROS 1 robotNamespace, else the ROS 2 ``<ros><namespace>``."""
     ns = param(p, "robotNamespace")
-    if not ns and p.element is not None:
-        ros = next((c for c in p.element if _local(c.tag) == "ros"), None)
-        inner = next((c for c in ros if _local(c.tag) == "namespace"), None) if ros is not None else None
+    if not ns:
+        inner = p.node.find("ros", "namespace")
         ns = (inner.text or "") if inner is not None else ""
     return (ns or "").strip().rstrip("/")
 
 
 def remap(p, *froms) -> str | None:
     """ROS 2 ``<ros><remapping>~/out:=scan</remapping>`` target for one of ``froms``."""
-    if p.element is None:
-        return None
-    for r in p.element.iter():
-        if isinstance(r.tag, str) and _local(r.tag) in ("remapping", "argument") and r.text and ":=" in r.text:
+    for r in p.node.iter():
+        if r.tag in ("remapping", "argument") and r.text and ":=" in r.text:
             a, b = r.text.strip().split(":=", 1)
             if a.strip() in froms:
                 return b.strip()
@@ -157,3 +155,18 @@ def publishes_ranges(p) -> bool:
     """A sonar/IR range plugin (sensor_msgs/Range): several may share one topic by design, as
     each message names its frame (a base's ring of sonars on one topic)."""
     return kind(p) == "sonar" or (param(p, "output_type", "outputType") or "").endswith("Range")
+
+
+def drive_topics(p, default_command: str | None = None) -> tuple[str, str]:
+    """(command topic, odometry topic) of a drive plugin, resolved in its namespace as its node
+    resolves them: the topic parameters of any dialect, else the ROS 2 remappings of ``cmd_vel``
+    and ``odom``, else ``default_command`` (a vendor plugin's own) or ``cmd_vel``, and ``odom``."""
+    cmd = param(p, *COMMAND_KEYS) or remap(p, "cmd_vel", "/cmd_vel") or default_command or "cmd_vel"
+    odom = param(p, *ODOMETRY_KEYS) or remap(p, "odom", "/odom") or "odom"
+    ns = namespace(p)
+    return resolve(cmd, ns), resolve(odom, ns)
+
+
+def drive_frames(p, base_default: str) -> tuple[str, str]:
+    """(odometry frame, base frame) a drive plugin stamps its odometry with."""
+    return param(p, *ODOMETRY_FRAME_KEYS) or "odom", param(p, *BASE_FRAME_KEYS) or base_default

@@ -283,7 +283,7 @@ class Sources:
         st = f.start_tag(off)
         return f.span(off, st[2]) if st else None
 
-    def element(self, el) -> Span | None:
+    def element_span(self, el) -> Span | None:
         """The whole element where it is written, start tag to end tag (to remove or to move it)."""
         f, off = self._source_element(self._source_of(el))
         if f is None or off is None:
@@ -352,18 +352,59 @@ class Sources:
             return Origin("arg", first.name, at, None, None, tuple(hops))
         return Origin(first.kind, first.name, at, written, expr, tuple(hops))
 
+    def child(self, ref, tag: str):
+        """The handle of the first child element of ``ref`` named ``tag`` (None if there is none)."""
+        return _child(ref, tag)
+
+    def uses(self) -> dict:
+        """Every value of the URDF by where it is written: (file, start) -> [(handle, attribute)], the
+        element text as '#text'. A literal used by several values (a property, a macro body) has several."""
+        found: dict = {}
+        for el in self.root.iter():
+            if not isinstance(el.tag, str):
+                continue
+            names = list(el.attrib)
+            if (el.text or "").strip() and len(el) == 0:
+                names.append("#text")
+            for a in names:
+                o = self.origin(el, a)
+                if o.written is not None:
+                    found.setdefault((o.written.file, o.written.start), []).append((el, a))
+        return found
+
+    @staticmethod
+    def describe(ref, attr: str) -> str:
+        """'<inertia ixx> of link base_link' style, short: the value's element and its owning part."""
+        owner = ref
+        while owner is not None and owner.tag not in ("link", "joint", "gazebo", "material"):
+            owner = owner.getparent()
+        who = f"{owner.tag} {owner.get('name') or owner.get('reference') or ''}".strip() if owner is not None else ""
+        a = "text" if attr == "#text" else attr
+        return f"<{ref.tag} {a}>" + (f" of {who}" if who else "")
+
     def field(self, part, name: str) -> Origin:
         """Where field ``name`` of a model part was written: ``field(joint, "limit.effort")``,
-        ``field(link.inertial, "ixx")``, ``field(plugin, "wheelSeparation")`` (see FIELDS)."""
+        ``field(link.inertial, "ixx")``, ``field(plugin, "wheelSeparation")`` (see FIELDS).
+
+        A name FIELDS does not list is a path of child elements from the part's element, dotted
+        (``field(plugin, "ros.namespace")``, ``field(sensor, "camera.horizontal_fov")``), read as
+        the text of the last one, or as its ``value=`` when it has no text (``<mu1 value="0.5"/>``);
+        a last step ``@NAME`` is an attribute (``field(node, "@name")``)."""
         el = getattr(part, "ref", None)
-        if el is None:
-            el = getattr(part, "element", None)
         table = FIELDS.get(type(part).__name__)
-        path, attr = table[name] if table and name in table else ((name,), "#text")
+        fallback = not (table and name in table)
+        if fallback:
+            steps = name.split(".")
+            attr = steps.pop()[1:] if steps[-1].startswith("@") else "#text"
+            path = tuple(steps)
+        else:
+            path, attr = table[name]
         for tag in path:
             el = _child(el, tag)
         if el is None:
             return Origin("unknown", None, None, None, None)
+        if fallback and attr == "#text" and not (el.text or "").strip() and el.get("value") is not None:
+            attr = "value"
         return self.origin(el, attr)
 
 
@@ -386,8 +427,8 @@ _GEOMETRY = {"geometry.size": (("geometry", "box"), "size"), "geometry.radius": 
              "geometry.length": (("geometry", "cylinder"), "length"),
              "geometry.filename": (("geometry", "mesh"), "filename"), "geometry.scale": (("geometry", "mesh"), "scale")}
 
-# part type -> field -> (child tags from the part's element, attribute or '#text'). A part type not
-# here (a plugin, a <gazebo> block) reads a name as the text of the child element of that name.
+# part type -> field -> (child tags from the part's element, attribute or '#text'). A name not listed
+# is a dotted path of child elements (a plugin's parameter, a sensor's camera.horizontal_fov), see field().
 FIELDS: dict[str, dict[str, tuple]] = {
     "Link": {"name": ((), "name")},
     "Inertial": {"mass": (("mass",), "value"), **{k: (("inertia",), k) for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")},
@@ -400,6 +441,14 @@ FIELDS: dict[str, dict[str, tuple]] = {
     "Visual": {"name": ((), "name"), **_pose_fields(), **_GEOMETRY, "material": (("material",), "name")},
     "Collision": {"name": ((), "name"), **_pose_fields(), **_GEOMETRY},
     "Material": {"name": ((), "name"), "rgba": (("color",), "rgba"), "texture": (("texture",), "filename")},
+    "Plugin": {"name": ((), "name"), "filename": ((), "filename")},
+    "Sensor": {"name": ((), "name"), "type": ((), "type")},
+    "GazeboBlock": {"reference": ((), "reference")},
+    "Transmission": {"name": ((), "name")},
+    "TransmissionJoint": {"name": ((), "name")},
+    "Actuator": {"name": ((), "name")},
+    "Ros2Control": {"name": ((), "name"), "type": ((), "type")},
+    "ControlJoint": {"name": ((), "name")},
 }
 
 

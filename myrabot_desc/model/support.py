@@ -1,6 +1,6 @@
-"""What a robot stands on: its ground contacts, their support polygon, and the signed distance of
-a point to that polygon. The one computation behind check's P001/P004, sim's tip-over margin and
-the viewer's ground overlay.
+"""What a robot stands on: its ground contacts, their support polygon, the signed distance of a
+point to that polygon, and the centre of mass against it (``stance``). The one computation behind
+check's P001/P004, sim's tip-over margin and stance, and the viewer's ground overlay.
 
 The robot rests on its lowest collision point (root frame, at the configuration asked). Every
 collision shape reaching within ``CONTACT_TOL`` of that height touches the ground; the support
@@ -23,7 +23,7 @@ import math
 from typing import NamedTuple
 
 from myrabot_desc.model.hull2d import convex_hull
-from myrabot_desc.model.kinematics import pose_matrix, world_transforms
+from myrabot_desc.model.kinematics import center_of_mass, pose_matrix, world_transforms
 from myrabot_desc.model.shapes import lowest_points, surface_points
 
 CONTACT_TOL = 0.005      # m: geometry this close to the lowest point holds the robot up (see above)
@@ -33,7 +33,10 @@ class Support(NamedTuple):
     ground_z: float                      # height of the lowest collision point (root frame)
     contacts: dict                       # link name -> [(x, y, z)] points within CONTACT_TOL of the ground
     polygon: list                        # convex hull of the contacts' (x, y), counter-clockwise
-    lowest: str                          # the link whose geometry is lowest
+    lowest: str | None                   # the link whose geometry is lowest
+    com: object = None                   # (stance) (3,) numpy centre of mass at the same configuration
+    mass: float | None = None            # (stance) total mass
+    margin: float | None = None          # (stance) distance of the projected centre of mass to the polygon's edge, + inside
 
     @property
     def links(self) -> list[str]:
@@ -134,6 +137,19 @@ def ground_support(robot, q: dict | None = None, meshes=True, world=None) -> Sup
                                                  if p[2] <= zmin + CONTACT_TOL)
     hull = convex_hull([p[:2] for ps in contacts.values() for p in ps])
     return Support(ground_z=float(zmin), contacts=contacts, polygon=hull, lowest=lowest_link)
+
+
+def stance(robot, q: dict | None = None, meshes=True, world=None) -> Support | None:
+    """``ground_support`` with the centre of mass (model/kinematics) at the same configuration and
+    its margin (``signed_distance`` of its ground projection): what check's P001/P004, sim's
+    stance and the viewer's ground overlay show. None without collision geometry or mass."""
+    s = ground_support(robot, q, meshes=meshes, world=world)
+    if s is None:
+        return None
+    mass, com = center_of_mass(robot, q)
+    if not mass > 0:
+        return None
+    return s._replace(com=com, mass=float(mass), margin=signed_distance(s.polygon, com[:2]))
 
 
 def signed_distances(polygon, xy):

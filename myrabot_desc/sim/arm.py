@@ -1,4 +1,5 @@
-"""The arm through Pinocchio: forward kinematics, pointing, inverse kinematics, centre of mass.
+"""The arm through Pinocchio: forward kinematics, pointing, inverse kinematics; its centre of mass
+(model/kinematics).
 
 "Point at" (escoja, seguir), as we define it:
 
@@ -24,7 +25,7 @@ from __future__ import annotations
 import math
 
 from myrabot_desc.errors import InputError
-from myrabot_desc.model.kinematics import pose_matrix, world_transforms
+from myrabot_desc.model.kinematics import center_of_mass, centers_of_mass, pose_matrix, world_transforms
 from myrabot_desc.model.pin_model import build_model
 from myrabot_desc.model.shapes import surface_points
 
@@ -168,33 +169,16 @@ class Arm:
 
     # ------------------------------------------------------------ mass
     def com(self, qarm):
-        return whole_com(self.model, self.data, self.full_q(qarm))
+        """The whole robot's centre of mass with the arm at ``qarm`` (model/kinematics, as check,
+        the viewer and the stance compute it)."""
+        return center_of_mass(self.robot, dict(zip(self.names, (float(v) for v in qarm))))[1]
 
     def coms(self, qarms):
-        """``com`` of each row of ``qarms`` (the same operations, so the same numbers)."""
+        """``com`` of each row of ``qarms``, at once (model/kinematics.centers_of_mass)."""
         import numpy as np
-        import pinocchio as pin
 
-        out = np.empty((len(qarms), 3))
-        for n, qa in enumerate(qarms):
-            out[n] = pin.centerOfMass(self.model, self.data, self.full_q(qa))
-        I0, m = self.model.inertias[0], self.data.mass[0]     # the universe; the rest's mass
-        if m > 0:
-            return (I0.mass * I0.lever + m * out) / (m + I0.mass)
-        return np.array([self.com(qa) for qa in qarms]).reshape(-1, 3)     # massless bodies: whole_com's cases
-
-
-def whole_com(model, data, q):
-    """Centre of mass of every body, the fixed-base links merged into the universe included
-    (``pin.centerOfMass`` leaves the universe's inertia out on a fixed-base model)."""
-    import numpy as np
-    import pinocchio as pin
-
-    pin.centerOfMass(model, data, q)         # every body but the universe: data.mass[0], data.com[0]
-    I0 = model.inertias[0]                  # the universe stays at the origin
-    m, m_tot = data.mass[0], data.mass[0] + I0.mass
-    acc = I0.mass * I0.lever + (m * data.com[0] if m > 0 else 0.0)
-    return acc / m_tot if m_tot > 0 else np.zeros(3)
+        Q = np.asarray(qarms, dtype=float).reshape(-1, len(self.names))
+        return centers_of_mass(self.robot, {n: Q[:, k] for k, n in enumerate(self.names)})[1]
 
 
 def _levenberg_marquardt(res, x0, lo, hi, iters: int = 100):

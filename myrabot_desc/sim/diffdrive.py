@@ -26,40 +26,16 @@ from dataclasses import dataclass, field
 
 from myrabot_desc.errors import InputError
 from myrabot_desc.model import drive as D
+from myrabot_desc.model import values as V
 
 
 @dataclass(frozen=True)
-class PluginDrive:
-    """What the diff-drive plugin believes about the wheels."""
+class WheelBase:
+    """The wheels as built, what actually moves the robot: each side's first wheel (model/drive.Wheel,
+    with the side's mean radius), and the track between the sides."""
 
-    name: str
-    library: str
-    separation: float
-    radius: float
-    left_joint: str
-    right_joint: str
-    swapped: bool = False          # ROS 1 gazebo_ros_diff_drive legacyMode (default true) swaps the turn
-    update_rate: float | None = None
-    loc: object = None
-    notes: tuple[str, ...] = ()
-
-
-@dataclass(frozen=True)
-class Wheel:
-    joint: str
-    link: str
-    y: float                       # lateral position in the root frame
-    xy: tuple[float, float]
-    radius: float
-    forward_sign: float            # +1 if a positive joint rate drives the wheel forward
-
-
-@dataclass(frozen=True)
-class UrdfDrive:
-    """The wheels as built: what actually moves the robot."""
-
-    left: Wheel
-    right: Wheel
+    left: D.Wheel
+    right: D.Wheel
     track: float | None = None     # model/drive.py's separation (wheel centres along the axle)
 
     @property
@@ -76,9 +52,13 @@ class UrdfDrive:
 
 
 @dataclass
-class Drive:
-    urdf: UrdfDrive
-    plugin: PluginDrive | None
+class DiffDrive:
+    """A base in the simulator: the wheels as built (``urdf``), the declared drive whose numbers the
+    plugin runs with (``plugin``: model/drive.Drive with its defaults filled in, None without a drive
+    plugin), whose numbers turn a twist into wheel rates (``wheels``), and the run's limits."""
+
+    urdf: WheelBase
+    plugin: D.Drive | None
     wheels: str = "plugin"            # 'plugin' or 'urdf': whose numbers compute the command
     wheel_speed_max: float | None = None      # rad/s
     wheel_accel_max: float | None = None      # rad/s^2
@@ -90,9 +70,9 @@ class Drive:
         if self.wheels == "plugin" and self.plugin is not None:
             p = self.plugin
             vl, vr = v - w * p.separation / 2, v + w * p.separation / 2
-            if p.swapped:
+            if p.legacy:
                 vl, vr = vr, vl
-            rates = {p.left_joint: vl / p.radius, p.right_joint: vr / p.radius}
+            rates = {p.left[0]: vl / p.radius, p.right[0]: vr / p.radius}
             # The plugin drives joints by name; forward sign is the joint's own business.
             ql, qr = rates.get(u.left.joint, 0.0), rates.get(u.right.joint, 0.0)
             return ql, qr
@@ -108,7 +88,7 @@ class Drive:
 
 
 # ------------------------------------------------------------------ reading the model
-def find_drive(robot, wheels: str = "plugin", left=(), right=()) -> Drive:
+def find_drive(robot, wheels: str = "plugin", left=(), right=()) -> DiffDrive:
     """The base's drive from the one drive model (model/drive.py): the user's wheel joints, else
     the first declared drive (a plugin of any dialect, ros_control velocity wheels), else
     continuous joints named like wheels, sided by where they sit. A skid-steer base is its equivalent diff drive
@@ -136,7 +116,7 @@ def find_drive(robot, wheels: str = "plugin", left=(), right=()) -> Drive:
         raise InputError(f"{d.label}: the left and right wheels ({', '.join(d.joints)}) turn together (<mimic> of "
                          f"'{shared[0]}'): not a differential drive, they cannot turn at different speeds",
                          d.loc or robot.loc)
-    plugin = _plugin_drive(d) if d.source == "plugin" else None
+    plugin, plugin_notes = _plugin_drive(d) if d.source == "plugin" else (None, [])
     urdf = urdf_wheels(robot, d)
     notes = []
     if wheels == "plugin" and plugin is None:
@@ -145,19 +125,19 @@ def find_drive(robot, wheels: str = "plugin", left=(), right=()) -> Drive:
         notes.append(f"{why}: cmd_vel is turned into wheel rates with the URDF's own wheel geometry")
         wheels = "urdf"
     if d.source == "user" and urdf.left.joint != d.left[0]:
-        notes.append(f"the left wheel you named, {d.left[0]}, sits on the right (y {urdf.right.y:+.3f} m; +y is left, "
-                     "REP-103): driven as the geometry says; a controller given these names turns the wrong way")
-    dr = Drive(urdf=urdf, plugin=plugin, wheels=wheels, notes=notes)
+        notes.append(f"the left wheel you named, {d.left[0]}, sits on the right (y {urdf.right.origin[1]:+.3f} m; +y is "
+                     "left, REP-103): driven as the geometry says; a controller given these names turns the wrong way")
+    dr = DiffDrive(urdf=urdf, plugin=plugin, wheels=wheels, notes=notes)
     if plugin is not None:
-        mirrored = plugin.left_joint != urdf.left.joint
-        notes = list(plugin.notes)
-        if mirrored and plugin.swapped:        # an old package written for legacy mode: the two swaps cancel
+        mirrored = plugin.left[0] != urdf.left.joint
+        notes = list(plugin_notes)
+        if mirrored and plugin.legacy:        # an old package written for legacy mode: the two swaps cancel
             notes = [n for n in notes if "legacyMode" not in n]
-            notes.append(f"legacyMode swaps the wheels and the plugin's left joint {plugin.left_joint} sits on the "
-                         f"right (y {urdf.right.y:+.3f} m): the two cancel, it turns the right way")
+            notes.append(f"legacyMode swaps the wheels and the plugin's left joint {plugin.left[0]} sits on the "
+                         f"right (y {urdf.right.origin[1]:+.3f} m): the two cancel, it turns the right way")
         elif mirrored:
-            notes.append(f"the plugin's left joint {plugin.left_joint} sits on the right (y "
-                         f"{urdf.right.y:+.3f} m): it turns the wrong way")
+            notes.append(f"the plugin's left joint {plugin.left[0]} sits on the right (y "
+                         f"{urdf.right.origin[1]:+.3f} m): it turns the wrong way")
         dr.notes.extend(notes)
     if d.skid:
         dr.notes.append(f"{d.label}: a skid-steer base driven as its equivalent diff drive ({len(d.left)} left and "
@@ -165,47 +145,31 @@ def find_drive(robot, wheels: str = "plugin", left=(), right=()) -> Drive:
     return dr
 
 
-def _plugin_drive(d) -> PluginDrive | None:
-    """What the plugin believes, its own defaults filling what it does not say (as the plugin does)."""
-    p, spec = d.plugin, d.spec
-    defaults = dict(spec.defaults)
-    notes = []
-    sep, rad = d.separation, d.radius
-    if sep is None and spec.separation in defaults:
-        sep = defaults[spec.separation]
-        notes.append(f"the plugin gives no {spec.separation}: it uses its default {sep:g} m")
-    if rad is None:
-        key = spec.radius or spec.diameter
-        if key in defaults:
-            rad = defaults[key] if spec.radius else defaults[key] / 2
-            notes.append(f"the plugin gives no {key}: it uses its default {defaults[key]:g} m")
+def _plugin_drive(d) -> tuple[D.Drive | None, list[str]]:
+    """What the plugin believes, its own defaults filling what it does not say (as the plugin does),
+    and notes on the defaults it used and its legacy mode."""
+    spec = d.spec
     for key, t in d.bad:
         if key in (spec.separation, spec.diameter, spec.radius):
-            raise InputError(f"diff-drive plugin: {key} is not a number: {t!r}", d.loc)
-    if sep is None or rad is None:
-        return None
-    if sep <= 0 or rad <= 0:
-        raise InputError(f"diff-drive plugin {p.name}: wheel separation and diameter must be > 0", d.loc)
+            raise InputError(V.problem(key, t, V.NOT_A_NUMBER) + " (diff-drive plugin)", d.loc)
+    full, notes = d.with_defaults()
+    if full.separation is None or full.radius is None:
+        return None, []
+    if full.separation <= 0 or full.radius <= 0:
+        raise InputError(f"diff-drive plugin {d.plugin.name}: wheel separation and diameter must be > 0", d.loc)
     if d.legacy:
         notes.append("legacyMode is true (the ROS 1 default): the plugin turns the wrong way"
                      if not d.legacy_explicit else "legacyMode is true: the plugin turns the wrong way")
-    tag = _local(getattr(p.element, "tag", ""))
-    return PluginDrive(name=p.name or tag or p.library, library=p.library or tag, separation=sep, radius=rad,
-                       left_joint=d.left[0], right_joint=d.right[0], swapped=d.legacy,
-                       update_rate=d.update_rate or None, loc=d.loc, notes=tuple(notes))
+    return full, notes
 
 
-def _local(tag) -> str:
-    return tag.rsplit("}", 1)[-1] if isinstance(tag, str) else ""
-
-
-def urdf_wheels(robot, d) -> UrdfDrive:
+def urdf_wheels(robot, d) -> WheelBase:
     """The drive's wheels as built (model/drive.measure); each side's first wheel stands for the side."""
 
     g = D.measure(robot, d)
     for w in g.wheels:
         j = robot.joints[w.joint]
-        if abs(w.axis[1]) < 0.9:
+        if abs(w.axis[1]) < D.LATERAL:
             raise InputError(f"wheel joint {w.joint}: axis {tuple(round(a, 3) for a in w.axis)} is not lateral, "
                              "so it cannot drive the base forward", j.loc)
         if w.radius is None and w.problem is not None:
@@ -214,26 +178,13 @@ def urdf_wheels(robot, d) -> UrdfDrive:
             link = robot.links[w.link]
             raise InputError(f"wheel link {w.link} has no collision or visual geometry, so its radius is unknown",
                              link.loc)
-    side = []
-    for group in (g.left, g.right):
-        w = group[0]
-        r = sum(x.radius for x in group) / len(group)
-        side.append(Wheel(joint=w.joint, link=w.link, y=float(w.origin[1]), xy=w.xy, radius=r,
-                          forward_sign=w.forward_sign))
-    lw, rw = side
-    if lw.y < rw.y:            # 'left' is whichever side sits at +y; the plugin still drives by name
+    lw, rw = (group[0]._replace(radius=sum(x.radius for x in group) / len(group)) for group in (g.left, g.right))
+    if lw.origin[1] < rw.origin[1]:     # 'left' is whichever side sits at +y; the plugin still drives by name
         lw, rw = rw, lw
     if not g.separation or g.separation < 1e-6:
         raise InputError(f"{d.label}: the left and right wheels ({lw.joint}, {rw.joint}) are not apart along their "
                          "axle, so they cannot steer the base", d.loc or robot.loc)
-    return UrdfDrive(left=lw, right=rw, track=g.separation)
-
-
-def wheel_radius(robot, joint_name: str) -> float | None:
-    """The radius of the wheel turned by a joint (model/drive.py's one rule)."""
-
-    w = D.wheel(robot, joint_name)
-    return None if w is None else w.radius
+    return WheelBase(left=lw, right=rw, track=g.separation)
 
 
 # ------------------------------------------------------------------ integration
@@ -253,7 +204,7 @@ class BaseTrack:
     axle_y: object
 
 
-def integrate(drive: Drive, segments, n_steps: int, dt: float, pose0=(0.0, 0.0, 0.0)) -> BaseTrack:
+def integrate(drive: DiffDrive, segments, n_steps: int, dt: float, pose0=(0.0, 0.0, 0.0)) -> BaseTrack:
     """Integrate piecewise-constant twists.
 
     ``segments``: list of (k_start, v, w) with step indices ascending; the twist

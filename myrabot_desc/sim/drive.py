@@ -13,9 +13,8 @@ from __future__ import annotations
 import math
 import time
 
-from myrabot_desc.model.pin_model import build_model
+from myrabot_desc.model.kinematics import center_of_mass
 from myrabot_desc.sim import stability
-from myrabot_desc.sim.arm import whole_com
 from myrabot_desc.sim.diffdrive import find_drive, integrate
 from myrabot_desc.sim.result import Check, Series, SimResult
 from myrabot_desc.sim.stability import footprint
@@ -113,7 +112,7 @@ def run(robot, *, rate=1000.0, duration=None, script=DEFAULT_SCRIPT, wheels="plu
     if drive.plugin is not None and wheels == "plugin":
         p = drive.plugin
         kv = u.radius / p.radius
-        kw = kv * p.separation / u.separation * (-1.0 if p.swapped else 1.0)   # legacy mode swaps the turn
+        kw = kv * p.separation / u.separation * (-1.0 if p.legacy else 1.0)   # legacy mode swaps the turn
         res.info["predicted ratios"] = f"speed {kv:.4f} (URDF r / plugin r), turn {kw:.4f} (× plugin sep / URDF sep)"
     res.info.update(_stance(robot, drive))
     res.moving = [("expected", ex, ey)]
@@ -159,22 +158,20 @@ def _cmd_series(bounds, N, col):
 
 
 def _stance(robot, drive) -> dict:
-    """Static stance: where the centre of mass sits against the support polygon."""
+    """Static stance: where the centre of mass (model/kinematics, as check and the viewer) sits
+    against the support polygon."""
     try:
-        import pinocchio as pin
-
-        model = build_model(robot)
-        data = model.createData()
-        com = whole_com(model, data, pin.neutral(model))
-        sup = stability.support_polygon(robot, drive)
+        _, com = center_of_mass(robot)
+        sup, notes = stability.support_polygon(robot, drive)
         mg = stability.margin(sup, com)
-        out = {"centre of mass": f"({com[0]:.4f}, {com[1]:.4f}, {com[2]:.4f}) m",
+        c = [round(float(v), 4) + 0.0 for v in com]     # + 0.0: a -0.00001 is 0.0000, not -0.0000
+        out = {"centre of mass": f"({c[0]:.4f}, {c[1]:.4f}, {c[2]:.4f}) m",
                "static tip-over margin": f"{mg:.4f} m" + ("" if mg > 0 else " (tips over at rest)")}
         if len(sup.polygon) == 2:
             (ax, ay), (bx, by) = sup.polygon
             out["axle"] = f"x {0.5 * (ax + bx):.4f} m; COM is {abs(com[0] - 0.5 * (ax + bx)) * 1000:.1f} mm " \
                           f"{'behind' if com[0] < 0.5 * (ax + bx) else 'ahead of'} it"
-        for n in sup.notes:
+        for n in notes:
             out.setdefault("stance", n)
         return out
     except Exception as exc:         # stance is informative only

@@ -4,7 +4,7 @@ The Pinocchio model of the arm, the collision geometry (meshes read, bounding vo
 broadphase), the drive's wheel geometry, the support polygon and the footprint depend on
 the robot, not on the run: the counterpart of MuJoCo compiling an MjModel before stepping
 it. The first run on a Robot object builds them and keeps them on the robot
-(``Robot.derived``); later runs on the same object (a benchmark, a script running several
+(``Robot.derive``); later runs on the same object (a benchmark, a script running several
 programs) reuse them, and they go when the robot goes. Robots are not modified after loading.
 """
 
@@ -18,11 +18,8 @@ from myrabot_desc.sim.stability import support_polygon
 
 
 def get(robot, key, build):
-    """``build()``, built once for ``robot`` and ``key``."""
-    values = robot.derived
-    if key not in values:
-        values[key] = build()
-    return values[key]
+    """``build()``, built once for ``robot`` and ``key`` (``Robot.derive``, under sim's own keys)."""
+    return robot.derive(("sim", key), build)
 
 
 def clear(robot) -> None:
@@ -49,6 +46,7 @@ def collider(robot):
 
 
 def support(robot, wheels: str):
+    """(model/support.Support, notes on how the drive wheels take part in it)."""
     return get(robot, ("support", wheels), lambda: support_polygon(robot, drive(robot, wheels)))
 
 

@@ -12,30 +12,16 @@ tips the robot.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 from myrabot_desc.model.hull2d import convex_hull
 from myrabot_desc.model.kinematics import pose_matrix, world_transforms
 from myrabot_desc.model.shapes import surface_points
-from myrabot_desc.model.support import CONTACT_TOL, ground_support, signed_distances
+from myrabot_desc.model.support import CONTACT_TOL, Support, ground_support, signed_distances
 
 G = 9.81
 
 
-@dataclass
-class Support:
-    polygon: list[tuple[float, float]]     # convex, counter-clockwise, root frame
-    ground_z: float
-    links: list[str]
-    notes: list[str]
-
-    @property
-    def area(self) -> float:
-        return _area(self.polygon) if len(self.polygon) > 2 else 0.0
-
-
-def support_polygon(robot, drive) -> Support:
-    """model/support.py's ground support, with notes on how the drive wheels take part in it."""
+def support_polygon(robot, drive) -> tuple[Support, list[str]]:
+    """model/support.py's ground support, and notes on how the drive wheels take part in it."""
 
     wheels = {drive.urdf.left.link: drive.urdf.left, drive.urdf.right.link: drive.urdf.right}
     tf = world_transforms(robot)
@@ -43,16 +29,17 @@ def support_polygon(robot, drive) -> Support:
     s = ground_support(robot, world=tf)
     notes = []
     if s is None:      # no collision shape at all: the wheels (measured from their visuals) alone
-        return Support(polygon=_hull([w.xy for w in wheels.values()]), ground_z=wheel_ground,
-                       links=sorted(wheels), notes=["only the two drive wheels touch the ground: the body rests "
-                                                    "on whatever hits the floor when it tips"])
+        contacts = {n: [(w.xy[0], w.xy[1], wheel_ground)] for n, w in sorted(wheels.items())}
+        return (Support(ground_z=wheel_ground, contacts=contacts, polygon=_hull([w.xy for w in wheels.values()]),
+                        lowest=None),
+                ["only the two drive wheels touch the ground: the body rests on whatever hits the floor when it tips"])
     if s.lowest not in wheels and s.ground_z < wheel_ground - CONTACT_TOL:
         notes.append(f"{s.lowest} reaches {wheel_ground - s.ground_z:.3f} m below the wheels' contact line")
     if len(s.polygon) < 3 or abs(s.area) < 1e-6:
         who = "only the two drive wheels touch" if set(s.links) <= set(wheels) else \
             f"only {', '.join(s.links)} touch"
         notes.append(f"{who} the ground: the body rests on whatever hits the floor when it tips")
-    return Support(polygon=list(s.polygon), ground_z=s.ground_z, links=s.links, notes=notes)
+    return s, notes
 
 
 def margin(support: Support, com, accel_xy=(0.0, 0.0)) -> float:
@@ -69,10 +56,6 @@ def margins(support: Support, coms, accels):
     h = coms[:, 2] - support.ground_z
     loaded = np.column_stack([coms[:, 0] - h / G * accels[:, 0], coms[:, 1] - h / G * accels[:, 1]])
     return signed_distances(support.polygon, loaded)
-
-
-def _area(p) -> float:
-    return 0.5 * sum(p[i][0] * p[(i + 1) % len(p)][1] - p[(i + 1) % len(p)][0] * p[i][1] for i in range(len(p)))
 
 
 def _hull(points):

@@ -213,7 +213,7 @@ def _verdict(res, robot, drive, arm, segments, commands, swing_cmds, dt, check_c
                         "no contact with the structure while swinging", poses=poses,
                         collider=prepared.collider(robot))
     # tip-over margin under the turn's centripetal acceleration
-    sup = prepared.support(robot, drive.wheels)
+    sup, sup_notes = prepared.support(robot, drive.wheels)
     mx, my = drive.urdf.axle_mid
     icr = (mx, my + V_CMD / W_CMD)
     coms = arm.coms(poses[1])
@@ -225,4 +225,4 @@ def _verdict(res, robot, drive, arm, segments, commands, swing_cmds, dt, check_c
                             "> 0: centre of mass inside the support polygon",
                             f"COM ({com[0]:.3f}, {com[1]:.3f}, {com[2]:.3f}) m, centripetal "
                             f"{math.hypot(*a):.4f} m/s², support {', '.join(sup.links)}"))
-    res.notes.extend(sup.notes)
+    res.notes.extend(sup_notes)

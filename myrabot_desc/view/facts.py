@@ -5,16 +5,16 @@ model's other derived facts; nothing here depends on viser or MuJoCo.
 
 * :func:`inertia_box`: the uniform box with a link's mass and principal moments (what Gazebo's
   "view inertia" draws): a box far larger or smaller than the link's geometry is a wrong inertia.
-* :func:`support`: the ground contacts, their support polygon (model/support.py) and the centre of
-  mass projected on the ground, at any joint configuration (check's P001 asks the same at zero).
+* :func:`support`: the ground contacts, their support polygon and the centre of mass projected on
+  the ground, at any joint configuration: model/support.stance (check's P001 asks the same at zero).
 """
 
 from __future__ import annotations
 
 from typing import NamedTuple
 
-from myrabot_desc.model.kinematics import center_of_mass, pose_matrix
-from myrabot_desc.model.support import ground_support, signed_distance
+from myrabot_desc.model.kinematics import pose_matrix
+from myrabot_desc.model.support import stance as support  # noqa: F401  (the viewer's ground overlay)
 
 
 class InertiaBox(NamedTuple):
@@ -51,27 +51,3 @@ def inertia_box(inertial) -> InertiaBox | None:
     R = np.eye(4)
     R[:3, :3] = axes
     return InertiaBox(size=size, pose=pose_matrix(inertial.origin) @ R, valid=valid)
-
-
-class Support(NamedTuple):
-    ground_z: float                      # height of the lowest collision point (root frame)
-    contacts: dict                       # link name -> (n, 3) numpy points touching the ground
-    polygon: list                        # convex hull of the contacts' (x, y), counter-clockwise
-    com: object                          # (3,) numpy centre of mass
-    mass: float
-    margin: float                        # distance of the projected centre of mass to the polygon edge, + inside
-
-
-def support(robot, q: dict | None = None, meshes: bool = True) -> Support | None:
-    """Ground contacts at configuration ``q`` with the robot resting on its lowest collision
-    point (model/support.py, the function check and sim use); None when nothing has collision
-    geometry or mass. Meshes are read through model.meshes."""
-    import numpy as np
-
-    found = ground_support(robot, q, meshes=meshes)
-    mass, com = center_of_mass(robot, q)
-    if found is None or not mass > 0:
-        return None
-    by_link = {name: np.asarray(pts, dtype=float).reshape(-1, 3) for name, pts in found.contacts.items()}
-    return Support(ground_z=found.ground_z, contacts=by_link, polygon=[tuple(p) for p in found.polygon],
-                   com=np.asarray(com), mass=float(mass), margin=signed_distance(found.polygon, com[:2]))

@@ -148,7 +148,7 @@ def test_plain_inertia_rules_do_not_import_numpy():
 
 
 def test_principal_moments_match_numpy():
-    from myrabot_desc.checks.inertia import principal
+    from myrabot_desc.model.inertia import principal_moments as principal
     from myrabot_desc.model.parts import Inertial
 
     ine = Inertial(mass=0.001, origin=None, ixx=9e-08, iyy=3.5e-08, izz=1e-08, ixy=0.0, ixz=6.3e-08, iyz=0.0)

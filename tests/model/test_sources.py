@@ -14,6 +14,7 @@ from pathlib import Path
 import pytest
 import yaml
 
+from myrabot_desc.model import drive as D
 from myrabot_desc.model.loader import load_robot
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -178,3 +179,69 @@ def test_plain_urdf_spans_with_many_elements_on_a_line_crlf_quotes_and_entities(
     j = robot.origin(robot.joints["j"], "origin.xyz")
     assert (j.written.line, j.written.text) == (6, "1 2 3")
     assert audit(robot)["wrong"] == []
+
+
+def _check_typed_origin(robot, part, name, value, wrong):
+    o = robot.origin(part, name)
+    if o.kind == "unknown":
+        wrong.append((type(part).__name__, name, value, "unknown"))
+    elif o.written is not None and not _same(o.written.value, value):
+        wrong.append((type(part).__name__, name, value, str(o.written), o.written.text))
+
+
+def typed_audit(robot) -> list:
+    """Robot.origin of every typed part beyond links and joints (plugins and their parameters,
+    <gazebo> properties, sensors, transmissions, ros2_control blocks): a span holding the value."""
+    wrong: list = []
+    for g in robot.gazebo:
+        if g.reference is not None:
+            _check_typed_origin(robot, g, "reference", g.reference, wrong)
+        for key, text in g.properties.items():
+            if text:
+                _check_typed_origin(robot, g, key, text, wrong)
+    for p in robot.plugins():
+        for key, text in p.params.items():
+            if text:
+                _check_typed_origin(robot, p, key, text, wrong)
+    for s in robot.sensors():
+        if s.name:
+            _check_typed_origin(robot, s, "name", s.name, wrong)
+    for t in robot.transmissions:
+        for j in t.named:
+            _check_typed_origin(robot, j, "name", j.name, wrong)
+    for b in robot.ros2_control:
+        for j in b.joints:
+            _check_typed_origin(robot, j, "name", j.name, wrong)
+    return wrong
+
+
+def test_typed_parts_of_the_bundled_robot_and_wander_bot_have_their_spans():
+    bundled = load_robot(None)
+    assert typed_audit(bundled) == []
+    assert typed_audit(load_robot(FIX / "wander_bot" / "urdf" / "robot.xacro")) == []
+    # <mu1 value="10"/>: the span is the value attribute's (the element has no text)
+    block = next(g for g in bundled.gazebo if g.reference == "left_wheel_link")
+    o = bundled.origin(block, "mu1")
+    assert (o.kind, o.at.text, o.at.file) == ("literal", "10", "xacro/roomba_gazebo.xacro")
+    assert bundled.origin(block.node.child("mu1"), "@value") == o        # a node's attribute: the same span
+    # an Electric controller's parameter, its typed number and the drive's unit for it
+    (roomba,) = D.find(bundled)
+    q = roomba.quantities()["wheel_separation"]
+    assert (q.value, q.unit) == (0.26, "m")
+    o = bundled.origin(roomba.plugin, "wheel_separation")
+    assert o.written is not None and float(o.written.value) == 0.26
+
+
+@pytest.mark.corpus
+def test_ros2_plugin_nested_parameter_and_ros2_control_have_their_spans():
+    pmb2 = _load_corpus(next(r for r in _corpus_robots() if r["id"] == "pmb2"))
+    assert typed_audit(pmb2) == []
+    laser = next(p for p in pmb2.plugins() if p.node.find("ros", "remapping") is not None)
+    o = pmb2.origin(laser, "ros.remapping")                 # a dotted path of child elements
+    assert o.kind != "unknown" and o.at.text.startswith("~/out:=")
+    demo = load_robot(FIX / "convert" / "diffbot_ros2_control_demos.urdf")
+    (block,) = demo.ros2_control
+    assert [j.name for j in block.joints] == ["left_wheel_joint", "right_wheel_joint"]
+    assert typed_audit(demo) == []
+    o = demo.origin(block.joints[0], "name")
+    assert (o.kind, o.at.text) == ("literal", "left_wheel_joint")

@@ -62,13 +62,20 @@ def test_servo_motion_piecewise_linear():
     assert s.arrival() == pytest.approx(0.25 + 1.5 / 2.0)
 
 
+def _wheel(name, xy, radius):
+    """A wheel (model/drive.Wheel) on a lateral axle at ``xy``, rolling forward for a positive rate."""
+    from myrabot_desc.model.drive import Wheel
+
+    return Wheel(name, name, (xy[0], xy[1], radius), (0.0, 1.0, 0.0), (xy[0], xy[1], radius), radius)
+
+
 def test_exact_arcs_match_the_closed_form():
     """A constant twist for 10 s: the integrated pose equals the circle's, to rounding."""
-    from myrabot_desc.sim.diffdrive import Drive, UrdfDrive, Wheel, integrate
+    from myrabot_desc.sim.diffdrive import DiffDrive, WheelBase, integrate
 
-    wl = Wheel("l", "l", 0.13, (0.0, 0.13), 0.033, 1.0)
-    wr = Wheel("r", "r", -0.13, (0.0, -0.13), 0.033, 1.0)
-    d = Drive(urdf=UrdfDrive(wl, wr), plugin=None, wheels="urdf")
+    wl = _wheel("l", (0.0, 0.13), 0.033)
+    wr = _wheel("r", (0.0, -0.13), 0.033)
+    d = DiffDrive(urdf=WheelBase(wl, wr), plugin=None, wheels="urdf")
     v, w, T = 0.1, 0.3, 10.0
     for rate in (1000, 10):                  # exact at any step: no Euler drift
         tr = integrate(d, [(0, v, w)], int(T * rate), 1 / rate)
@@ -80,20 +87,21 @@ def test_exact_arcs_match_the_closed_form():
 
 def test_base_origin_off_the_axle():
     """A base whose origin is behind the axle still turns about the axle midpoint."""
-    from myrabot_desc.sim.diffdrive import Drive, UrdfDrive, Wheel, integrate
+    from myrabot_desc.sim.diffdrive import DiffDrive, WheelBase, integrate
 
-    wl = Wheel("l", "l", 0.15, (0.1, 0.15), 0.08, 1.0)
-    wr = Wheel("r", "r", -0.15, (0.1, -0.15), 0.08, 1.0)
-    d = Drive(urdf=UrdfDrive(wl, wr), plugin=None, wheels="urdf")
+    wl = _wheel("l", (0.1, 0.15), 0.08)
+    wr = _wheel("r", (0.1, -0.15), 0.08)
+    d = DiffDrive(urdf=WheelBase(wl, wr), plugin=None, wheels="urdf")
     tr = integrate(d, [(0, 0.0, 1.0)], 1000, math.pi / 1000)     # spin in place by π
     assert (tr.axle_x[-1], tr.axle_y[-1]) == pytest.approx((0.1, 0.0), abs=1e-12)
     assert (tr.x[-1], tr.y[-1]) == pytest.approx((0.2, 0.0), abs=1e-12)
 
 
 def test_support_polygon_and_margin():
-    from myrabot_desc.sim.stability import Support, margin
+    from myrabot_desc.model.support import Support
+    from myrabot_desc.sim.stability import margin
 
-    sup = Support(polygon=[(0.13, 0), (0, 0.13), (-0.13, 0), (0, -0.13)], ground_z=0.0, links=[], notes=[])
+    sup = Support(ground_z=0.0, contacts={}, polygon=[(0.13, 0), (0, 0.13), (-0.13, 0), (0, -0.13)], lowest=None)
     assert margin(sup, (0, 0, 0.2)) == pytest.approx(0.13 / math.sqrt(2))
     # a lateral 1 g pushes the loaded point 0.2 m outward, to (0, -0.2): 0.07 m beyond the diamond's
     # corner (the distance to the polygon, model/support.py, not to an edge's line: 0.0495)

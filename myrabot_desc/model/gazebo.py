@@ -1,0 +1,66 @@
+"""The ``<gazebo>`` extension properties, typed as their reader takes them.
+
+A ``<gazebo reference="LINK|JOINT">`` (or model-level) block's childless children are
+properties: ``<mu1>0.5</mu1>`` or ``<mu1 value="0.5"/>``. sdformat's URDF parser
+(``src/parser_urdf.cc``, the code ``gz sdf -p`` and Gazebo run) reads the numbers with
+``std::stod``, ``fdir1`` as three numbers, and its flags (``selfCollide``, ``static``,
+``provideFeedback``, ``implicitSpringDamper``/``cfmDamping``, ``preserveFixedJoint``,
+``disableFixedJointLumping``, ``turnGravityOff``) with its own spellings (model/values.EXTENSION);
+the properties it does not know (``gravity``, ``kinematic``, ``self_collide``...) it copies into
+the SDF, where sdformat's Param reads them (model/values.SDF).
+
+``typed(props)`` gives every property's value: a float, a tuple, a bool, or the text for names
+that are text (``material``) or unknown; None for a number or vector that cannot be read.
+"""
+
+from __future__ import annotations
+
+from myrabot_desc.model import values as V
+
+NUMBERS = frozenset({
+    "mu1", "mu2", "kp", "kd", "maxVel", "minDepth", "maxContacts", "laserRetro", "dampingFactor",
+    "linearDamping", "angularDamping", "slip1", "slip2", "springReference", "springStiffness", "stopCfm",
+    "stopErp", "stopKp", "stopKd", "erp", "cfm", "fudgeFactor"})
+VECTORS = {"fdir1": 3, "fdir": 3}
+# flags sdformat's URDF parser reads itself (true/yes/1), and the one it reads the other way round
+EXTENSION_FLAGS = frozenset({"selfCollide", "static", "provideFeedback", "implicitSpringDamper", "cfmDamping",
+                             "preserveFixedJoint", "disableFixedJointLumping"})
+INVERTED_FLAGS = frozenset({"turnGravityOff"})
+# flags it copies into the SDF as they are (read by sdformat's Param: true/1, false/0)
+SDF_FLAGS = frozenset({"gravity", "kinematic", "self_collide", "allow_auto_disable", "enable_wind"})
+
+
+def typed(name: str, text: str | None):
+    """One property's value (see the module doc)."""
+    if text is None:
+        return None
+    if name in NUMBERS:
+        return V.number(text)
+    if name in VECTORS:
+        return V.vector(text, VECTORS[name])
+    if name in EXTENSION_FLAGS:
+        return V.extension_flag(text)
+    if name in INVERTED_FLAGS:
+        return V.extension_flag(text, inverted=True)
+    if name in SDF_FLAGS:
+        return V.boolean(text)
+    return text
+
+
+def typed_properties(props: dict[str, str]) -> dict:
+    return {k: typed(k, v) for k, v in props.items()}
+
+
+def preserved_joints(robot) -> set[str]:
+    """Fixed joints whose lumping is off (``preserveFixedJoint`` or the older
+    ``disableFixedJointLumping``): the SDF keeps them, and the massless link behind one is not
+    carried into its parent. The one answer check's S004 and convert's lumping share."""
+
+    def build():
+        out = set()
+        for g in robot.gazebo:
+            v = g.values
+            if g.reference is not None and (v.get("preserveFixedJoint") or v.get("disableFixedJointLumping")):
+                out.add(g.reference)
+        return frozenset(out)
+    return set(robot.derive("gazebo.preserved_joints", build))

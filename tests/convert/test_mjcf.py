@@ -1,8 +1,8 @@
-"""`convert --to mjcf`: MuJoCo's own URDF compiler on a prepared URDF. The bundled MYRAbot, wander_bot
-and all 69 example-robot-data robots (DAE meshes, ASCII/huge STLs, zero inertias, flat meshes,
-A + B = C inertias) load in mujoco.MjModel and, with their scene.xml, stand still for 2 s from
-the `home` keyframe (controls held): a mobile base stays within 1 cm of its home height and
-position, touching the floor only with wheels and casters; the mass is the URDF's."""
+"""`convert --to mjcf`: the typed model built into a mujoco.MjSpec and saved by MuJoCo. The bundled
+MYRAbot, wander_bot and all 69 example-robot-data robots (DAE meshes, ASCII/huge STLs, zero
+inertias, flat meshes, A + B = C inertias) load in mujoco.MjModel and, with their scene.xml, stand
+still for 2 s from the `home` keyframe (controls held): a mobile base stays within 1 cm of its home
+height and position, touching the floor only with wheels and casters; the mass is the URDF's."""
 
 from __future__ import annotations
 
@@ -313,7 +313,9 @@ def test_stdout_without_meshes_and_errors(tmp_path):
         xml = r.output[r.output.index("<mujoco"):r.output.index("</mujoco>") + 9]
         m = mujoco.MjModel.from_xml_string(xml)
         assert m.njnt == 2
-        assert "warning: MuJoCo: joint 'joint1' has equal lower and upper limits" in r.output
+        assert m.jnt_limited.tolist() == [0, 0]          # lower = upper = 0: unlimited, as MuJoCo's URDF reader has it
+        assert ("double_pendulum_simple.urdf:84: warning: joint 'joint1' has equal lower and upper limits (0, 0): "
+                "left unlimited") in r.output
     # a model with meshes cannot go to stdout: one line, exit 2
     r = CliRunner().invoke(main, ["convert", "--to", "mjcf"])
     assert r.exit_code == 2 and "give -o OUT.xml" in r.output and len(r.output.strip().splitlines()) == 1
@@ -336,18 +338,30 @@ def test_textured_can_gets_its_texture_colour(tmp_path):
 
 def test_mujoco_warnings_are_ours_and_no_log_file(tmp_path, monkeypatch):
     """MuJoCo's warnings reach the user as our warnings; its default handler would also append
-    them to MUJOCO_LOG.TXT in the working directory, on success and on failure alike."""
-    bad = BAD
+    them to MUJOCO_LOG.TXT in the working directory, on success and on failure alike. A hub whose
+    moment about its axis (1.5e-15) vanishes next to the wheel spinning on it (1000) leaves a zero
+    pivot in the joint-space inertia: MuJoCo warns. A mesh with no volume MuJoCo rejects: one error
+    line, exit 2, nothing written."""
     monkeypatch.chdir(tmp_path)
-    r = CliRunner().invoke(main, ["convert", str(bad / "numbers/ixy_nan.urdf"), "--to", "mjcf",
-                                  "-o", str(tmp_path / "o" / "m.xml")])
+    inertial = '<inertial><mass value="1"/><inertia ixx="{i}" iyy="{i}" izz="{z}" ixy="0" ixz="0" iyz="0"/></inertial>'
+    hinge = ('<joint name="{n}" type="continuous"><parent link="{p}"/><child link="{c}"/><axis xyz="0 0 1"/>'
+             '<limit effort="1" velocity="1"/></joint>')
+    (tmp_path / "hub.urdf").write_text(
+        f'<robot name="hub"><link name="base">{inertial.format(i=0.01, z=0.01)}</link>'
+        f'<link name="hub">{inertial.format(i=0.01, z=1.5e-15)}</link><link name="wheel">{inertial.format(i=500, z=1000)}'
+        f'</link>{hinge.format(n="a", p="base", c="hub")}{hinge.format(n="b", p="hub", c="wheel")}</robot>')
+    r = CliRunner().invoke(main, ["convert", "hub.urdf", "--to", "mjcf", "-o", str(tmp_path / "o" / "m.xml")])
     assert r.exit_code == 0, r.output
-    assert "warning: MuJoCo: XML contains a 'NaN'" in r.output
-    r = CliRunner().invoke(main, ["convert", str(bad / "numbers/box_nan.urdf"), "--to", "mjcf",
+    assert [w for w in r.output.splitlines() if "MuJoCo" in w] == [
+        "warning: MuJoCo: Inertia matrix is too close to singular, or the effective-metric solve failed to converge, "
+        "at DOF 0. Check model. Time = 0.0000."]
+    r = CliRunner().invoke(main, ["convert", str(BAD / "meshes/flat.urdf"), "--to", "mjcf",
                                   "-o", str(tmp_path / "p" / "m.xml")])
-    assert r.exit_code == 2 and "box_nan.urdf:2: error: MuJoCo rejected the model: Error: nan size" in r.output
+    assert r.exit_code == 2 and r.output.startswith(f"{BAD / 'meshes/flat.urdf'}:2: error: MuJoCo rejected the model: "
+                                                    "Error: mesh 'flat' has coplanar vertices")
+    assert len(r.output.strip().splitlines()) == 1
     assert not (tmp_path / "p").exists()
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["o"]      # no MUJOCO_LOG.TXT
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["hub.urdf", "o"]      # no MUJOCO_LOG.TXT
 
 
 @pytest.mark.skipif(not ERD.is_dir(), reason="example-robot-data is not installed")

@@ -7,6 +7,8 @@ trust on a shared machine). The robots: the bundled MYRAbot, corpus robots (a di
 skid-steer, a mobile manipulator with many meshes, an arm) and example-robot-data's Talos.
 
     .venv/bin/python bench/bench_mjcf.py [--before /work/wt-base] [--repeat N] [--only ID,...]
+
+Without a checkout at --before (``make bench`` elsewhere), only this tree is timed.
 """
 
 from __future__ import annotations
@@ -43,34 +45,39 @@ def main() -> int:
     ap.add_argument("--only", default="", help="robot ids, comma-separated")
     args = ap.parse_args()
     before = Path(args.before).resolve()
-    if not (before / "myrabot_desc").is_dir():
-        raise SystemExit(f"{before} has no myrabot_desc package")
+    sides = {"ours": bench_env()}
+    if (before / "myrabot_desc").is_dir():
+        env = sides["ours"]
+        sides["theirs"] = dict(env, PYTHONPATH=os.pathsep.join(filter(None, [str(before), env.get("PYTHONPATH")])),
+                               PYTHONPYCACHEPREFIX=env["PYTHONPYCACHEPREFIX"] + "-before")
+        print(f"| robot | this tree: wall s | CPU s | {before.name}: wall s | CPU s | CPU ratio |")
+        print("|---|---|---|---|---|---|")
+    else:
+        print(f"{before}: no checkout to compare with; this tree only")
+        print("| robot | wall s | CPU s |\n|---|---|---|")
     only = set(filter(None, args.only.split(",")))
-    ours_env = bench_env()
-    their_env = dict(ours_env, PYTHONPATH=os.pathsep.join(filter(None, [str(before), ours_env.get("PYTHONPATH")])),
-                     PYTHONPYCACHEPREFIX=ours_env["PYTHONPYCACHEPREFIX"] + "-before")
-    print(f"| robot | this tree: wall s | CPU s | {before.name}: wall s | CPU s | CPU ratio |")
-    print("|---|---|---|---|---|---|")
     with tempfile.TemporaryDirectory() as d:
         for rid, argv in ROBOTS:
             if only and rid not in only:
                 continue
             if argv and not Path(argv[0]).exists():
-                print(f"| {rid} | not here | | | | |")
+                print(f"| {rid} | not here |")
                 continue
             cmd = [sys.executable, "-m", "myrabot_desc", "convert", *argv, "--to", "mjcf", "-q",
                    "-o", str(Path(d) / rid / "robot.xml")]
-            res = {"ours": [], "theirs": []}
+            res = {side: [] for side in sides}
             for k in range(args.repeat + 1):        # the first round warms caches and is not counted
-                for side, env in (("ours", ours_env), ("theirs", their_env)):
+                for side, env in sides.items():
                     wall, cpu, rc, err = run_once(cmd, env=env)
                     if rc != 0:
                         raise SystemExit(f"{rid} ({side}) exited {rc}: {err.decode(errors='replace')[-400:]}")
                     if k:
                         res[side].append((wall, cpu))
-            ow, oc = min(w for w, _ in res["ours"]), min(c for _, c in res["ours"])
-            tw, tc = min(w for w, _ in res["theirs"]), min(c for _, c in res["theirs"])
-            print(f"| {rid} | {ow:.2f} | {oc:.2f} | {tw:.2f} | {tc:.2f} | {oc / tc:.2f} |", flush=True)
+            best = {side: (min(w for w, _ in r), min(c for _, c in r)) for side, r in res.items()}
+            row = f"| {rid} | {best['ours'][0]:.2f} | {best['ours'][1]:.2f} |"
+            if "theirs" in best:
+                row += f" {best['theirs'][0]:.2f} | {best['theirs'][1]:.2f} | {best['ours'][1] / best['theirs'][1]:.2f} |"
+            print(row, flush=True)
     return 0
 
 

@@ -14,7 +14,7 @@ world body.
   --allow-errors) is left out: MuJoCo's bodies form a tree.
 - the base: a free joint for a mobile base (``--base free``, or ``auto`` and model/drive.py's
   ``is_mobile``), else welded to the world (``--base fixed`` welds a root joined to ``world`` by
-  a moving joint too); ``lift`` raises the roots (a welded robot standing on the floor).
+  a moving joint too).
 - inertials: as the URDF gives them (a link without ``<inertial>`` is massless, as urdfdom, KDL
   and Pinocchio read it: ``inertiafromgeom`` is false), tensors that break A + B >= C repaired
   like the SDF path (model/inertia.py); a moving body with no mass even with its fused links gets
@@ -38,7 +38,7 @@ from myrabot_desc.convert.mjcf.gazebo_physics import MAX_FRICTION, joint_springs
 from myrabot_desc.convert.report import part_name
 from myrabot_desc.model import drive as D
 from myrabot_desc.model.bodies import body_masses
-from myrabot_desc.model.inertia import describe, eigh3, repaired
+from myrabot_desc.model.inertia import describe, repaired
 from myrabot_desc.model.transforms import matmul3, transform, transpose3
 
 TINY_MASS = 1e-3
@@ -47,10 +47,8 @@ WORLD = "world"
 
 
 class Tree(NamedTuple):
-    """What the body builder made, for the steps after the first compile."""
+    """What the body builder left out or made up, for the writer to refuse or say."""
 
-    free: bool                             # the roots got free joints
-    tops: list[str]                        # the links hanging from the world, in order
     collision_errors: list                 # (message, loc) of collision meshes left out
     placeholders: list[str]                # moving bodies given the 1 g placeholder
 
@@ -84,7 +82,7 @@ def top_links(robot, joints) -> list[str]:
     return roots
 
 
-def build_tree(mujoco, spec, robot, plan, notes, report, base: str, lift: float) -> Tree:
+def build_tree(mujoco, spec, robot, plan, notes, report, base: str) -> Tree:
     """Add the robot's bodies, joints, geoms and mimic equalities to ``spec``."""
     joints = spanning_joints(robot, report)
     kids: dict[str, list] = {}
@@ -102,11 +100,8 @@ def build_tree(mujoco, spec, robot, plan, notes, report, base: str, lift: float)
     for name in tops:
         body = spec.worldbody.add_body(name=name)
         j = from_world.get(name)
-        pos = (0.0, 0.0, 0.0)
         if j is not None:
             builder.place(body, j.origin)
-            pos = tuple(body.pos)
-        body.pos = [pos[0], pos[1], pos[2] + lift]
         if free:
             body.add_freejoint(name=j.name if j is not None else f"{name}_free_joint")
         elif j is not None and base != "fixed":
@@ -125,7 +120,7 @@ def build_tree(mujoco, spec, robot, plan, notes, report, base: str, lift: float)
         stack.extend(reversed(made))
     builder.mimics(joints)
     builder.finish()
-    return Tree(free, tops, builder.collision_errors, placeholders)
+    return Tree(builder.collision_errors, placeholders)
 
 
 def _massless_moving(robot, joints, tops, free: bool, base: str) -> list[str]:
@@ -282,21 +277,16 @@ class _Builder:
 
     def _principal(self, tensor, rpy):
         """(iquat, diagonal) of a tensor given in the inertial origin's frame: its principal axes
-        in the link frame, moments largest first (as MuJoCo's compiler orders them)."""
+        in the link frame and moments, as MuJoCo's compiler finds them (``mju_eig3``)."""
         import numpy as np
 
         R, _ = transform((0.0, 0.0, 0.0), rpy)
         T = matmul3(matmul3(R, tensor), transpose3(R))
         if all(abs(x) <= 0.0 for row in T for x in row):
             return [1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0]
-        w, V = eigh3(T)
-        order = [2, 1, 0]
-        M = np.array([[V[r][k] for k in order] for r in range(3)], dtype=float)
-        if np.linalg.det(M) < 0:
-            M[:, 2] = -M[:, 2]
-        q = np.zeros(4)
-        self.mj.mju_mat2Quat(q, M.flatten())
-        return [float(x) for x in q], [max(float(w[k]), 0.0) for k in order]
+        w, V, q = np.zeros(3), np.zeros(9), np.zeros(4)
+        self.mj.mju_eig3(w, V, q, np.array(T, dtype=float).flatten())
+        return [float(x) for x in q], [max(float(x), 0.0) for x in w]
 
     # ------------------------------------------------------------ geoms
     def geoms(self, body, link) -> None:

@@ -36,15 +36,15 @@ def _attr(text: str) -> str:
     return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;").replace('"', "&quot;")
 
 
-def scene_text(mujoco, model, robot_file: str, scene_file: str, name: str) -> str:
-    """The scene of ``model`` (compiled, with its ``home`` keyframe) saved as ``robot_file``."""
+def scene_text(mujoco, model, qpos, lift: float, robot_file: str, scene_file: str, name: str) -> str:
+    """The scene of ``model`` at ``qpos`` (its bodies ``lift`` m higher in the file), saved as
+    ``robot_file``."""
     import numpy as np
 
     d = mujoco.MjData(model)
-    if model.nkey:
-        mujoco.mj_resetDataKeyframe(model, d, 0)
-    mujoco.mj_forward(model, d)
-    pts = d.xpos[1:] if model.nbody > 1 else np.zeros((1, 3))
+    d.qpos[:] = qpos
+    mujoco.mj_kinematics(model, d)
+    pts = d.xpos[1:] + [0.0, 0.0, lift] if model.nbody > 1 else np.zeros((1, 3))
     lo, hi = pts.min(axis=0), pts.max(axis=0)
     c = (lo + hi) / 2
     extent = max(float(np.linalg.norm(hi - lo)), 0.5)

@@ -3,11 +3,12 @@
 The steps, each in its module:
 
 1. bodies.py: the tree (bodies, joints, inertials, geoms, mimic equalities) from the typed model,
-   meshes planned by assets.py; the base free or welded, raised onto the floor (home.py);
+   meshes planned by assets.py; the base free or welded;
 2. compile.py: MuJoCo compiles it, fusing the links fixed to their parents (``fusestatic``);
-3. on the compiled model at home: gravity compensation and actuators (actuators.py), contact
-   exclusions for the bodies touching there and the ``home`` keyframe (home.py);
-4. MuJoCo compiles it again and writes it (``MjSpec.to_xml``); scene.py writes ``scene.xml``
+3. on the compiled model at home (home.py): the lift onto the floor, gravity compensation and
+   actuators (actuators.py), contact exclusions for the bodies touching there, the ``home``
+   keyframe;
+4. MuJoCo compiles it again as it writes it (``MjSpec.to_xml``); scene.py writes ``scene.xml``
    next to it, and the meshes go to ``<OUT stem>_meshes/``, all in one transaction (output.py).
 
 report.py says what became of every element of the source.
@@ -23,7 +24,8 @@ from myrabot_desc.convert.mjcf.actuators import add_actuators, gravity_compensat
 from myrabot_desc.convert.mjcf.assets import MeshPlan
 from myrabot_desc.convert.mjcf.bodies import base_is_free, build_tree, placeholder_warning
 from myrabot_desc.convert.mjcf.compile import compile_spec, import_mujoco, messages_to, rejected
-from myrabot_desc.convert.mjcf.home import exclude_touching, floor_lift, home_qpos
+from myrabot_desc.convert.mjcf.home import (exclude_touching, floor_lift, home_qpos, raise_free_joints,
+                                           raise_welded)
 from myrabot_desc.convert.mjcf.report import report_gazebo, report_lift, report_structure
 from myrabot_desc.convert.mjcf.scene import scene_text
 from myrabot_desc.convert.preflight import Problem, refuse_or_record
@@ -81,9 +83,6 @@ def convert_mjcf(robot, output: str, base: str = "auto", scene: str | None = "sc
 
     free = base_is_free(robot, base)
     report_structure(robot, report, free)
-    lift = floor_lift(robot) if free or scene else 0.0
-    if abs(lift) <= 1e-9:
-        lift = 0.0
     spec = mujoco.MjSpec()
     spec.modelname = robot.name or "robot"
     src = robot.source.name if robot.source else "URDF"
@@ -95,7 +94,7 @@ def convert_mjcf(robot, output: str, base: str = "auto", scene: str | None = "sc
     spec.meshdir = mesh_dirname + "/"
     spec.option.integrator = mujoco.mjtIntegrator.mjINT_IMPLICITFAST
     plan = MeshPlan(notes)
-    tree = build_tree(mujoco, spec, robot, plan, notes, report, base, 0.0 if free else lift)
+    tree = build_tree(mujoco, spec, robot, plan, notes, report, base)
     placeholder_warning(notes, tree.placeholders)
     if tree.collision_errors and not allow_errors:
         refuse_or_record([Problem(m, loc) for m, loc in tree.collision_errors], False)
@@ -103,12 +102,10 @@ def convert_mjcf(robot, output: str, base: str = "auto", scene: str | None = "sc
         raise InputError(f"this model has {len(plan.files)} mesh file(s): MJCF to stdout cannot carry them, "
                          "give -o OUT.xml")
     plan.add_to(spec)
-    if not free and lift and scene:
-        report_lift(robot, report, lift)
     report_gazebo(robot, report)
-    counts = {}
+    made = {}
 
-    def make(folder: Path | None):
+    def make(folder: Path | None) -> str:
         if folder is not None and plan.used:
             plan.write(folder / mesh_dirname)
             spec.modelfiledir = str(folder)
@@ -116,43 +113,54 @@ def convert_mjcf(robot, output: str, base: str = "auto", scene: str | None = "sc
             with messages_to(mujoco, notes):
                 model = compile_spec(mujoco, spec, notes)           # the fixed links fused into their bodies
                 _print_safe_inertias(mujoco, spec, model)
-                qpos = home_qpos(mujoco, model, robot, lift if free else 0.0)
+                qpos = home_qpos(mujoco, model, robot)
                 data = mujoco.MjData(model)
                 data.qpos[:] = qpos
                 mujoco.mj_forward(model, data)
+                # standing on the floor: a free base lifted in the keyframe; a welded robot welded
+                # higher when it gets a scene (a lift in z changes no force, inertia or contact)
+                lift = floor_lift(mujoco, model, data, moving_only=free) if free or scene else 0.0
+                at_rest = qpos.copy()
+                if abs(lift) > 1e-9:
+                    raise_free_joints(mujoco, model, qpos, lift)
+                    if not free:
+                        raise_welded(spec, lift)
+                        report_lift(robot, report, lift)
+                else:
+                    lift = 0.0
                 commands = joint_commands(robot)
                 gravity_compensate(mujoco, spec, model, data, robot, commands, notes, report)
                 exclude_touching(mujoco, spec, model, data, report)
-                ctrl, counts["position"], counts["velocity"] = add_actuators(mujoco, spec, model, data, robot,
-                                                                             commands, report, qpos)
+                ctrl, n_pos, n_vel = add_actuators(mujoco, spec, model, data, robot, commands, report, qpos)
                 key = spec.add_key(name="home", qpos=[float(x) for x in qpos])
                 if ctrl:
                     key.ctrl = ctrl
-                model = spec.compile()
-                text = spec.to_xml()
+                text = spec.to_xml()                                 # MuJoCo compiles it again to write it
         except ValueError as exc:
             raise rejected(exc, robot.loc) from None
-        return text, model
+        made.update(model=model, qpos=qpos if free else at_rest, lift=0.0 if free else lift, nu=n_pos + n_vel)
+        return text
 
     scene_written = None
     if out is None:
-        text, model = make(None)
+        text = make(None)
         write_output("-", text)
     else:
         with OutputDir(out.parent if str(out.parent) else ".") as stage:
-            text, model = make(stage)
+            text = make(stage)
             (stage / out.name).write_text(text, encoding="utf-8")
             if scene:
-                (stage / scene).write_text(scene_text(mujoco, model, out.name, scene, robot.name or out.stem),
-                                           encoding="utf-8")
+                (stage / scene).write_text(scene_text(mujoco, made["model"], made["qpos"], made["lift"], out.name,
+                                                      scene, robot.name or out.stem), encoding="utf-8")
                 scene_written = str(out.parent / scene)
         if plan.converted:
             notes.warn(f"{len(plan.converted)} mesh(es) converted to STL/MSH for MuJoCo (it reads STL, OBJ, MSH); "
                        "their embedded colours are replaced by the URDF/Gazebo colour")
+    model = made["model"]
     has_free = bool((model.jnt_type == mujoco.mjtJoint.mjJNT_FREE).any())
     return MjcfResult(text, notes, model.nbody, model.njnt, model.ngeom, model.nmesh, has_free,
                       str(out.parent / mesh_dirname) if out and plan.used else None,
-                      model.nu, scene_written, report)
+                      made["nu"], scene_written, report)
 
 
 def _print_safe_inertias(mujoco, spec, model) -> None:

@@ -152,6 +152,7 @@ class _Builder:
         self.geom_names: set[str] = set()
         self.collision_errors: list = []
         self.quats: dict = {}
+        self.texture_means: dict = {}         # texture file -> its mean colour (None: unreadable)
 
     # ------------------------------------------------------------ poses
     def quat(self, rpy) -> list[float]:
@@ -305,7 +306,11 @@ class _Builder:
             lk = self.look.look(v, gz_mat, link.loc)
             if lk is not None:
                 rgb = tuple(lk.diffuse[:3])
-                mean = texture_mean_rgb(lk.texture) if lk.texture else None
+                mean = None
+                if lk.texture:
+                    if lk.texture not in self.texture_means:
+                        self.texture_means[lk.texture] = texture_mean_rgb(lk.texture)
+                    mean = self.texture_means[lk.texture]
                 if mean is not None:
                     rgb = tuple(round(a * b, 4) for a, b in zip(rgb, mean))
                 alpha = (lk.diffuse[3] if len(lk.diffuse) > 3 else 1.0) * (1.0 - lk.transparency)

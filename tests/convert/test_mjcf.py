@@ -270,6 +270,38 @@ def test_touching_bodies_are_excluded_and_mimic_is_an_equality(tmp_path):
     assert all("floor" in (m2.geom(c.geom1).name, m2.geom(c.geom2).name) for c in d.contact[:d.ncon])
 
 
+def test_planar_limits_and_fixed_mimic_and_same_bytes(tmp_path):
+    """A planar joint becomes two slides and a hinge about its normal (as MuJoCo's URDF reader made
+    it; the report said dropped); equal or reversed limits leave a joint unlimited, said at its
+    line; a <mimic> on a fixed joint constrains nothing: reported dropped and said. The same input
+    writes the same bytes."""
+    inertial = '<inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>'
+    links = "".join(f'<link name="{n}">{inertial}</link>' for n in ("base", "p", "q", "r", "s"))
+    urdf = tmp_path / "e.urdf"
+    urdf.write_text(f"""<robot name="e">{links}
+<joint name="jp" type="planar"><parent link="base"/><child link="p"/><axis xyz="0 1 0"/></joint>
+<joint name="jq" type="revolute"><parent link="base"/><child link="q"/><limit lower="1" upper="-1" effort="3" velocity="1"/></joint>
+<joint name="jr" type="revolute"><parent link="base"/><child link="r"/><limit lower="0.5" upper="0.5" effort="3" velocity="1"/></joint>
+<joint name="js" type="fixed"><parent link="base"/><child link="s"/><mimic joint="jq"/></joint>
+</robot>""")
+    res = convert_mjcf(load_robot(str(urdf)), str(tmp_path / "a" / "e.xml"))
+    m = mujoco.MjModel.from_xml_path(str(tmp_path / "a" / "e.xml"))
+    types = {m.joint(i).name: int(m.jnt_type[i]) for i in range(m.njnt)}
+    slide, hinge = int(mujoco.mjtJoint.mjJNT_SLIDE), int(mujoco.mjtJoint.mjJNT_HINGE)
+    assert types == {"jp_TX": slide, "jp_TY": slide, "jp_RZ": hinge, "jq": hinge, "jr": hinge}
+    axes = np.array([m.jnt_axis[m.joint(n).id] for n in ("jp_TX", "jp_TY", "jp_RZ")])
+    assert np.allclose(axes @ axes.T, np.eye(3), atol=1e-9) and np.allclose(axes[2], [0, 1, 0])
+    assert res.report.get("joint", "jp").fate == "translated"
+    assert not m.jnt_limited[m.joint("jq").id] and not m.jnt_limited[m.joint("jr").id]
+    assert f"{urdf}:3: warning: joint 'jq' has reversed lower and upper limits (1, -1): left unlimited" in res.notes.warnings
+    assert f"{urdf}:4: warning: joint 'jr' has equal lower and upper limits (0.5, 0.5): left unlimited" in res.notes.warnings
+    assert m.neq == 0 and res.report.get("mimic", "js").fate == "dropped"
+    assert any("<mimic> of joint 'js' left out: 'js' is a fixed joint" in w for w in res.notes.warnings)
+    convert_mjcf(load_robot(str(urdf)), str(tmp_path / "b" / "e.xml"))
+    for name in ("e.xml", "scene.xml"):
+        assert (tmp_path / "a" / name).read_bytes() == (tmp_path / "b" / name).read_bytes()
+
+
 def test_links_without_inertial_are_massless(tmp_path):
     """A fixed child with a collision box and no <inertial> adds no mass (MuJoCo would give it
     1000 kg/m^3 of its box: +1 kg here); a moving link with no mass at all gets the placeholder,

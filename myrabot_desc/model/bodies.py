@@ -1,61 +1,56 @@
 """Rigid bodies: the links that move as one because fixed joints join them.
 
-A rigid body is headed by a link that no fixed joint hangs from a parent link: a root, or the
-child of a moving joint. Every link fixed to it (through any number of fixed joints) belongs to
-it. A simulator fuses such links into one body (MuJoCo's ``fusestatic``, sdformat's lumping);
-check weighs them together. A link's parent is its first parent joint (``model/tree.maps``), so
-a link with two parents (a closed loop) still belongs to one body.
-
-Pure Python, linear in the number of links (each chain of fixed joints is walked once).
+A simulator fuses such links into one body (MuJoCo's ``fusestatic``, sdformat's lumping); check
+weighs them together. Pure Python, one walk down the tree.
 """
 
 from __future__ import annotations
 
-from myrabot_desc.model.tree import maps
+from typing import NamedTuple
 
 
-def body_heads(robot, cut=()) -> dict[str, str]:
-    """link -> the link that heads its rigid body (itself when no fixed joint joins it to a parent).
-    ``cut``: links that head their own body whatever joins them to their parent (a simulator's free
-    base under a URDF ``world`` link)."""
-    parent_joint = maps(robot).parent_joint
-    cut = set(cut)
-    links = robot.links
-    out: dict[str, str] = {}
-    for name in links:
-        if name in out:
-            continue
-        chain = []
-        cur = name
-        while cur not in out:
-            chain.append(cur)
-            pj = parent_joint.get(cur)
-            if pj is None or pj.type != "fixed" or pj.parent not in links or pj.parent in chain or cur in cut:
-                head = cur
-                break
-            cur = pj.parent
-        else:
-            head = out[cur]
-        for n in chain:
-            out[n] = head
-    return out
+class Bodies(NamedTuple):
+    """The links merged into rigid bodies across fixed joints (see ``rigid_bodies``)."""
+
+    host: dict          # link -> the link heading its body (itself when not merged)
+    merged: tuple       # the fixed joints merged, in walk order
+
+    def members(self, head: str) -> list[str]:
+        return [n for n, h in self.host.items() if h == head]
+
+    def masses(self, robot) -> dict[str, float]:
+        """head link -> the mass of its body (negative masses count as 0)."""
+        out: dict[str, float] = {}
+        for link, head in self.host.items():
+            out[head] = out.get(head, 0.0) + max(robot.links[link].mass, 0.0)
+        return out
 
 
-def body_members(robot, cut=()) -> dict[str, list[str]]:
-    """head link -> the links of its rigid body, head first, then in document order."""
-    out: dict[str, list[str]] = {}
-    heads = body_heads(robot, cut)
-    for name, head in heads.items():
-        if name == head:
-            out.setdefault(head, []).insert(0, name)
-        else:
-            out.setdefault(head, []).append(name)
-    return out
-
-
-def body_masses(robot, cut=()) -> dict[str, float]:
-    """head link -> the mass of its rigid body (negative masses count as 0)."""
-    out: dict[str, float] = {}
-    for name, head in body_heads(robot, cut).items():
-        out[head] = out.get(head, 0.0) + max(robot.links[name].mass, 0.0)
-    return out
+def rigid_bodies(robot, keep=frozenset(), stop=frozenset()) -> Bodies:
+    """Every link's rigid body: a link on a fixed joint belongs to its parent's body, unless the
+    joint is in ``keep`` or its parent in ``stop`` (MJCF: the ``world`` link, whose children are
+    the bodies a simulator sets free or welds). One walk down from the roots (breadth first, in
+    document order); links it does not reach (on a cycle) are bodies of their own."""
+    children = robot.joints_by_parent()
+    host: dict = {}
+    merged = []
+    order = list(robot.roots)
+    for r in order:
+        host[r] = r
+    i = 0
+    while i < len(order):
+        parent = order[i]
+        i += 1
+        for j in children.get(parent, []):
+            if j.child in host or j.child not in robot.links:
+                continue
+            if j.type == "fixed" and parent not in stop and j.name not in keep:
+                host[j.child] = host[parent]
+                merged.append(j)
+            else:
+                host[j.child] = j.child
+            order.append(j.child)
+    for n in robot.links:          # links outside the tree (cycles): bodies of their own
+        if n not in host:
+            host[n] = n
+    return Bodies(host, tuple(merged))

@@ -37,7 +37,7 @@ from myrabot_desc.convert.common import num, nums
 from myrabot_desc.convert.mjcf.gazebo_physics import MAX_FRICTION, joint_springs, link_friction
 from myrabot_desc.convert.report import part_name
 from myrabot_desc.model import drive as D
-from myrabot_desc.model.bodies import body_masses
+from myrabot_desc.model.bodies import rigid_bodies
 from myrabot_desc.model.inertia import describe, repaired
 from myrabot_desc.model.transforms import matmul3, transform, transpose3
 
@@ -132,7 +132,7 @@ def _massless_moving(robot, joints, tops, free: bool, base: str) -> list[str]:
         j = from_world.get(name)
         if free or (j is not None and j.type != "fixed" and base != "fixed"):
             moving.append(name)
-    masses = body_masses(robot, cut=tops)
+    masses = rigid_bodies(robot, stop={WORLD}).masses(robot)
     return [n for n in moving if masses.get(n, 0.0) <= 0]
 
 

@@ -329,11 +329,6 @@ class GazeboBlock(NamedTuple):
     ref: Any = None                   # the URDF element it was read from, for Robot.sources (opaque)
     values: dict = {}
 
-    @property
-    def element(self):
-        """The raw element (``ref``): convert/mjcf.py's, until its rewrite from the typed model."""
-        return self.ref
-
 
 class TransmissionJoint(NamedTuple):
     """A joint a transmission names: ``<joint>`` or a vendor's ``<flexJoint>``, ``<gap_joint>``..."""

@@ -88,6 +88,13 @@ class Bodies(NamedTuple):
     def members(self, head: str) -> list[str]:
         return [n for n, h in self.host.items() if h == head]
 
+    def masses(self, robot) -> dict[str, float]:
+        """head link -> the mass of its body (negative masses count as 0)."""
+        out: dict[str, float] = {}
+        for link, head in self.host.items():
+            out[head] = out.get(head, 0.0) + max(robot.links[link].mass, 0.0)
+        return out
+
 
 def rigid_bodies(robot, keep=frozenset(), stop=frozenset()) -> Bodies:
     """Every link's rigid body: a link on a fixed joint belongs to its parent's body, unless the
@@ -128,12 +135,7 @@ def rigid_bodies(robot, keep=frozenset(), stop=frozenset()) -> Bodies:
 
 def body_masses(robot) -> dict[str, float]:
     """body head link -> total mass of the rigid body (every fixed joint merged)."""
-    def build():
-        out: dict[str, float] = {}
-        for link, head in rigid_bodies(robot).host.items():
-            out[head] = out.get(head, 0.0) + max(robot.links[link].mass, 0.0)
-        return out
-    return robot.derive("tree.body_masses", build)
+    return robot.derive("tree.body_masses", lambda: rigid_bodies(robot).masses(robot))
 
 
 def moving(robot, link: str) -> bool:

@@ -1,8 +1,8 @@
-"""`convert --to mjcf`: MuJoCo's own URDF compiler on a prepared URDF. The bundled MYRAbot, wander_bot
-and all 69 example-robot-data robots (DAE meshes, ASCII/huge STLs, zero inertias, flat meshes,
-A + B = C inertias) load in mujoco.MjModel and, with their scene.xml, stand still for 2 s from
-the `home` keyframe (controls held): a mobile base stays within 1 cm of its home height and
-position, touching the floor only with wheels and casters; the mass is the URDF's."""
+"""`convert --to mjcf`: the typed model built into a mujoco.MjSpec and saved by MuJoCo. The bundled
+MYRAbot, wander_bot and all 69 example-robot-data robots (DAE meshes, ASCII/huge STLs, zero
+inertias, flat meshes, A + B = C inertias) load in mujoco.MjModel and, with their scene.xml, stand
+still for 2 s from the `home` keyframe (controls held): a mobile base stays within 1 cm of its home
+height and position, touching the floor only with wheels and casters; the mass is the URDF's."""
 
 from __future__ import annotations
 
@@ -270,6 +270,38 @@ def test_touching_bodies_are_excluded_and_mimic_is_an_equality(tmp_path):
     assert all("floor" in (m2.geom(c.geom1).name, m2.geom(c.geom2).name) for c in d.contact[:d.ncon])
 
 
+def test_planar_limits_and_fixed_mimic_and_same_bytes(tmp_path):
+    """A planar joint becomes two slides and a hinge about its normal (as MuJoCo's URDF reader made
+    it; the report said dropped); equal or reversed limits leave a joint unlimited, said at its
+    line; a <mimic> on a fixed joint constrains nothing: reported dropped and said. The same input
+    writes the same bytes."""
+    inertial = '<inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>'
+    links = "".join(f'<link name="{n}">{inertial}</link>' for n in ("base", "p", "q", "r", "s"))
+    urdf = tmp_path / "e.urdf"
+    urdf.write_text(f"""<robot name="e">{links}
+<joint name="jp" type="planar"><parent link="base"/><child link="p"/><axis xyz="0 1 0"/></joint>
+<joint name="jq" type="revolute"><parent link="base"/><child link="q"/><limit lower="1" upper="-1" effort="3" velocity="1"/></joint>
+<joint name="jr" type="revolute"><parent link="base"/><child link="r"/><limit lower="0.5" upper="0.5" effort="3" velocity="1"/></joint>
+<joint name="js" type="fixed"><parent link="base"/><child link="s"/><mimic joint="jq"/></joint>
+</robot>""")
+    res = convert_mjcf(load_robot(str(urdf)), str(tmp_path / "a" / "e.xml"))
+    m = mujoco.MjModel.from_xml_path(str(tmp_path / "a" / "e.xml"))
+    types = {m.joint(i).name: int(m.jnt_type[i]) for i in range(m.njnt)}
+    slide, hinge = int(mujoco.mjtJoint.mjJNT_SLIDE), int(mujoco.mjtJoint.mjJNT_HINGE)
+    assert types == {"jp_TX": slide, "jp_TY": slide, "jp_RZ": hinge, "jq": hinge, "jr": hinge}
+    axes = np.array([m.jnt_axis[m.joint(n).id] for n in ("jp_TX", "jp_TY", "jp_RZ")])
+    assert np.allclose(axes @ axes.T, np.eye(3), atol=1e-9) and np.allclose(axes[2], [0, 1, 0])
+    assert res.report.get("joint", "jp").fate == "translated"
+    assert not m.jnt_limited[m.joint("jq").id] and not m.jnt_limited[m.joint("jr").id]
+    assert f"{urdf}:3: warning: joint 'jq' has reversed lower and upper limits (1, -1): left unlimited" in res.notes.warnings
+    assert f"{urdf}:4: warning: joint 'jr' has equal lower and upper limits (0.5, 0.5): left unlimited" in res.notes.warnings
+    assert m.neq == 0 and res.report.get("mimic", "js").fate == "dropped"
+    assert any("<mimic> of joint 'js' left out: 'js' is a fixed joint" in w for w in res.notes.warnings)
+    convert_mjcf(load_robot(str(urdf)), str(tmp_path / "b" / "e.xml"))
+    for name in ("e.xml", "scene.xml"):
+        assert (tmp_path / "a" / name).read_bytes() == (tmp_path / "b" / name).read_bytes()
+
+
 def test_links_without_inertial_are_massless(tmp_path):
     """A fixed child with a collision box and no <inertial> adds no mass (MuJoCo would give it
     1000 kg/m^3 of its box: +1 kg here); a moving link with no mass at all gets the placeholder,
@@ -313,7 +345,9 @@ def test_stdout_without_meshes_and_errors(tmp_path):
         xml = r.output[r.output.index("<mujoco"):r.output.index("</mujoco>") + 9]
         m = mujoco.MjModel.from_xml_string(xml)
         assert m.njnt == 2
-        assert "warning: MuJoCo: joint 'joint1' has equal lower and upper limits" in r.output
+        assert m.jnt_limited.tolist() == [0, 0]          # lower = upper = 0: unlimited, as MuJoCo's URDF reader has it
+        assert ("double_pendulum_simple.urdf:84: warning: joint 'joint1' has equal lower and upper limits (0, 0): "
+                "left unlimited") in r.output
     # a model with meshes cannot go to stdout: one line, exit 2
     r = CliRunner().invoke(main, ["convert", "--to", "mjcf"])
     assert r.exit_code == 2 and "give -o OUT.xml" in r.output and len(r.output.strip().splitlines()) == 1
@@ -336,18 +370,30 @@ def test_textured_can_gets_its_texture_colour(tmp_path):
 
 def test_mujoco_warnings_are_ours_and_no_log_file(tmp_path, monkeypatch):
     """MuJoCo's warnings reach the user as our warnings; its default handler would also append
-    them to MUJOCO_LOG.TXT in the working directory, on success and on failure alike."""
-    bad = BAD
+    them to MUJOCO_LOG.TXT in the working directory, on success and on failure alike. A hub whose
+    moment about its axis (1.5e-15) vanishes next to the wheel spinning on it (1000) leaves a zero
+    pivot in the joint-space inertia: MuJoCo warns. A mesh with no volume MuJoCo rejects: one error
+    line, exit 2, nothing written."""
     monkeypatch.chdir(tmp_path)
-    r = CliRunner().invoke(main, ["convert", str(bad / "numbers/ixy_nan.urdf"), "--to", "mjcf",
-                                  "-o", str(tmp_path / "o" / "m.xml")])
+    inertial = '<inertial><mass value="1"/><inertia ixx="{i}" iyy="{i}" izz="{z}" ixy="0" ixz="0" iyz="0"/></inertial>'
+    hinge = ('<joint name="{n}" type="continuous"><parent link="{p}"/><child link="{c}"/><axis xyz="0 0 1"/>'
+             '<limit effort="1" velocity="1"/></joint>')
+    (tmp_path / "hub.urdf").write_text(
+        f'<robot name="hub"><link name="base">{inertial.format(i=0.01, z=0.01)}</link>'
+        f'<link name="hub">{inertial.format(i=0.01, z=1.5e-15)}</link><link name="wheel">{inertial.format(i=500, z=1000)}'
+        f'</link>{hinge.format(n="a", p="base", c="hub")}{hinge.format(n="b", p="hub", c="wheel")}</robot>')
+    r = CliRunner().invoke(main, ["convert", "hub.urdf", "--to", "mjcf", "-o", str(tmp_path / "o" / "m.xml")])
     assert r.exit_code == 0, r.output
-    assert "warning: MuJoCo: XML contains a 'NaN'" in r.output
-    r = CliRunner().invoke(main, ["convert", str(bad / "numbers/box_nan.urdf"), "--to", "mjcf",
+    assert [w for w in r.output.splitlines() if "MuJoCo" in w] == [
+        "warning: MuJoCo: Inertia matrix is too close to singular, or the effective-metric solve failed to converge, "
+        "at DOF 0. Check model. Time = 0.0000."]
+    r = CliRunner().invoke(main, ["convert", str(BAD / "meshes/flat.urdf"), "--to", "mjcf",
                                   "-o", str(tmp_path / "p" / "m.xml")])
-    assert r.exit_code == 2 and "box_nan.urdf:2: error: MuJoCo rejected the model: Error: nan size" in r.output
+    assert r.exit_code == 2 and r.output.startswith(f"{BAD / 'meshes/flat.urdf'}:2: error: MuJoCo rejected the model: "
+                                                    "Error: mesh 'flat' has coplanar vertices")
+    assert len(r.output.strip().splitlines()) == 1
     assert not (tmp_path / "p").exists()
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["o"]      # no MUJOCO_LOG.TXT
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["hub.urdf", "o"]      # no MUJOCO_LOG.TXT
 
 
 @pytest.mark.skipif(not ERD.is_dir(), reason="example-robot-data is not installed")

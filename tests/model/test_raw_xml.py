@@ -35,10 +35,6 @@ ALLOWED = {
     "myrabot_desc.checks.context": (
         {"loc_of"},
         "Context.loc_of: the location of a raw element, for the raw-syntax rules above"),
-    "myrabot_desc.convert.mjcf": (
-        {"root_element", "element", "loc_of"},
-        "the MJCF writer still edits a copy of the URDF tree for MuJoCo's URDF reader; it is being "
-        "rewritten from the typed model with MjSpec (issue 22), and leaves this list then"),
 }
 
 

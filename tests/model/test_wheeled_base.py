@@ -7,7 +7,7 @@ from __future__ import annotations
 import pytest
 
 from helpers import ROOT, corpus_model, corpus_robots
-from myrabot_desc.convert.mjcf import is_mobile as mjcf_mobile
+from myrabot_desc.convert.mjcf.bodies import base_is_free
 from myrabot_desc.model import drive as D
 from myrabot_desc.model.loader import load_robot
 
@@ -21,7 +21,7 @@ def test_mobile_is_the_manifest_kind(r):
     robot = corpus_model(r)
     want = r["kind"] in ("mobile", "mobile_manipulator")
     assert D.is_mobile(robot) is want
-    assert mjcf_mobile(robot) is want        # (check's P rules call D.is_mobile itself)
+    assert base_is_free(robot, "auto") is want        # (check's P rules call D.is_mobile itself)
     if r["id"] == "firefly":
         assert sum(j.type == "continuous" for j in robot.joints.values()) == 6 and D.wheel_joints(robot) == []
 

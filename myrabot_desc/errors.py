@@ -4,6 +4,7 @@ that parse but do not make sense together (the command line shows it as a usage 
 from __future__ import annotations
 
 from myrabot_desc.diagnostics import Loc
+from myrabot_desc.sanitize import clean
 
 
 class InputError(Exception):
@@ -21,11 +22,12 @@ class InputError(Exception):
         self.code = code
 
     def __str__(self) -> str:
-        where = f"{self.loc}: " if self.loc else ""
-        code = f"{self.code} " if self.code else ""
-        text = f"{where}error: {code}{self.message}"
+        # the message and location quote model text and file names: one printable line each
+        where = f"{clean(self.loc)}: " if self.loc else ""
+        code = f"{clean(self.code)} " if self.code else ""
+        text = f"{where}error: {code}{clean(self.message)}"
         for line in self.stack:
-            text += f"\n  {line}"
+            text += f"\n  {clean(line)}"
         return text
 
 

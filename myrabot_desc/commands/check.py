@@ -16,6 +16,7 @@ from myrabot_desc.commands.console import guarded
 from myrabot_desc.commands.options import usage_error
 from myrabot_desc.errors import UsageProblem
 from myrabot_desc.output import write_output
+from myrabot_desc.sanitize import clean
 
 
 def _progressbar(results, length):
@@ -116,5 +117,5 @@ def check_cmd(inputs, inertia, suggest, meshes, fmt, select, ignore, strict, out
             write_output(output, click.unstyle(text))
         for r in results:
             if r.failure and (fmt != "text" or output != "-"):
-                click.echo(r.failure, err=True)
+                click.echo(clean(r.failure), err=True)
     sys.exit(code)

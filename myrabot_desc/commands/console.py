@@ -12,6 +12,7 @@ import re
 import sys
 
 from myrabot_desc.errors import InputError
+from myrabot_desc.sanitize import clean
 
 _ANSI = None            # compiled on first use (a plain build rarely prints a style)
 
@@ -72,7 +73,7 @@ class guarded:
         if issubclass(exc_type, Exception):  # a bug of ours: still one line, still exit 2
             if os.environ.get("MYRABOT_DESC_DEBUG") or _is_click_exception(exc):
                 return False
-            echo(f"error: internal error ({type(exc).__name__}: {exc}); "
+            echo(f"error: internal error ({type(exc).__name__}: {clean(exc)}); "
                  "set MYRABOT_DESC_DEBUG=1 for a traceback and please report it")
             sys.exit(2)
         return False

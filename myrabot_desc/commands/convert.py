@@ -12,6 +12,7 @@ from myrabot_desc.convert.report import Report
 from myrabot_desc.convert.sdf import SdfOptions, to_sdf
 from myrabot_desc.convert.world import to_world
 from myrabot_desc.output import write_output
+from myrabot_desc.sanitize import clean, clean_lines
 
 
 @click.command("convert")
@@ -114,11 +115,11 @@ def _report(notes, quiet):
     if quiet:
         return
     for w in notes.warnings:
-        click.echo(w, err=True)
+        click.echo(clean(w), err=True)
 
 
 def _write_report(report, path, quiet):
     if path:
         write_output(path, report.render(path))
     if not quiet and report.entries:
-        click.echo(report.summary(), err=True)
+        click.echo(clean_lines(report.summary()), err=True)

@@ -11,6 +11,7 @@ from myrabot_desc.commands.console import guarded
 from myrabot_desc.model.kinematics import require_tree
 from myrabot_desc.output import write_output
 from myrabot_desc.render import ALL, VIEWS, Layers, choose_gl, parse_size, png_bytes, read_pose, render_image
+from myrabot_desc.sanitize import clean
 from myrabot_desc.view.scene import build_scene, parse_joint_values
 
 
@@ -52,7 +53,7 @@ def render_cmd(inputs, output, view, joints, pose_file, collision, frames, inert
         q = read_pose(pose_file, scene) if pose_file else {}
         q.update(parse_joint_values(joints, scene))
         for line in scene.problems:
-            click.echo(line, err=True)
+            click.echo(clean(line), err=True)
         img = render_image(scene, q, ALL if view == "all" else (view,), size, Layers(collision, frames, inertia))
         write_output(output, png_bytes(img))
         click.echo(f"wrote {output} ({size[0]}x{size[1]}, {view} view, {time.perf_counter() - t0:.2f} s)", err=True)

@@ -40,6 +40,7 @@ from myrabot_desc.expand.fast import pretty_xml
 from myrabot_desc.expand.packages import PackageResolver, split_package_uri
 from myrabot_desc.expand.provenance import SourceMap, Tracker, src_index
 from myrabot_desc.safety import Limits, _short, display, may_open, read_checked, safe_parser, scan_tag_attr
+from myrabot_desc.sanitize import clean, clean_lines
 
 
 class BuildResult:
@@ -683,10 +684,11 @@ def _to_stream(f, name: str, build: _Build, print_location):
         kwargs.pop("file", None)
         buf = io.StringIO()
         with contextlib.redirect_stderr(buf):   # color.message reads sys.stderr when called
-            f(*args, **kwargs)
+            f(*(clean(a) for a in args), **kwargs)      # one message, one line
             if location:
                 print_location()
-        build.messages.write(buf.getvalue())
+        # the file's own text (and YAML values it prints): no terminal escapes, no CI commands
+        build.messages.write(clean_lines(buf.getvalue()))
         return ""
     return wrapper
 

@@ -53,13 +53,16 @@ def _progressbar(results, length):
               help="Check only the K-th of N deterministic parts of the file list (a CI matrix job each).")
 @click.option("-q", "--quiet", is_flag=True, help="No progress bar; text reports only the findings.")
 @click.option("--no-cache", is_flag=True,
-              help="Do not read or write the result cache (.myrabot-desc-cache/ next to the configuration "
-                   "file, or MYRABOT_DESC_CACHE_DIR).")
+              help="Do not read or write the result cache (a project with a configuration file uses it; entries "
+                   "are kept in the user's cache folder, ~/.cache/myrabot-desc, and signed with a per-user key).")
+@click.option("--cache-dir", "cache_dir", type=click.Path(file_okay=False), metavar="DIR", default=None,
+              help="Keep the cache entries in DIR (e.g. a repository-local .myrabot-desc-cache) instead of the "
+                   "user's cache folder (or MYRABOT_DESC_CACHE_DIR); entries stay signed with the user's key.")
 @click.option("--merge-sarif", is_flag=True,
               help="The FILEs are SARIF reports (from --shard jobs): merge them into one report.")
 @click.option("--list-rules", is_flag=True, help="List every rule code and exit.")
 def check_cmd(inputs, inertia, suggest, meshes, fmt, select, ignore, strict, output, recursive, config_file,
-              isolated, jobs, shard_spec, quiet, no_cache, merge_sarif, list_rules):
+              isolated, jobs, shard_spec, quiet, no_cache, cache_dir, merge_sarif, list_rules):
     """Lint robot models: tree, inertia, sensors and frames, Gazebo plugins, meshes, physics.
 
     Each finding has a stable code (X build, T tree, I inertia, S sensors/frames,
@@ -102,7 +105,7 @@ def check_cmd(inputs, inertia, suggest, meshes, fmt, select, ignore, strict, out
             return
         try:
             tasks, help_url = plan(inputs, inertia, suggest, meshes, select, ignore, strict, recursive, config_file,
-                                   isolated, shard_spec, no_cache)
+                                   isolated, shard_spec, no_cache, cache_dir)
         except UsageProblem as exc:
             raise usage_error(exc) from None
         progress = not quiet and sys.stderr.isatty()

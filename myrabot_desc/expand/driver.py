@@ -352,7 +352,7 @@ class _Build:
             self.diagnostics.append(Diagnostic(
                 "X007", "info", f"the build depends on the environment: {_env_summary(self.env_used)}; pin them as "
                 "xacro args or in the CI job", Loc(display(self.src)),
-                {"environment": {k: v for k, (v, _s) in sorted(self.env_used.items())}}))
+                {"environment": _shown_env(self.env_used)}))
         text, locations = self.render(doc)
         self.check_unexpanded(doc, locations)
         result = BuildResult(text=text, locations=locations, diagnostics=self.diagnostics, deps=self.deps,
@@ -557,19 +557,38 @@ def _defined_nearby(name: str, src: Path, roots) -> str | None:
     return None
 
 
+SHOW_ENV = "MYRABOT_DESC_SHOW_ENV_VALUES"
+
+
+def _shown_env(env_used: dict) -> dict:
+    """name -> what X007 may show: the file's default when the variable was unset (model text),
+    None when it was set (its value is the runner's: a model must not be able to print a CI secret
+    into a report or a log), unless MYRABOT_DESC_SHOW_ENV_VALUES=1."""
+    show = os.environ.get(SHOW_ENV, "") not in ("", "0")
+    return {k: (v if show or not was_set else None) for k, (v, was_set) in sorted(env_used.items())}
+
+
 def _env_summary(env_used: dict, most: int = 8) -> str:
-    """The variables a build read, for X007's one line: each with its value when there are few;
-    a base like Husky's reads ~90 ``$(optenv)``, so then the set ones with their values and the
-    unset ones (defaults used) by name, at most ``most`` of each (the JSON data has them all)."""
+    """The variables a build read, for X007's one line: each by name (set) or with the default it
+    fell back to; a base like Husky's reads ~90 ``$(optenv)``, so then the set ones and the unset
+    ones by name, at most ``most`` of each (the JSON data has them all)."""
+    shown = _shown_env(env_used)
     items = sorted(env_used.items())
+
+    def one(k, was_set):
+        v = shown[k]
+        if was_set:
+            return f"{k}={v!r}" if v is not None else f"{k} (set)"
+        return f"{k}={v!r} (unset: default)"
+
     if len(items) <= most:
-        return ", ".join(f"{k}={v!r}" + ("" if was_set else " (unset: default)") for k, (v, was_set) in items)
+        return ", ".join(one(k, was_set) for k, (_v, was_set) in items)
 
     def some(names):
         more = len(names) - most
         return ", ".join(names[:most]) + (f", and {more} more" if more > 0 else "")
 
-    set_ = [f"{k}={v!r}" for k, (v, was_set) in items if was_set]
+    set_ = [f"{k}={shown[k]!r}" if shown[k] is not None else k for k, (_v, was_set) in items if was_set]
     unset = [k for k, (_v, was_set) in items if not was_set]
     if not unset:
         told = f"all set ({some(set_)})"
@@ -577,7 +596,7 @@ def _env_summary(env_used: dict, most: int = 8) -> str:
         told = f"all unset, defaults used ({some(unset)})"
     else:
         told = f"{len(set_)} set ({some(set_)}) and {len(unset)} unset, defaults used ({some(unset)})"
-    return f"{len(items)} variables, {told} (check --format json lists every value)"
+    return f"{len(items)} variables, {told} (check --format json lists every one)"
 
 
 class _LazyModule(type(sys)):

@@ -163,6 +163,7 @@ class _Build:
         self.expanded = 0                      # elements produced by macro calls so far
         self.calls = 0
         self.env_used: dict[str, tuple[str, bool]] = {}   # $(env)/$(optenv) name -> (value, was set)
+        self.includes = 0                      # includes processed (the input counts as one)
 
     # ------------------------------------------------------------ reading files
     def allowed(self, path: Path) -> bool:
@@ -383,6 +384,11 @@ class _Build:
         if self.key(path) in stack:
             chain = " -> ".join(str(p) for p in stack + [path])
             raise InputError(f"include cycle: {chain}", asked_at or self.last_loc)
+        self.includes += 1
+        if self.includes > self.limits.max_includes:
+            raise InputError(f"over {self.limits.max_includes} includes in one build (repeats counted); is a "
+                             "file included over and over? (see --max-includes or MYRABOT_DESC_MAX_INCLUDES)",
+                             asked_at or self.last_loc)
         if len(xacro.filestack or []) > self.limits.max_include_depth:
             raise InputError(f"includes nest deeper than {self.limits.max_include_depth} "
                              "(see --max-include-depth or MYRABOT_DESC_MAX_INCLUDE_DEPTH)", asked_at or self.last_loc)

@@ -68,7 +68,7 @@ LIMITS: tuple[Limit, ...] = (
           "largest OGRE material script (Gazebo's own gazebo.material is 24 kB)"),
     Limit("max_mjcf_bodies", "MYRABOT_DESC_MAX_MJCF_BODIES", 2_000, None,
           "most links `convert --to mjcf` takes (2,000 links: ~2 s, 400 MB; 5,000: 12 s, 2 GB)"),
-    Limit("max_sim_steps", "MYRABOT_DESC_MAX_SIM_STEPS", 2_000_000, None,
+    Limit("max_sim_steps", "MYRABOT_DESC_MAX_SIM_STEPS", 1_000_000, None,
           "most time steps of one `sim` run (--duration x --rate)"),
     Limit("max_render_pixels", "MYRABOT_DESC_MAX_RENDER_PIXELS", 4_194_304, None,
           "largest `render --size` (pixels: 2048x2048)"),
@@ -95,6 +95,22 @@ class Limits:
             setattr(self, lim.field, value if value else _env_int(lim.env, lim.default))
         if overrides:
             raise TypeError(f"unknown limits: {', '.join(overrides)}")
+
+
+def sim_steps(duration: float, rate: float) -> int:
+    """The time steps of a simulation of ``duration`` s at ``rate`` Hz, refused (InputError) past
+    ``max_sim_steps``: the programs keep every step's state (86,400 s at 100 kHz: out of memory),
+    and a default duration can come from the model (an arm that moves at 1e-9 rad/s)."""
+    import math
+
+    if not (math.isfinite(duration) and math.isfinite(rate)) or duration < 0 or rate <= 0:
+        raise InputError(f"a simulation of {duration:g} s at {rate:g} Hz cannot be run")
+    most = limit("max_sim_steps")
+    steps = duration * rate
+    if steps > most:
+        raise InputError(f"a simulation of {duration:g} s at {rate:g} Hz is {steps:.0f} steps, over the {most}-step "
+                         "limit (lower --duration or --rate, or raise MYRABOT_DESC_MAX_SIM_STEPS)")
+    return int(round(steps))
 
 
 def limits_help() -> str:
@@ -210,8 +226,7 @@ def check_path(path, roots=None, what: str = "file") -> Path:
     except (OSError, RuntimeError, ValueError):
         raise InputError(f"cannot read {_short(str(p), 120)}: unresolvable path") from None
     if roots is not None and not any(real == r or real.is_relative_to(r) for r in _real_roots(roots)):
-        if not _exists(real):
-            raise InputError(f"no such {what}: {_short(str(p), 200)}")
+        # the same answer whether or not the path exists: no message tells which files exist there
         raise PathRefused(f"refusing to read {_short(str(p), 200)}: outside the allowed folders (the input's "
                           "folder and package roots; use --allow-path DIR or -p NAME=DIR to allow it)")
     try:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from myrabot_desc.checks.examples import tetrahedron_stl
 from myrabot_desc.checks.rule import Finding, rule
-from myrabot_desc.expand.packages import split_package_uri
+from myrabot_desc.expand.packages import split_package_uri, unresolved_reason
 
 
 def _shell(geometry: str, kind: str = "collision", name: str = "cover") -> str:
@@ -61,7 +61,9 @@ def mesh_resolves(ctx):
             p = Path(raw)
             if not p.is_absolute() and r.source is not None:
                 p = r.source.parent / p
-            why = f"no such file {p}"
+            # outside the roots: the same words whether or not such a file exists
+            reason = unresolved_reason(g.filename, r.package_roots, r.source.parent if r.source else Path.cwd())
+            why = f"{p} is {reason}" if reason == "outside the allowed folders" else f"no such file {p}"
         n = sum(1 for _l, _k, i in _mesh_uses(ctx) if i.geometry.filename == g.filename)
         yield Finding(f"mesh {g.filename} ({kind} of {link.name}{f', used {n}×' if n > 1 else ''}) cannot be "
                       f"resolved: {why}", it.loc or link.loc,

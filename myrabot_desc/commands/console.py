@@ -77,3 +77,22 @@ class guarded:
                  "set MYRABOT_DESC_DEBUG=1 for a traceback and please report it")
             sys.exit(2)
         return False
+
+
+def no_mujoco_log() -> None:
+    """MuJoCo's default log writes MUJOCO_LOG.TXT into the working folder (and WARNING lines to
+    stdout) on a model's warnings: off for this process (its warnings still reach us through the
+    Python bindings, which the converters report)."""
+    import os
+
+    os.environ.setdefault("MUJOCO_GL", "disable")      # no GL probing (convert never renders)
+    try:
+        import mujoco
+    except ImportError:
+        return
+    config = getattr(mujoco, "MjLogConfig", None)
+    if config is not None:
+        cfg = config()
+        cfg.logto_file = False
+        cfg.logto_console = False
+        cfg.set()

@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from myrabot_desc.commands.common import input_options
-from myrabot_desc.commands.console import guarded
+from myrabot_desc.commands.console import guarded, no_mujoco_log
 from myrabot_desc.convert.mjcf import convert_mjcf
 from myrabot_desc.convert.preflight import problems, refuse_or_record
 from myrabot_desc.convert.report import Report
@@ -87,6 +87,7 @@ def convert_cmd(inputs, target, output, lump, uri_style, layout, base, scene, re
         if not allow_errors:
             refuse_or_record(found, False)
         if target == "mjcf":
+            no_mujoco_log()
             result = convert_mjcf(robot, output, base=base, scene="scene.xml" if scene else None, report=report,
                                   allow_errors=allow_errors)
             refuse_or_record(found, True, report, result.notes)

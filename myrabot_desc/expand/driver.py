@@ -867,6 +867,8 @@ class _Hooks:
                 alt = b.src.parent / Path(filename).name
                 if alt.is_file():
                     path = alt
+            if not b.allowed(path):       # outside the roots: refused whether or not it exists
+                b.check_include(path, asked)
             if not path.is_file():
                 xacro.filestack.pop()
                 err = FileNotFoundError(2, "No such file or directory", str(path))

@@ -4,10 +4,11 @@ from __future__ import annotations
 
 import click
 
+from myrabot_desc.checks import CheckOptions, check_robot
 from myrabot_desc.commands.common import input_options
 from myrabot_desc.commands.console import guarded, no_mujoco_log
 from myrabot_desc.convert.mjcf import convert_mjcf
-from myrabot_desc.convert.preflight import problems, refuse_or_record
+from myrabot_desc.convert.preflight import Problem, problems, refuse_or_record
 from myrabot_desc.convert.report import Report
 from myrabot_desc.convert.sdf import SdfOptions, to_sdf
 from myrabot_desc.convert.world import to_world
@@ -41,8 +42,9 @@ from myrabot_desc.sanitize import clean, clean_lines
               help="Write what became of every element of the source (kept, translated, approximated, dropped, "
                    "with file:line): JSON if FILE ends in .json, else text.")
 @click.option("--allow-errors", is_flag=True,
-              help="Convert a model that has errors (no tree, unreadable values, unreadable collision meshes) "
-                   "anyway, leaving those parts out; the report lists them.")
+              help="Convert a model that `check` reports errors in (its tree, joint types, masses and inertias, "
+                   "meshes, sensors, the build) anyway: those parts are left out, repaired or read as the URDF "
+                   "default, each listed in the report and on stderr. Without it such a model is refused (exit 2).")
 @click.option("-q", "--quiet", is_flag=True, help="Do not print warnings.")
 def convert_cmd(inputs, target, output, lump, uri_style, layout, base, scene, report_path, allow_errors, quiet):
     """Convert a robot for today's simulators: gz-sim (SDF) or MuJoCo (MJCF).
@@ -83,7 +85,7 @@ def convert_cmd(inputs, target, output, lump, uri_style, layout, base, scene, re
     with guarded():
         robot = inputs.load()
         report = Report(target, str(robot.source) if robot.source else "")
-        found = problems(robot) if robot.links else []
+        found = refusals(robot) if robot.links else []
         if not allow_errors:
             refuse_or_record(found, False)
         if target == "mjcf":
@@ -124,3 +126,24 @@ def _write_report(report, path, quiet):
         write_output(path, report.render(path))
     if not quiet and report.entries:
         click.echo(clean_lines(report.summary()), err=True)
+
+
+# check's rules on what convert writes: the tree and joint types, masses and inertias, geometry and
+# meshes, sensors, the joints the drive plugin names, the build itself (X). Not the whole robot's
+# physics verdicts (P: it tips over, its dynamics are singular) nor the drive plugin's own wheel
+# numbers (G001/G002: convert writes the ones measured on the URDF instead).
+CONVERT_CHECKS = ("T", "I", "M", "X", "S", "G003", "G004", "G005", "G008")
+
+
+def check_errors(robot) -> list:
+    """The errors ``check`` reports (inline suppressions apply) on what convert writes, as Problems."""
+    diags, _ctx = check_robot(robot, CheckOptions(), select=CONVERT_CHECKS, unused=False)
+    return [Problem(f"{d.code} {d.message}", d.loc, "value") for d in diags if d.severity == "error"]
+
+
+def refusals(robot) -> list:
+    """Why convert refuses ``robot``: check's errors, then the preflight's own (a tree it cannot
+    walk, a collision mesh no reader takes) where check has none at the same place."""
+    found = check_errors(robot)
+    seen = {p.loc for p in found}
+    return found + [p for p in problems(robot) if p.loc not in seen]

@@ -25,7 +25,7 @@ import struct
 from pathlib import Path
 
 from myrabot_desc.errors import InputError
-from myrabot_desc.safety import limit, parse_xml_bytes, read_checked, safe_parser
+from myrabot_desc.safety import limit, open_checked, parse_xml_bytes, read_checked, safe_parser
 
 ENV_BYTES = "MYRABOT_DESC_MAX_MESH_BYTES"
 ENV_TRIANGLES = "MYRABOT_DESC_MAX_MESH_TRIANGLES"
@@ -64,6 +64,56 @@ def precheck(path: Path) -> int:
                 raise MeshError(f"{path.name}: the STL header announces {n} triangles, over the {max_tris} "
                                 f"limit ({ENV_TRIANGLES})")
     return size
+
+
+def unreadable(path: Path) -> str | None:
+    """Why a mesh file holds no triangles a reader can take, or None: the limits (``precheck``), then
+    a structural look without numpy: a binary STL's size must match its header, an ASCII STL needs
+    a facet, an OBJ a face, a COLLADA file must be XML with a triangle, polygon or polylist element
+    with a count. (check's M005 and convert's preflight ask it of collision meshes.)"""
+    try:
+        size = precheck(path)
+    except MeshError as exc:
+        return str(exc)
+    ext = path.suffix.lower()
+    if ext not in (".stl", ".obj", ".dae"):
+        return None
+    try:
+        data = read_checked(path, None, limit("max_mesh_bytes"), what="mesh") if ext != ".stl" or size < 84 \
+            else None
+        if ext == ".stl":
+            with open_checked(path, None, "mesh") as fh:
+                head = fh.read(84)
+            if head[:5].lower() != b"solid":
+                n = int.from_bytes(head[80:84], "little") if len(head) >= 84 else -1
+                if n <= 0 or size != 84 + 50 * n:
+                    return (f"{path.name} is not a binary STL ({size} bytes, its header announces {n} triangles)"
+                            if n > 0 else f"{path.name} holds no triangles")
+                return None
+            data = read_checked(path, None, limit("max_mesh_bytes"), what="mesh")
+    except InputError as exc:
+        return f"cannot read {path.name}: {exc.message}"
+    if ext == ".stl":
+        if b"facet" in data:
+            return None
+        # a binary STL whose 80-byte header starts with "solid": readers check the size instead
+        n = int.from_bytes(data[80:84], "little") if len(data) >= 84 else 0
+        return None if n > 0 and size == 84 + 50 * n else f"{path.name} holds no triangles (no facet)"
+    if ext == ".obj":
+        return None if data.startswith(b"f ") or b"\nf " in data else f"{path.name} holds no faces"
+    try:
+        check_content(path, data)
+    except MeshError as exc:
+        return str(exc)
+    try:
+        root = parse_xml_bytes(data, path.name)
+    except InputError as exc:
+        return f"{path.name} is not readable COLLADA: {exc.message}"
+    for el in root.iter():
+        tag = el.tag.rsplit("}", 1)[-1] if isinstance(el.tag, str) else ""
+        if tag in ("triangles", "polylist", "polygons", "trifans", "tristrips") and el.get("count", "0") != "0":
+            return None
+    return f"{path.name} holds no triangles (no <triangles>, <polylist> or <polygons> with a count)"
 
 
 ZIP_EXTS = {".zip", ".3mf", ".zae"}

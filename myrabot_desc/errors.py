@@ -14,12 +14,13 @@ class InputError(Exception):
     """
 
     def __init__(self, message: str, loc: Loc | None = None, stack: list[str] | None = None,
-                 code: str | None = None):
+                 code: str | None = None, more: list | None = None):
         super().__init__(message)
         self.message = message
         self.loc = loc
         self.stack = stack or []
         self.code = code
+        self.more = more or []          # further errors of the same input, each its own line
 
     def __str__(self) -> str:
         # the message and location quote model text and file names: one printable line each
@@ -28,6 +29,8 @@ class InputError(Exception):
         text = f"{where}error: {code}{clean(self.message)}"
         for line in self.stack:
             text += f"\n  {clean(line)}"
+        for other in self.more:
+            text += f"\n{other}"
         return text
 
 

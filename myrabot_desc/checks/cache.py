@@ -167,15 +167,16 @@ def _read_secret(folder_fd: int) -> bytes | None:
 
 
 # ------------------------------------------------------------------ what the result depends on
-def code_fingerprint() -> str:
-    """The tool's own code (every module of the package, by content), its version, Python's and the
-    libraries' versions: a result from other code is never reused."""
-    if _fingerprint:
+def code_fingerprint(pkg: Path | None = None) -> str:
+    """The tool's own code (every module of the package ``pkg``, by content), its version, Python's
+    and the libraries' versions: a result from other code is never reused."""
+    if pkg is None and _fingerprint:
         return _fingerprint[0]
     from importlib import metadata
 
     h = hashlib.sha256(f"{__version__}\0{sys.version}\0".encode())
-    pkg = Path(__file__).resolve().parent.parent
+    default = pkg is None
+    pkg = Path(__file__).resolve().parent.parent if pkg is None else Path(pkg)
     for f in sorted(pkg.rglob("*.py")):
         try:
             h.update(f.relative_to(pkg).as_posix().encode() + b"\0" + f.read_bytes() + b"\0")
@@ -186,6 +187,8 @@ def code_fingerprint() -> str:
             h.update(f"{dist}={metadata.version(dist)}\0".encode())
         except Exception:  # not installed (or no metadata): part of the fingerprint as such
             h.update(f"{dist}=-\0".encode())
+    if not default:
+        return h.hexdigest()
     _fingerprint.append(h.hexdigest())
     return _fingerprint[0]
 

@@ -170,7 +170,7 @@ class GlobSet:
                 if k > n:
                     break
                 cands.update(self.prefixes.get(comp[:k], ()))
-        return sorted(i for i in cands if self.regex[i] is not None and self.regex[i].match(path))
+        return sorted(i for i in cands if self.regex[i] is not None and self.regex[i].search(path))
 
 
 def _index_key(pattern: str):

@@ -8,7 +8,7 @@ from myrabot_desc.checks import CheckOptions, check_robot
 from myrabot_desc.commands.common import input_options
 from myrabot_desc.commands.console import guarded, no_mujoco_log
 from myrabot_desc.convert.mjcf import convert_mjcf
-from myrabot_desc.convert.preflight import Problem, problems, refuse_or_record
+from myrabot_desc.convert.preflight import Problem, problems, refuse_or_record, tree_problems
 from myrabot_desc.convert.report import Report
 from myrabot_desc.convert.sdf import SdfOptions, to_sdf
 from myrabot_desc.convert.world import to_world
@@ -142,8 +142,11 @@ def check_errors(robot) -> list:
 
 
 def refusals(robot) -> list:
-    """Why convert refuses ``robot``: check's errors, then the preflight's own (a tree it cannot
-    walk, a collision mesh no reader takes) where check has none at the same place."""
-    found = check_errors(robot)
+    """Why convert refuses ``robot``: the preflight's own reasons (a tree it cannot walk, a collision
+    mesh no reader takes, an <inertial> without <inertia>), then check's errors at other places."""
+    found = problems(robot)
     seen = {p.loc for p in found}
-    return found + [p for p in problems(robot) if p.loc not in seen]
+    # the preflight words the tree's faults itself (every root, every second parent): check's T001
+    # and T002 would say them again
+    skip = ("T001 ", "T002 ") if tree_problems(robot) else ()
+    return found + [p for p in check_errors(robot) if p.loc not in seen and not p.message.startswith(skip or "\0")]

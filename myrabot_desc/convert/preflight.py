@@ -31,7 +31,7 @@ class Problem(NamedTuple):
     name: str = ""
 
     def __str__(self) -> str:
-        return f"{self.loc}: error: {self.message}" if self.loc else f"error: {self.message}"
+        return str(InputError(self.message, self.loc))
 
 
 def tree_problems(robot) -> list[Problem]:
@@ -125,8 +125,7 @@ def refuse_or_record(found: list[Problem], allow: bool, report=None, notes=None)
     if not found:
         return
     if not allow:
-        rest = "".join(f"\n{p}" for p in found[1:])
-        raise InputError(found[0].message + rest, found[0].loc)
+        raise InputError(found[0].message, found[0].loc, more=found[1:])
     for p in found:
         if notes is not None:
             notes.warn(f"{p.message}: converted anyway (--allow-errors)", p.loc)

@@ -29,7 +29,11 @@ def open_image(path, roots=None):
         raise TextureError(f"{name}: {exc.message}") from None
     most = limit("max_texture_pixels")
     try:
-        im = Image.open(io.BytesIO(data))
+        import warnings
+
+        with warnings.catch_warnings():      # PIL's own bomb warning: the limit below is ours
+            warnings.simplefilter("ignore", Image.DecompressionBombWarning)
+            im = Image.open(io.BytesIO(data))
         w, h = im.size
     except Exception as exc:  # PIL's own errors for a file that is no image
         raise TextureError(f"{name} is not a readable image ({type(exc).__name__})") from None

@@ -58,7 +58,7 @@ def precheck(path: Path) -> int:
                 head = fh.read(84)
         except OSError as exc:
             raise MeshError(f"cannot read {path.name}: {exc.strerror}") from None
-        if not head[:5].lower() == b"solid":
+        if not head[:5].lower() == b"solid" and not any(head.startswith(m) for m in COMPRESSED):
             n = struct.unpack("<I", head[80:84])[0]
             if n > max_tris:
                 raise MeshError(f"{path.name}: the STL header announces {n} triangles, over the {max_tris} "
@@ -67,32 +67,29 @@ def precheck(path: Path) -> int:
 
 
 def unreadable(path: Path) -> str | None:
-    """Why a mesh file holds no triangles a reader can take, or None: the limits (``precheck``), then
-    a structural look without numpy: a binary STL's size must match its header, an ASCII STL needs
-    a facet, an OBJ a face, a COLLADA file must be XML with a triangle, polygon or polylist element
-    with a count. (check's M005 and convert's preflight ask it of collision meshes.)"""
+    """Why a mesh file holds no triangles a reader can take, or None: the limits (``precheck``, and
+    ``check_content`` on its bytes: compression, counts), then a structural look without numpy: a
+    binary STL's size must match its header, an ASCII STL needs a facet, an OBJ a face, a COLLADA
+    file must be XML with a triangle, polygon or polylist element with a count. (check's M005 and
+    convert's preflight ask it of collision meshes.)"""
     try:
         size = precheck(path)
+        ext = path.suffix.lower()
+        with open_checked(path, None, "mesh") as fh:
+            head = fh.read(84)
+        if ext == ".stl" and head[:5].lower() != b"solid" and not any(head.startswith(m) for m in COMPRESSED):
+            n = int.from_bytes(head[80:84], "little") if len(head) >= 84 else -1
+            if n <= 0 or size != 84 + 50 * n:
+                return (f"{path.name} is not a binary STL ({size} bytes, its header announces {n} triangles)"
+                        if n > 0 else f"{path.name} holds no triangles")
+            return None                   # a well-formed binary STL: its header said it all (precheck)
+        data = _read(path, limit("max_mesh_bytes"))          # check_content: compression, counts, elements
     except MeshError as exc:
         return str(exc)
-    ext = path.suffix.lower()
-    if ext not in (".stl", ".obj", ".dae"):
-        return None
-    try:
-        data = read_checked(path, None, limit("max_mesh_bytes"), what="mesh") if ext != ".stl" or size < 84 \
-            else None
-        if ext == ".stl":
-            with open_checked(path, None, "mesh") as fh:
-                head = fh.read(84)
-            if head[:5].lower() != b"solid":
-                n = int.from_bytes(head[80:84], "little") if len(head) >= 84 else -1
-                if n <= 0 or size != 84 + 50 * n:
-                    return (f"{path.name} is not a binary STL ({size} bytes, its header announces {n} triangles)"
-                            if n > 0 else f"{path.name} holds no triangles")
-                return None
-            data = read_checked(path, None, limit("max_mesh_bytes"), what="mesh")
     except InputError as exc:
         return f"cannot read {path.name}: {exc.message}"
+    if ext not in (".stl", ".obj", ".dae") or any(data.startswith(m) for m in COMPRESSED) or data[:4] == b"PK\x03\x04":
+        return None
     if ext == ".stl":
         if b"facet" in data:
             return None
@@ -101,10 +98,6 @@ def unreadable(path: Path) -> str | None:
         return None if n > 0 and size == 84 + 50 * n else f"{path.name} holds no triangles (no facet)"
     if ext == ".obj":
         return None if data.startswith(b"f ") or b"\nf " in data else f"{path.name} holds no faces"
-    try:
-        check_content(path, data)
-    except MeshError as exc:
-        return str(exc)
     try:
         root = parse_xml_bytes(data, path.name)
     except InputError as exc:

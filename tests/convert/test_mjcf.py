@@ -339,11 +339,12 @@ def test_mujoco_warnings_are_ours_and_no_log_file(tmp_path, monkeypatch):
     them to MUJOCO_LOG.TXT in the working directory, on success and on failure alike."""
     bad = BAD
     monkeypatch.chdir(tmp_path)
-    r = CliRunner().invoke(main, ["convert", str(bad / "numbers/ixy_nan.urdf"), "--to", "mjcf",
+    # (check calls a NaN an error: convert refuses it unless --allow-errors)
+    r = CliRunner().invoke(main, ["convert", str(bad / "numbers/ixy_nan.urdf"), "--to", "mjcf", "--allow-errors",
                                   "-o", str(tmp_path / "o" / "m.xml")])
     assert r.exit_code == 0, r.output
     assert "warning: MuJoCo: XML contains a 'NaN'" in r.output
-    r = CliRunner().invoke(main, ["convert", str(bad / "numbers/box_nan.urdf"), "--to", "mjcf",
+    r = CliRunner().invoke(main, ["convert", str(bad / "numbers/box_nan.urdf"), "--to", "mjcf", "--allow-errors",
                                   "-o", str(tmp_path / "p" / "m.xml")])
     assert r.exit_code == 2 and "box_nan.urdf:2: error: MuJoCo rejected the model: Error: nan size" in r.output
     assert not (tmp_path / "p").exists()

@@ -5,6 +5,7 @@ from __future__ import annotations
 import click
 
 from myrabot_desc.checks import CheckOptions, check_robot
+from myrabot_desc.checks.registry import EXTERNAL, load_all
 from myrabot_desc.commands.common import input_options
 from myrabot_desc.commands.console import guarded, no_mujoco_log
 from myrabot_desc.convert.mjcf import convert_mjcf
@@ -130,14 +131,22 @@ def _write_report(report, path, quiet):
 
 # check's rules on what convert writes: the tree and joint types, masses and inertias, geometry and
 # meshes, sensors, the joints the drive plugin names, the build itself (X). Not the whole robot's
-# physics verdicts (P: it tips over, its dynamics are singular) nor the drive plugin's own wheel
-# numbers (G001/G002: convert writes the ones measured on the URDF instead).
-CONVERT_CHECKS = ("T", "I", "M", "X", "S", "G003", "G004", "G005", "G008")
+# physics verdicts (P: it tips over, its dynamics are singular), nor what convert translates
+# itself: the drive plugin's wheel numbers (G001/G002: it writes the ones measured on the URDF)
+# and ROS Electric sensor angles in degrees (S006: it converts them to radians).
+CONVERT_CHECKS = ("T", "I", "M", "X", "S001", "S002", "S005", "G003", "G004", "G005", "G008")
 
 
 def check_errors(robot) -> list:
-    """The errors ``check`` reports (inline suppressions apply) on what convert writes, as Problems."""
-    diags, _ctx = check_robot(robot, CheckOptions(), select=CONVERT_CHECKS, unused=False)
+    """The errors ``check`` reports (inline suppressions apply) on what convert writes, as Problems.
+    Only the rules that can report an error run (the SDF path stays free of numpy), with the codes
+    the build and the loader give."""
+    def ours(code):
+        return code.startswith(CONVERT_CHECKS)
+
+    select = tuple(c for c, r in load_all().items() if r.severity == "error" and ours(c)) + \
+        tuple(c for c in EXTERNAL if ours(c))
+    diags, _ctx = check_robot(robot, CheckOptions(), select=select, unused=False)
     return [Problem(f"{d.code} {d.message}", d.loc, "value") for d in diags if d.severity == "error"]
 
 

@@ -22,8 +22,12 @@ passed around (``sorted(..., key=python.pop)`` emptied the shared symbol table).
    same bounds; ``+ * % ** <<`` on non-literals -> bounded helpers (strings, lists, ``bytes``
    and every ``%`` form, mapping keys included); each comprehension loop -> ``_md_iter``, each
    lambda body -> ``_md_enter``/``_md_leave`` (nesting depth), counted as work.
-3. **Budgets** per build (Budget): work units (loop steps + items allocated), wall time spent
-   in expressions, characters printed; any one result stays under MAX_SEQUENCE_LEN items.
+3. **Budgets** per build (Budget): work units (loop steps + items allocated), CPU time spent
+   in expressions, characters printed; any one result stays under MAX_SEQUENCE_LEN items. A
+   single built-in call runs in C, where the budget cannot stop it (signal handlers run between
+   bytecodes): the built-ins whose cost grows with their arguments have them bounded first
+   (_precheck: factorial/comb/perm, gcd/lcm, round, prod, the sizes of what grows, and the items
+   a set/dict call hashes, grouped by hash in one pass: hash_collisions).
 4. **A fresh namespace per build** (fresh_namespace): xacro's global symbols rebuilt for each
    build, without ``type``/``vars``, with our YAML loader, a bounded ``range`` and a ``tokenize``
    whose separators cannot form a regular expression; nothing one model does reaches the next.

@@ -5,6 +5,7 @@ from __future__ import annotations
 from myrabot_desc.checks.examples import tetrahedron_stl
 from myrabot_desc.checks.rule import Finding, rule
 from myrabot_desc.expand.packages import split_package_uri, unresolved_reason
+from myrabot_desc.model.meshes import unreadable
 
 
 def _shell(geometry: str, kind: str = "collision", name: str = "cover") -> str:
@@ -85,8 +86,6 @@ def collision_mesh_readable(ctx):
     model. Checked without loading the triangles (the header and structure of the file), so it
     runs on every check. Fix: re-export the mesh, or point at the right file.
     """
-    from myrabot_desc.model.meshes import unreadable
-
     seen: dict = {}
     for link, kind, it in _mesh_uses(ctx):
         g = it.geometry

@@ -6,6 +6,8 @@ would pay at every start for two small records.
 
 from __future__ import annotations
 
+from myrabot_desc.sanitize import clean
+
 SEVERITIES = ("error", "warning", "info")
 
 
@@ -70,8 +72,8 @@ class Diagnostic:
                 f"loc={self.loc!r}, data={self.data!r})")
 
     def __str__(self) -> str:
-        where = f"{self.loc}: " if self.loc else ""
-        return f"{where}{self.severity}: {self.code} {self.message}"
+        where = f"{clean(self.loc)}: " if self.loc else ""
+        return f"{where}{clean(self.severity)}: {clean(self.code)} {clean(self.message)}"
 
 
 SEVERITY_ORDER = {"error": 0, "warning": 1, "info": 2}

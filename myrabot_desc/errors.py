@@ -4,6 +4,7 @@ that parse but do not make sense together (the command line shows it as a usage 
 from __future__ import annotations
 
 from myrabot_desc.diagnostics import Loc
+from myrabot_desc.sanitize import clean
 
 
 class InputError(Exception):
@@ -13,19 +14,23 @@ class InputError(Exception):
     """
 
     def __init__(self, message: str, loc: Loc | None = None, stack: list[str] | None = None,
-                 code: str | None = None):
+                 code: str | None = None, more: list | None = None):
         super().__init__(message)
         self.message = message
         self.loc = loc
         self.stack = stack or []
         self.code = code
+        self.more = more or []          # further errors of the same input, each its own line
 
     def __str__(self) -> str:
-        where = f"{self.loc}: " if self.loc else ""
-        code = f"{self.code} " if self.code else ""
-        text = f"{where}error: {code}{self.message}"
+        # the message and location quote model text and file names: one printable line each
+        where = f"{clean(self.loc)}: " if self.loc else ""
+        code = f"{clean(self.code)} " if self.code else ""
+        text = f"{where}error: {code}{clean(self.message)}"
         for line in self.stack:
-            text += f"\n  {line}"
+            text += f"\n  {clean(line)}"
+        for other in self.more:
+            text += f"\n{other}"
         return text
 
 

@@ -6,6 +6,7 @@ import math
 
 from myrabot_desc.model.kinematics import center_of_mass, world_transforms
 from myrabot_desc.safety import display
+from myrabot_desc.sanitize import clean
 
 
 def summarize(robot) -> dict:
@@ -65,10 +66,10 @@ def tree_lines(robot) -> list[str]:
         stack = [(root, "", None, True)]          # iterative: chains can be thousands deep
         while stack:
             link, prefix, via, last = stack.pop()
-            label = link
+            label = clean(link)        # names are model text: one printable line each
             if via is not None:
                 ax = "" if via.type == "fixed" else " axis " + " ".join(f"{a:g}" for a in via.axis)
-                label = f"{link}  [{via.name}: {via.type}{ax}]"
+                label = f"{clean(link)}  [{clean(via.name)}: {clean(via.type)}{ax}]"
             if link in seen:
                 lines.append(prefix + ("└─ " if last else "├─ ") + label + "  (cycle!)")
                 continue
@@ -99,9 +100,9 @@ def text_lines(robot, s: dict, tree: bool = True) -> list[str]:
     """The lines ``info`` prints for ``robot`` and its summary ``s`` (:func:`summarize`)."""
     out = []
     add = out.append
-    add(f"robot {s['name']!r}  ({s['source']})")
+    add(f"robot {clean(repr(s['name']))}  ({clean(s['source'])})")
     add(f"  {s['links']} links, {s['joints']} joints, {s['dof']} degrees of freedom, root: "
-        f"{', '.join(s['roots']) or 'none (cycle?)'}")
+        f"{', '.join(map(clean, s['roots'])) or 'none (cycle?)'}")
     com = s["center_of_mass"]
     add(f"  total mass {s['total_mass']:.4f} kg; centre of mass at zero configuration "
         + (f"({com[0]:.4f}, {com[1]:.4f}, {com[2]:.4f}) m" if com else "undefined (no mass)"))
@@ -112,16 +113,16 @@ def text_lines(robot, s: dict, tree: bool = True) -> list[str]:
     movable = [j for j in robot.joints.values() if j.type in ("revolute", "continuous", "prismatic")]
     if movable:
         add("\nmovable joints:")
-        w = max(len(j.name) for j in movable)
+        w = max(len(clean(j.name)) for j in movable)
         for j in movable:
-            add(f"  {j.name:<{w}}  {j.type:<10} {_fmt_limit(j)}")
+            add(f"  {clean(j.name):<{w}}  {j.type:<10} {_fmt_limit(j)}")
     if s["sensors"]:
         add("\nsensors:")
         for x in s["sensors"]:
-            add(f"  {x['name']} ({x['type']}) on {x['link']}")
+            add(f"  {clean(x['name'])} ({clean(x['type'])}) on {clean(x['link'])}")
     add("\nframes (world position at zero configuration, m):")
-    w = max((len(f["frame"]) for f in s["frames"]), default=5)
+    w = max((len(clean(f["frame"])) for f in s["frames"]), default=5)
     for f in s["frames"]:
         x, y, z = f["xyz"]
-        add(f"  {f['frame']:<{w}}  {x:9.4f} {y:9.4f} {z:9.4f}")
+        add(f"  {clean(f['frame']):<{w}}  {x:9.4f} {y:9.4f} {z:9.4f}")
     return out

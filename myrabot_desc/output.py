@@ -5,6 +5,7 @@ On any failure nothing is left behind. ``-`` means standard output.
 
 from __future__ import annotations
 
+import errno
 import os
 import sys
 from pathlib import Path
@@ -96,6 +97,10 @@ def write_outputs(items, protect=()) -> None:
                     fh.write(data.encode("utf-8") if isinstance(data, str) else data)
             except OSError as exc:
                 raise InputError(f"cannot write {target}: {exc.strerror}", Loc(str(target))) from None
+        # /dev/null, a terminal, a FIFO: written before any staged file is renamed into place, so that
+        # a failure there (/dev/full, a FIFO with no reader) leaves no file of the transaction behind
+        for target, data in direct:
+            _write_direct(target, data)
         for tmp, target in staged:
             os.replace(tmp, target)
     except BaseException:
@@ -110,18 +115,37 @@ def write_outputs(items, protect=()) -> None:
             except OSError:
                 break
         raise
-    for target, data in direct:
-        try:
-            with open(target, "ab") as fh:      # appended to what fd 1 already holds; no truncation
-                fh.write(data.encode("utf-8") if isinstance(data, str) else data)
-        except OSError as exc:
-            raise InputError(f"cannot write {target}: {exc.strerror}", Loc(str(target))) from None
     for data in to_stdout:
         if isinstance(data, bytes):
             sys.stdout.buffer.write(data)
         else:
             sys.stdout.write(data)
         sys.stdout.flush()
+
+
+def _write_direct(target: Path, data) -> None:
+    """Write into a device or FIFO (appended: no truncation of what fd 1 already holds). Opened
+    without blocking: a FIFO nobody reads is refused at once (ENXIO) instead of hanging."""
+    import fcntl
+
+    try:
+        fd = os.open(target, os.O_WRONLY | os.O_APPEND | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0))
+    except OSError as exc:
+        if exc.errno == errno.ENXIO:
+            raise InputError(f"refusing to write {target}: a FIFO that nothing reads (it would block)",
+                             Loc(str(target))) from None
+        raise InputError(f"cannot write {target}: {exc.strerror}", Loc(str(target))) from None
+    try:
+        flags = fcntl.fcntl(fd, fcntl.F_GETFL)
+        fcntl.fcntl(fd, fcntl.F_SETFL, flags & ~os.O_NONBLOCK)   # a reader is there: write it all
+        with os.fdopen(fd, "ab") as fh:
+            fd = None
+            fh.write(data.encode("utf-8") if isinstance(data, str) else data)
+    except OSError as exc:
+        raise InputError(f"cannot write {target}: {exc.strerror}", Loc(str(target))) from None
+    finally:
+        if fd is not None:
+            os.close(fd)
 
 
 class OutputDir:

@@ -50,14 +50,30 @@ LIMITS: tuple[Limit, ...] = (
           "most macro calls in one build (5x the 4,000-call benchmark)"),
     Limit("max_output_elements", "MYRABOT_DESC_MAX_ELEMENTS", 200_000, "--max-elements",
           "most elements a build may produce, counted as macros expand"),
+    Limit("max_includes", "MYRABOT_DESC_MAX_INCLUDES", 1_000, "--max-includes",
+          "most includes one build processes, repeats counted (a file including the next twice, 25 deep: 2^25)"),
     Limit("max_eval_seconds", "MYRABOT_DESC_MAX_EVAL_SECONDS", 3, None,
-          "seconds all ${} expressions of one build may take together"),
-    Limit("max_mesh_bytes", "MYRABOT_DESC_MAX_MESH_BYTES", 50_000_000, None, "largest mesh file read"),
-    Limit("max_mesh_triangles", "MYRABOT_DESC_MAX_MESH_TRIANGLES", 2_000_000, None, "most triangles in one mesh"),
+          "CPU seconds all ${} expressions of one build may take together"),
+    Limit("max_manifest_bytes", "MYRABOT_DESC_MAX_MANIFEST_BYTES", 1_000_000, None,
+          "largest package.xml / manifest.xml read"),
+    Limit("max_mesh_bytes", "MYRABOT_DESC_MAX_MESH_BYTES", 50_000_000, None,
+          "largest mesh file read, and the most a compressed mesh (zip, gz, bz2, xz) may inflate to"),
+    Limit("max_mesh_triangles", "MYRABOT_DESC_MAX_MESH_TRIANGLES", 2_000_000, None,
+          "most triangles (and polygon corners) in one mesh, counted while reading"),
+    Limit("max_mesh_elements", "MYRABOT_DESC_MAX_MESH_ELEMENTS", 500_000, None,
+          "most XML elements in one COLLADA mesh"),
+    Limit("max_texture_pixels", "MYRABOT_DESC_MAX_TEXTURE_PIXELS", 16_777_216, None,
+          "largest texture image read (pixels: 4096x4096)"),
     Limit("max_material_bytes", "MYRABOT_DESC_MAX_MATERIAL_BYTES", 5 * 1024 * 1024, None,
           "largest OGRE material script (Gazebo's own gazebo.material is 24 kB)"),
     Limit("max_mjcf_bodies", "MYRABOT_DESC_MAX_MJCF_BODIES", 2_000, None,
           "most links `convert --to mjcf` takes (2,000 links: ~2 s, 400 MB; 5,000: 12 s, 2 GB)"),
+    Limit("max_sim_steps", "MYRABOT_DESC_MAX_SIM_STEPS", 1_000_000, None,
+          "most time steps of one `sim` run (--duration x --rate)"),
+    Limit("max_render_pixels", "MYRABOT_DESC_MAX_RENDER_PIXELS", 4_194_304, None,
+          "largest `render --size` (pixels: 2048x2048)"),
+    Limit("max_render_frames", "MYRABOT_DESC_MAX_RENDER_FRAMES", 500, None,
+          "most link frames `render --frames` draws"),
 )
 LIMIT_ENV = {lim.field: lim.env for lim in LIMITS}
 
@@ -79,6 +95,22 @@ class Limits:
             setattr(self, lim.field, value if value else _env_int(lim.env, lim.default))
         if overrides:
             raise TypeError(f"unknown limits: {', '.join(overrides)}")
+
+
+def sim_steps(duration: float, rate: float) -> int:
+    """The time steps of a simulation of ``duration`` s at ``rate`` Hz, refused (InputError) past
+    ``max_sim_steps``: the programs keep every step's state (86,400 s at 100 kHz: out of memory),
+    and a default duration can come from the model (an arm that moves at 1e-9 rad/s)."""
+    import math
+
+    if not (math.isfinite(duration) and math.isfinite(rate)) or duration < 0 or rate <= 0:
+        raise InputError(f"a simulation of {duration:g} s at {rate:g} Hz cannot be run")
+    most = limit("max_sim_steps")
+    steps = duration * rate
+    if steps > most:
+        raise InputError(f"a simulation of {duration:g} s at {rate:g} Hz is {steps:.0f} steps, over the {most}-step "
+                         "limit (lower --duration or --rate, or raise MYRABOT_DESC_MAX_SIM_STEPS)")
+    return int(round(steps))
 
 
 def limits_help() -> str:
@@ -194,8 +226,7 @@ def check_path(path, roots=None, what: str = "file") -> Path:
     except (OSError, RuntimeError, ValueError):
         raise InputError(f"cannot read {_short(str(p), 120)}: unresolvable path") from None
     if roots is not None and not any(real == r or real.is_relative_to(r) for r in _real_roots(roots)):
-        if not _exists(real):
-            raise InputError(f"no such {what}: {_short(str(p), 200)}")
+        # the same answer whether or not the path exists: no message tells which files exist there
         raise PathRefused(f"refusing to read {_short(str(p), 200)}: outside the allowed folders (the input's "
                           "folder and package roots; use --allow-path DIR or -p NAME=DIR to allow it)")
     try:

@@ -7,11 +7,18 @@ the first folder with a ``myrabot-desc.toml`` (preferred) or a ``pyproject.toml`
 ``--config FILE`` uses one file for every input; ``--isolated`` reads none.
 
 Unknown keys, wrong types and unknown rule codes are errors at the key's file:line (exit 2).
+
+A configuration comes with the repository, so a pull request can change it: it may narrow what a
+check does, never widen what it may touch. Limits can only be lowered (a value above the one in
+force, the default or the runner's MYRABOT_DESC_MAX_* variable, is the one in force); folders
+(``allow-paths``, ``package-paths``, ``packages``) must lie inside the repository (the work tree
+holding the configuration, else its folder), symlinks resolved; the file, its tables and lists
+have bounded sizes. Globs are gitignore patterns (pathspec's translation) compiled once into a
+:class:`GlobSet`, matched in time linear in the files and the patterns.
 """
 
 from __future__ import annotations
 
-import fnmatch
 import os
 import re
 from dataclasses import dataclass, field
@@ -20,11 +27,15 @@ from pathlib import Path
 from myrabot_desc.checks.codes import closest, unknown_code_message
 from myrabot_desc.diagnostics import Loc
 from myrabot_desc.errors import InputError
-from myrabot_desc.safety import LIMITS, display
+from myrabot_desc.safety import LIMITS, display, limit, read_checked
 
 TOOL_TABLE = "myrabot-desc"
 OWN_NAME = "myrabot-desc.toml"
 MAX_CONFIG_BYTES = 1_000_000
+MAX_PATTERNS = 1_000          # globs of one key (exclude, per-file-ignores, args)
+MAX_UNINDEXED = 100           # of those, patterns with no literal part (tried on every file)
+MAX_ITEMS = 1_000             # codes, folders, packages, xacro args of one key
+MAX_NESTING = 16              # arrays and tables inside each other
 
 # key -> (kind, help); kinds: codes, bool, paths, str, table-codes, table-args, table-paths, table-limits
 KEYS = {
@@ -79,31 +90,108 @@ class Config:
         except ValueError:
             return None
 
-    def _matches(self, pattern: str, file: str | None) -> bool:
+    def _matching(self, which: str, patterns: list, file: str | None) -> list[int]:
+        """Indexes of the ``patterns`` (compiled once per configuration) matching ``file``."""
         rel = self._rel(file)
-        if rel is None or rel.startswith(".."):
-            return False
-        pat = pattern.rstrip("/")
-        return (fnmatch.fnmatchcase(rel, pat) or fnmatch.fnmatchcase(Path(rel).name, pat)
-                or rel.startswith(pat + "/"))
+        if rel is None or rel.startswith("..") or not patterns:
+            return []
+        sets = self.__dict__.setdefault("_globsets", {})
+        gs = sets.get(which)
+        if gs is None:
+            gs = sets[which] = GlobSet(patterns)
+        return gs.matching(rel)
 
     def ignores_for(self, file: str | None) -> list[str]:
         """The codes skipped for ``file``: ``ignore`` plus every matching per-file-ignores entry."""
         out = list(self.ignore)
-        for pattern, codes in self.per_file_ignores:
-            if self._matches(pattern, file):
-                out += codes
+        for i in self._matching("per-file-ignores", [p for p, _c in self.per_file_ignores], file):
+            out += self.per_file_ignores[i][1]
         return out
 
     def args_for(self, file: str | None) -> dict[str, str]:
         out: dict[str, str] = {}
-        for pattern, values in self.args:
-            if self._matches(pattern, file):
-                out.update(values)
+        for i in self._matching("args", [p for p, _v in self.args], file):
+            out.update(self.args[i][1])
         return out
 
     def excluded(self, file: str) -> bool:
-        return any(self._matches(p, file) for p in self.exclude)
+        return bool(self._matching("exclude", self.exclude, file))
+
+
+_GLOB_CHARS = set("*?[\\")
+
+
+class GlobSet:
+    """Gitignore-style patterns, compiled once (pathspec translates each to a regular expression).
+
+    ``matching(path)`` gives the indexes of the patterns that match, in time linear in the path's
+    length and the patterns that can match it: every pattern is indexed by one of its segments
+    that must equal, end or start a component of any path it matches (``robots/*.urdf`` by
+    ``.urdf`` as a suffix, ``build/**`` by ``build``), so a path only tries the patterns one of
+    its components selects, plus the few (MAX_UNINDEXED) that have no literal segment."""
+
+    def __init__(self, patterns):
+        import warnings
+
+        from pathspec.patterns.gitwildmatch import GitWildMatchPattern
+
+        self.regex = []
+        self.names: dict[str, list[int]] = {}
+        self.suffixes: dict[str, list[int]] = {}
+        self.prefixes: dict[str, list[int]] = {}
+        self.always: list[int] = []
+        for i, pat in enumerate(patterns):
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", DeprecationWarning)
+                regex, include = GitWildMatchPattern.pattern_to_regex(pat)
+            if regex is None or not include:
+                self.regex.append(None)
+                continue
+            self.regex.append(re.compile(regex))
+            kind, key = _index_key(pat)
+            if kind is None:
+                self.always.append(i)
+            else:
+                index = {"name": self.names, "suffix": self.suffixes, "prefix": self.prefixes}[kind]
+                index.setdefault(key, []).append(i)
+        self.suffix_lengths = sorted({len(k) for k in self.suffixes})
+        self.prefix_lengths = sorted({len(k) for k in self.prefixes})
+
+    def matching(self, path: str) -> list[int]:
+        cands = set(self.always)
+        for comp in path.split("/"):
+            cands.update(self.names.get(comp, ()))
+            n = len(comp)
+            for k in self.suffix_lengths:
+                if k > n:
+                    break
+                cands.update(self.suffixes.get(comp[n - k:], ()))
+            for k in self.prefix_lengths:
+                if k > n:
+                    break
+                cands.update(self.prefixes.get(comp[:k], ()))
+        return sorted(i for i in cands if self.regex[i] is not None and self.regex[i].search(path))
+
+
+def _index_key(pattern: str):
+    """(kind, key) of the most selective segment of a gitignore pattern that a component of any
+    matching path must equal (name), end with (suffix) or start with (prefix); (None, None) when
+    no segment is such."""
+    best = (None, None, -1)
+    for seg in pattern.strip("/").split("/"):
+        if not seg or seg == "**":
+            continue
+        if not _GLOB_CHARS & set(seg):
+            cand = ("name", seg, 3 * len(seg) + 2)
+        elif seg[0] == "*" and len(seg) > 1 and not _GLOB_CHARS & set(seg[1:]):
+            cand = ("suffix", seg[1:], 3 * len(seg) + 1)
+        elif seg[-1] == "*" and len(seg) > 1 and not _GLOB_CHARS & set(seg[:-1]):
+            cand = ("prefix", seg[:-1], 3 * len(seg))
+        else:
+            continue
+        if cand[2] > best[2]:
+            best = cand
+    return best[0], best[1]
 
 
 def _line_of(text: str, key: str, table: str | None = None) -> int | None:
@@ -132,6 +220,20 @@ class _Reader:
     def __init__(self, path: Path, text: str, table: str | None):
         self.path, self.text, self.table = path, text, table
 
+    def globs(self, key: str, patterns: list) -> None:
+        """At most MAX_PATTERNS patterns, MAX_UNINDEXED of them without a literal segment; no
+        negation (``!``)."""
+        self.bounded(key, patterns, MAX_PATTERNS)
+        unindexed = 0
+        for p in patterns:
+            if p.startswith("!"):
+                self.fail(key, f"{key}: negated patterns ({p!r}) are not supported")
+            if _index_key(p)[0] is None:
+                unindexed += 1
+        if unindexed > MAX_UNINDEXED:
+            self.fail(key, f"{key}: {unindexed} patterns without a literal part (like '*' or '?x'); at most "
+                      f"{MAX_UNINDEXED} are allowed")
+
     def fail(self, key: str, message: str, within: str | None = None):
         line = _line_of(self.text, key, within or self.table)
         raise InputError(message, Loc(_display(self.path), line))
@@ -141,6 +243,7 @@ class _Reader:
             value = [c for c in value.split(",")]
         if not isinstance(value, list) or not all(isinstance(c, str) for c in value):
             self.fail(key, f"{key}: expected a list of rule codes, e.g. [\"I008\", \"G\"]")
+        self.bounded(key, value)
         out = [c.strip().upper() for c in value if c.strip()]
         for c in out:
             msg = unknown_code_message(c, known())
@@ -148,16 +251,70 @@ class _Reader:
                 self.fail(key, f"{key}: {msg}")
         return out
 
+    def bounded(self, key: str, value, most: int = MAX_ITEMS) -> None:
+        if len(value) > most:
+            self.fail(key, f"{key}: {len(value)} entries, at most {most} are allowed")
+
     def path_list(self, key: str, value) -> list[str]:
         if isinstance(value, str):
             value = [value]
         if not isinstance(value, list) or not all(isinstance(p, str) for p in value):
             self.fail(key, f"{key}: expected a list of folders")
-        return [str((self.path.parent / p).resolve()) for p in value]
+        self.bounded(key, value)
+        return [self.inside(key, p) for p in value]
+
+    def inside(self, key: str, folder: str) -> str:
+        """``folder`` (relative to the configuration's folder) resolved, refused unless it lies in
+        the repository: a configuration may not open the runner's other files to the build."""
+        top = repository_root(self.path)
+        try:
+            real = (self.path.parent / folder).resolve()
+        except (OSError, RuntimeError, ValueError):
+            self.fail(key, f"{key}: cannot resolve {folder!r}")
+        if real != top and not real.is_relative_to(top):
+            self.fail(key, f"{key}: {folder!r} is outside the repository ({display(top)}); a configuration "
+                      "may name folders inside it only (give --allow-path / -p on the command line instead)")
+        return str(real)
 
 
 def _display(path: Path) -> str:
     return display(path)
+
+
+def repository_root(config: Path) -> Path:
+    """The work tree holding ``config`` (the nearest folder above it with a ``.git``), else the
+    configuration's own folder; symlinks resolved."""
+    here = config.resolve().parent
+    for folder in [here, *here.parents]:
+        if (folder / ".git").exists():
+            return folder
+    return here
+
+
+def _nesting_line(text: str) -> int | None:
+    """The line where arrays or inline tables first nest deeper than MAX_NESTING (outside strings,
+    roughly: TOML strings are skipped when quoted on one line)."""
+    depth = 0
+    line = 1
+    quote = None
+    for ch in text:
+        if ch == "\n":
+            line += 1
+            quote = None if quote in ('"', "'") else quote
+            continue
+        if quote:
+            if ch == quote:
+                quote = None
+            continue
+        if ch in "\"'":
+            quote = ch
+        elif ch in "[{":
+            depth += 1
+            if depth > MAX_NESTING:
+                return line
+        elif ch in "]}":
+            depth = max(0, depth - 1)
+    return None
 
 
 def read_config(path: Path, known_codes) -> Config | None:
@@ -168,19 +325,25 @@ def read_config(path: Path, known_codes) -> Config | None:
     except ModuleNotFoundError:          # Python 3.10
         import tomli as tomllib
 
+    try:      # the path gate: a regular file (no FIFO or device), read no further than the limit
+        data = read_checked(path, None, MAX_CONFIG_BYTES, what="configuration")
+    except InputError as exc:
+        msg = exc.message.replace("(see MYRABOT_DESC_MAX_INPUT_BYTES)", "").strip()
+        raise InputError(f"cannot read configuration: {msg}", Loc(_display(path))) from None
     try:
-        if path.stat().st_size > MAX_CONFIG_BYTES:
-            raise InputError(f"configuration over {MAX_CONFIG_BYTES} bytes", Loc(_display(path)))
-        text = path.read_text(encoding="utf-8")
-    except OSError as exc:
-        raise InputError(f"cannot read configuration: {exc.strerror}", Loc(_display(path))) from None
+        text = data.decode("utf-8")
     except UnicodeDecodeError:
         raise InputError("configuration is not UTF-8 text", Loc(_display(path))) from None
+    deep = _nesting_line(text)
+    if deep is not None:
+        raise InputError(f"arrays or tables nest deeper than {MAX_NESTING}", Loc(_display(path), deep))
     try:
         doc = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         m = re.search(r"line (\d+)", str(exc))
         raise InputError(f"invalid TOML: {exc}", Loc(_display(path), int(m.group(1)) if m else None)) from None
+    except RecursionError:
+        raise InputError("arrays or tables nest too deeply", Loc(_display(path), _nesting_line(text))) from None
     if path.name == "pyproject.toml":
         table = doc.get("tool", {}).get(TOOL_TABLE) if isinstance(doc.get("tool"), dict) else None
         if table is None:
@@ -212,6 +375,7 @@ def read_config(path: Path, known_codes) -> Config | None:
                 value = [value]
             if not isinstance(value, list) or not all(isinstance(p, str) for p in value):
                 r.fail(key, f"{key}: expected a list of glob patterns")
+            r.globs(key, value)
             cfg.exclude = list(value)
         elif kind == "str":
             if not isinstance(value, str):
@@ -220,16 +384,20 @@ def read_config(path: Path, known_codes) -> Config | None:
         elif not isinstance(value, dict):
             r.fail(key, f"{key}: expected a table")
         elif kind == "table-codes":
+            r.globs(key, list(value))
             cfg.per_file_ignores = [(g, _Reader(path, text, sub).codes(g, v, known_codes)) for g, v in value.items()]
         elif kind == "table-paths":
+            r.bounded(key, value)
             for name, p in value.items():
                 if not isinstance(p, str):
                     _Reader(path, text, sub).fail(name, f"{key}.{name}: expected a folder (a string)")
-                cfg.packages[name] = str((path.parent / p).resolve())
+                cfg.packages[name] = _Reader(path, text, sub).inside(name, p)
         elif kind == "table-args":
+            r.globs(key, list(value))
             for glob, values in value.items():
                 if not isinstance(values, dict):
                     _Reader(path, text, sub).fail(glob, f"{key}.{glob}: expected a table of xacro args")
+                _Reader(path, text, sub).bounded(glob, values)
                 cfg.args.append((glob, {str(k): _scalar(v) for k, v in values.items()}))
         elif kind == "table-limits":
             names = {lim.field.replace("_", "-"): lim.field for lim in LIMITS}
@@ -241,7 +409,8 @@ def read_config(path: Path, known_codes) -> Config | None:
                                                                f" (known: {', '.join(names)})"))
                 if isinstance(v, bool) or not isinstance(v, int) or v <= 0:
                     rr.fail(name, f"limits.{name}: expected a positive whole number")
-                cfg.limits[names[name]] = v
+                # lowered only: raising a limit is the runner's decision (flag or environment)
+                cfg.limits[names[name]] = min(v, limit(names[name]))
     return cfg
 
 
@@ -262,7 +431,7 @@ class Finder:
         self.fixed: Config | None = None
         if config_file is not None:
             p = Path(config_file)
-            if not p.is_file():
+            if not p.exists():
                 raise InputError(f"--config {config_file}: no such file")
             cfg = read_config(p, known_codes)
             if cfg is None:

@@ -117,11 +117,13 @@ EXTERNAL_RULES: dict[str, ExternalRule] = {r.code: r for r in (
                 note="parts.xacro exists both next to the model and one folder up.")),
     ExternalRule(
         "X007", "environment-dependent", "info",
-        "The build read $(env VAR)/$(optenv VAR): its output depends on the environment (values listed).",
+        "The build read $(env VAR)/$(optenv VAR): its output depends on the environment (variables listed).",
         "A model that reads `$(env VAR)` or `$(optenv VAR default)` builds differently on each machine "
-        "and CI runner. The finding lists each variable and the value this build used (\"(unset: "
-        "default)\" when `$(optenv)` fell back to its default); past eight variables it counts them and "
-        "names eight set and eight unset ones, and the JSON output's `data.environment` has them all.",
+        "and CI runner. The finding lists each variable: \"(set)\" when the environment gave it (its value "
+        "is never printed: a model could otherwise print a CI secret into a report or a log; "
+        "MYRABOT_DESC_SHOW_ENV_VALUES=1 shows it), the default when `$(optenv)` fell back to it; past "
+        "eight variables it counts them and names eight set and eight unset ones, and the JSON output's "
+        "`data.environment` has them all (null for a set one).",
         "Pin the values: make them xacro args (`NAME:=VALUE`, or `args` in the configuration) or set "
         "them in the CI job; `--no-env` refuses the lookups.",
         Example(_ROBOT + '  <link name="$(optenv MYRABOT_EXAMPLE_BASE base_link)"/>\n</robot>\n',

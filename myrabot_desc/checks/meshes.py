@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from myrabot_desc.checks.examples import tetrahedron_stl
 from myrabot_desc.checks.rule import Finding, rule
-from myrabot_desc.expand.packages import split_package_uri
+from myrabot_desc.expand.packages import split_package_uri, unresolved_reason
+from myrabot_desc.model.meshes import unreadable
 
 
 def _shell(geometry: str, kind: str = "collision", name: str = "cover") -> str:
@@ -61,11 +62,41 @@ def mesh_resolves(ctx):
             p = Path(raw)
             if not p.is_absolute() and r.source is not None:
                 p = r.source.parent / p
-            why = f"no such file {p}"
+            # outside the roots: the same words whether or not such a file exists
+            reason = unresolved_reason(g.filename, r.package_roots, r.source.parent if r.source else Path.cwd())
+            why = f"{p} is {reason}" if reason == "outside the allowed folders" else f"no such file {p}"
         n = sum(1 for _l, _k, i in _mesh_uses(ctx) if i.geometry.filename == g.filename)
         yield Finding(f"mesh {g.filename} ({kind} of {link.name}{f', used {n}×' if n > 1 else ''}) cannot be "
                       f"resolved: {why}", it.loc or link.loc,
                       {"filename": g.filename, "link": link.name, "package": parts[0] if parts else None})
+
+
+@rule("M005", "collision-mesh-readable", "error",
+      bad=_shell('<mesh filename="meshes/cover.stl"/>'),
+      message="collision mesh meshes/cover.stl of cover cannot be read: cover.stl: the STL header announces "
+              "1651663207 triangles, over the 2000000 limit (MYRABOT_DESC_MAX_MESH_TRIANGLES)",
+      good=_shell('<mesh filename="meshes/cover_ok.stl"/>'),
+      files={"meshes/cover.stl": "garbage " * 23, "meshes/cover_ok.stl": tetrahedron_stl(0.1)},
+      note="meshes/cover.stl: 184 bytes of text that are no mesh; meshes/cover_ok.stl: a 0.1 m tetrahedron.")
+def collision_mesh_readable(ctx):
+    """Every collision mesh that resolves is a mesh a reader can take (within the mesh limits).
+
+    A collision mesh that is empty, truncated, not a mesh at all or over the limits gives the link
+    no collision in any simulator (gz-sim and MuJoCo refuse or skip it), and `convert` refuses the
+    model. Checked without loading the triangles (the header and structure of the file), so it
+    runs on every check. Fix: re-export the mesh, or point at the right file.
+    """
+    seen: dict = {}
+    for link, kind, it in _mesh_uses(ctx):
+        g = it.geometry
+        if kind != "collision" or g.path is None or not g.path.is_file():
+            continue                    # M001 reports a mesh that does not resolve
+        if g.path not in seen:
+            seen[g.path] = unreadable(g.path)
+            why = seen[g.path]
+            if why:
+                yield Finding(f"collision mesh {g.filename} of {link.name} cannot be read: {why}", it.loc or link.loc,
+                              {"filename": g.filename, "link": link.name})
 
 
 def _loaded(ctx, g, kind="collision"):

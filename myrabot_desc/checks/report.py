@@ -16,6 +16,7 @@ from myrabot_desc.checks.registry import EXTERNAL, RULES, load_all
 from myrabot_desc.diagnostics import Loc
 from myrabot_desc.errors import InputError
 from myrabot_desc.expand.packages import bundled_path
+from myrabot_desc.sanitize import clean, json_safe
 
 JSON_SCHEMA = "myrabot-desc/check-report/1"
 SARIF_LEVEL = {"error": "error", "warning": "warning", "info": "note"}
@@ -72,7 +73,7 @@ def _rel(path: str, cwd: str) -> str:
 def where(d) -> str:
     if d.loc is None:
         return ""
-    f = rel(d.loc.file)
+    f = clean(rel(d.loc.file))
     return f"{f}:{d.loc.line}" if d.loc.line else f
 
 
@@ -103,12 +104,13 @@ def render_text(results, color: bool | None = None, quiet: bool = False) -> str:
     lines: list[str] = []
     many = len(results) > 1 and not quiet
     for r in results:
-        name = rel(r.file) or "(bundled MYRAbot)"
+        # every field below may quote the model or a file name: clean() makes each one printable line
+        name = clean(rel(r.file) or "(bundled MYRAbot)")
         if r.failure:
-            lines.append(style(r.failure, **STYLE["error"]))
+            lines.append(style(clean(r.failure), **STYLE["error"]))
             continue
         if many or r.diagnostics:
-            lines.append(style(f"{name}", bold=True) + f": robot {r.robot or '?'}, "
+            lines.append(style(f"{name}", bold=True) + f": robot {clean(r.robot or '?')}, "
                          f"{_plural(r.links, 'link')}, {_plural(r.joints, 'joint')}")
         for sev in ("error", "warning", "info"):
             ds = [d for d in r.diagnostics if d.severity == sev]
@@ -117,12 +119,13 @@ def render_text(results, color: bool | None = None, quiet: bool = False) -> str:
             lines.append(style(f"  {sev}s ({len(ds)})" if sev != "info" else f"  info ({len(ds)})", **STYLE[sev]))
             for d in ds:
                 w = where(d)
-                lines.append(f"    {w + ': ' if w else ''}" + style(d.code, **STYLE[sev]) + f" {d.message}")
+                lines.append(f"    {w + ': ' if w else ''}" + style(clean(d.code), **STYLE[sev])
+                             + f" {clean(d.message)}")
         if r.suggestions:
             lines.append(style("  suggested inertias (solid body of the collision geometry at the declared "
                                      "mass, in the inertial frame):", bold=True))
             for link, line in r.suggestions:
-                lines.append(f"    {link}: {line}")
+                lines.append(f"    {clean(link)}: {clean(line)}")
     if quiet:
         return "".join(line + "\n" for line in lines)
     t = totals(results)
@@ -176,11 +179,23 @@ def render_json(results, version: str) -> str:
         if r.fixes is not None:
             entry["fixes"] = _plain(r.fixes)
         doc["files"].append(entry)
-    return json.dumps(doc, indent=2, ensure_ascii=False) + "\n"
+    return json.dumps(_json_safe(doc), indent=2, ensure_ascii=False) + "\n"
+
+
+def _json_safe(x):
+    """Every string of a report UTF-8-encodable (a non-UTF-8 file name's bytes escaped)."""
+    if isinstance(x, str):
+        return json_safe(x)
+    if isinstance(x, dict):
+        return {_json_safe(k): _json_safe(v) for k, v in x.items()}
+    if isinstance(x, list):
+        return [_json_safe(v) for v in x]
+    return x
 
 
 # ---------------------------------------------------------------- github
 def _gh_escape(s: str, prop: bool = False) -> str:
+    s = clean(s)        # no terminal escapes or other control characters in a CI log
     s = s.replace("%", "%25").replace("\r", "%0D").replace("\n", "%0A")
     if prop:
         s = s.replace(":", "%3A").replace(",", "%2C")
@@ -202,7 +217,7 @@ def render_github(results) -> str:
             if d.loc and d.loc.line:
                 props.append(f"line={d.loc.line}")
             props.append(f"title={_gh_escape(d.code + ' ' + (d.data.get('rule') or _rule_name(d.code)), True)}")
-            out.append(f"::{GITHUB_LEVEL[d.severity]} {','.join(props)}::{_gh_escape(d.message)}")
+            out.append(f"::{GITHUB_LEVEL.get(d.severity, 'error')} {','.join(props)}::{_gh_escape(d.message)}")
     t = totals(results)
     out.append(f"{t['errors']} errors, {t['warnings']} warnings, {t['info']} info in {t['files']} files")
     return "\n".join(out) + "\n"
@@ -241,7 +256,11 @@ SARIF_SCHEMA = "https://docs.oasis-open.org/sarif/sarif/v2.1.0/errata01/os/schem
 
 
 def _uri(path: str) -> str:
-    return Path(rel(path)).as_posix()
+    """A SARIF artifact URI: the relative path, percent-encoded (RFC 3986; a file name's
+    undecodable bytes too)."""
+    from urllib.parse import quote
+
+    return quote(os.fsencode(Path(rel(path)).as_posix()), safe="/")
 
 
 def render_sarif(results, version: str, exit_code: int = 0, help_url: str | None = None,
@@ -278,7 +297,7 @@ def render_sarif(results, version: str, exit_code: int = 0, help_url: str | None
                           "descriptor": {"id": "X000", "index": index["X000"]}})
             continue
         for d in r.diagnostics:
-            item = {"ruleId": d.code, "level": SARIF_LEVEL[d.severity], "message": {"text": d.message}}
+            item = {"ruleId": d.code, "level": SARIF_LEVEL.get(d.severity, "error"), "message": {"text": d.message}}
             if d.code in index:
                 item["ruleIndex"] = index[d.code]
             item["locations"] = [location(d.loc.file, d.loc.line) if d.loc and d.loc.file else location(_input(r), None)]
@@ -302,7 +321,7 @@ def render_sarif(results, version: str, exit_code: int = 0, help_url: str | None
            "columnKind": "unicodeCodePoints",
            "results": res}
     doc = {"$schema": SARIF_SCHEMA, "version": "2.1.0", "runs": [run]}
-    return json.dumps(doc, indent=2, ensure_ascii=False) + "\n"
+    return json.dumps(_json_safe(doc), indent=2, ensure_ascii=False) + "\n"
 
 
 def sarif_fix(f: dict, location) -> dict:

@@ -67,6 +67,7 @@ class Task(NamedTuple):
     limits: tuple               # ((MYRABOT_DESC_MAX_* variable, value), ...) from the configuration
     strict: bool
     cache_dir: str | None
+    config: str | None = None   # the configuration file in force (its content keys the cache)
 
 
 def check_one(task: Task):
@@ -86,15 +87,16 @@ def check_one(task: Task):
             cached = cache.lookup(task)
         if cached is not None:
             return cached
-        robot = load_robot(path, **task.build)
-        diags, ctx = check_robot(robot, task.options, task.select, task.ignore, unused=False)
+        with cache.Recorder() if task.cache_dir else nullcontext() as read:
+            robot = load_robot(path, **task.build)
+            diags, ctx = check_robot(robot, task.options, task.select, task.ignore, unused=False)
         res.diagnostics = diags
         res.suppressions_seen, res.suppressions_used = ctx.suppressions_seen, ctx.suppressions_used
         res.robot = robot.name
         res.links, res.joints = len(robot.links), len(robot.joints)
         res.suggestions = list(ctx.suggestions)
         if task.cache_dir:
-            cache.store(task, robot, res)
+            cache.store(task, robot, res, read.paths)
     except InputError as exc:
         res.failure = str(exc).splitlines()[0]
         res.failure_loc = exc.loc or Loc(path or "")
@@ -228,7 +230,7 @@ def exit_code(results) -> int:
 
 
 def plan(inputs, inertia, suggest, meshes, select, ignore, strict, recursive, config_file, isolated, shard_spec,
-         no_cache):
+         no_cache, cache_dir=None):
     """The task list: inputs expanded, configuration applied per file, the shard taken
     (UsageProblem for a code, shard or folder that does not fit)."""
     cache.reset()
@@ -246,7 +248,9 @@ def plan(inputs, inertia, suggest, meshes, select, ignore, strict, recursive, co
         paths = [p for p in paths if p in given or not finder.for_file(p).excluded(p)]
     if part:
         paths = shard(paths, *part)
-    cache_env = os.environ.get("MYRABOT_DESC_CACHE_DIR")
+    # the cache folder is the runner's choice (--cache-dir, MYRABOT_DESC_CACHE_DIR), else the user's
+    # cache folder: never one a repository names
+    cache_home = cache_dir or os.environ.get("MYRABOT_DESC_CACHE_DIR") or cache.default_dir()
     tasks, help_url = [], None
     for p in paths:
         cfg = finder.for_file(p)
@@ -261,9 +265,9 @@ def plan(inputs, inertia, suggest, meshes, select, ignore, strict, recursive, co
         use_inertia = inertia or suggest or cfg.inertia
         options = CheckOptions(inertia=use_inertia, suggest=suggest, meshes=meshes or cfg.meshes)
         limits = tuple((LIMIT_ENV[k], v) for k, v in sorted(cfg.limits.items()))
-        cache_dir = None         # a project (a configuration file) opts in, as ruff's .ruff_cache
-        if not no_cache and cfg.cache:
-            cache_dir = cache_env or (str(cfg.root / ".myrabot-desc-cache") if cfg.path else None)
+        use_cache = None         # a project (a configuration file) opts in, or the runner names a folder
+        if not no_cache and cfg.cache and (cfg.path or cache_dir or os.environ.get("MYRABOT_DESC_CACHE_DIR")):
+            use_cache = cache_home
         tasks.append(Task(p, build, options, tuple(sel or cfg.select), tuple(cfg.ignores_for(p) + ign), limits,
-                          strict or cfg.strict, cache_dir))
+                          strict or cfg.strict, use_cache, str(cfg.path) if cfg.path else None))
     return tasks, help_url

@@ -17,16 +17,51 @@ code the run checked) is reported as X009, like ruff's RUF100.
 
 from __future__ import annotations
 
-import re
 from pathlib import Path
 from typing import NamedTuple
 
 from myrabot_desc.checks.codes import known_codes, unknown_code_message
 from myrabot_desc.diagnostics import Diagnostic, Loc, sort_diagnostics
-from myrabot_desc.safety import limit, safe_parser
+from myrabot_desc.errors import InputError
+from myrabot_desc.safety import limit, read_checked, safe_parser
 
-COMMENT_RE = re.compile(r"myrabot-desc:\s*(ignore-file|ignore)\s*\[([^\]]*)\]")
 MARKER = b"myrabot-desc:"
+_WS = " \t\r\n\f\v"
+
+
+def comment_suppressions(text: str):
+    """(kind, codes text) of every ``myrabot-desc: ignore[...]`` / ``ignore-file[...]`` in a comment,
+    as the pattern ``myrabot-desc:\\s*(ignore-file|ignore)\\s*\\[([^\\]]*)\\]`` finds them, in one
+    pass: each character is looked at a bounded number of times (a regular expression retried at
+    every repeated marker of an unclosed comment is quadratic)."""
+    out = []
+    marker = "myrabot-desc:"
+    pos, n = 0, len(text)
+    close = -1                       # the first ']' at or after the last place looked from
+    while True:
+        p = text.find(marker, pos)
+        if p < 0:
+            return out
+        q = p + len(marker)
+        while q < n and text[q] in _WS:
+            q += 1
+        kind = "ignore-file" if text.startswith("ignore-file", q) else "ignore" if text.startswith("ignore", q) \
+            else None
+        if kind is None:
+            pos = p + 1
+            continue
+        q += len(kind)
+        while q < n and text[q] in _WS:
+            q += 1
+        if q >= n or text[q] != "[":
+            pos = p + 1
+            continue
+        if close <= q:
+            close = text.find("]", q + 1)
+            if close < 0:
+                return out               # no ']' after here: no later marker can close either
+        out.append((kind, text[q + 1:close]))
+        pos = close + 1
 
 
 class Suppression(NamedTuple):
@@ -55,10 +90,10 @@ def suppressions_in(file: str) -> list[Suppression]:
     out: list[Suppression] = []
     try:
         if st.st_size <= limit("max_input_bytes"):
-            data = p.read_bytes()
+            data = read_checked(p, None, limit("max_input_bytes"))   # a regular file, bounded
             if MARKER in data:
                 out = _parse(data, file)
-    except OSError:
+    except (OSError, InputError):
         pass
     _cache[key] = out
     return out
@@ -73,37 +108,104 @@ def _parse(data: bytes, file: str) -> list[Suppression]:
         return []
     comments = list(root.itersiblings(etree.Comment, preceding=True)) + list(root.iter(etree.Comment)) + \
         list(root.itersiblings(etree.Comment))
+    found = [(c, kind, body) for c in comments if MARKER.decode() in (c.text or "")
+             for kind, body in comment_suppressions(c.text or "")]
+    if not found:
+        return []
+    # linear facts of the tree, once: each element's last line (its subtree's), each comment's next
+    # element sibling (20,000 comments in a row asked for it 20,000 times)
+    ends: dict = {}
+    for el in reversed(list(root.iter())):     # children come after their parent in document order
+        if isinstance(el.tag, str):
+            ln = el.sourceline or 0
+            for ch in el:
+                if isinstance(ch.tag, str):
+                    ln = max(ln, ends[ch])
+            ends[el] = ln
+    following: dict = {}
+
+    def next_element(c):
+        if c not in following:
+            parent = c.getparent()
+            sibs = list(parent) if parent is not None else \
+                list(root.itersiblings(preceding=True))[::-1] + [root] + list(root.itersiblings())
+            nxt = None
+            for sib in reversed(sibs):
+                if isinstance(sib.tag, str):
+                    nxt = sib
+                else:
+                    following[sib] = nxt
+        return following.get(c)
+
     out = []
-    for c in comments:
-        for m in COMMENT_RE.finditer(c.text or ""):
-            codes = tuple(x.strip().upper() for x in m.group(2).split(",") if x.strip())
-            if not codes:
-                continue
-            line = c.sourceline or 1
-            if m.group(1) == "ignore-file":
-                out.append(Suppression(file, line, codes, 1, 10**9, True))
-                continue
-            target = _target(c, root)
-            start = target.sourceline or line
-            end = max((e.sourceline or start) for e in target.iter())
-            out.append(Suppression(file, line, codes, start, end, False))
+    for c, kind, body in found:
+        codes = tuple(x.strip().upper() for x in body.split(",") if x.strip())
+        if not codes:
+            continue
+        line = c.sourceline or 1
+        if kind == "ignore-file":
+            out.append(Suppression(file, line, codes, 1, 10**9, True))
+            continue
+        target = _target(c, root, next_element)
+        start = target.sourceline or line
+        end = max(ends.get(target, start), start)
+        out.append(Suppression(file, line, codes, start, end, False))
     return out
 
 
-def _target(comment, root):
+def _target(comment, root, next_element):
     """The element a comment applies to (see the module docstring)."""
     parent = comment.getparent()
     last_line = (comment.sourceline or 0) + (comment.text or "").count("\n")
     if parent is not None and parent.sourceline == comment.sourceline:
         return parent
-    nxt = comment.getnext()
-    while nxt is not None and not isinstance(nxt.tag, str):
-        nxt = nxt.getnext()
+    nxt = next_element(comment)
     if nxt is not None and nxt.sourceline is not None and nxt.sourceline <= last_line + 1:
         return nxt
     if parent is None:                 # a comment outside <robot>: the whole document
         return root
     return parent
+
+
+def _first_covering(diags, by_file) -> list:
+    """For each finding, the first suppression of its file (in file order) that covers it (as
+    :func:`covers`), or None: one sweep over the lines of each file, with the suppressions in
+    force kept per code prefix in heaps, so that n findings and m suppressions cost
+    O((n + m) log m) instead of n x m."""
+    import heapq
+
+    out = [None] * len(diags)
+    wanted: dict[str, list] = {}
+    for i, d in enumerate(diags):
+        if d.loc is not None and d.loc.file in by_file:
+            wanted.setdefault(d.loc.file, []).append(i)
+    for file, idx in wanted.items():
+        sups = by_file[file]
+        order = sorted(range(len(sups)), key=lambda k: sups[k].start)
+        pending = 0
+        active: dict[str, list] = {}          # code prefix -> heap of (file order, end)
+        # a finding without a line is covered by whole-file suppressions only
+        nolines = [i for i in idx if diags[i].loc.line is None]
+        for i in nolines:
+            d = diags[i]
+            out[i] = next((s for s in sups if s.whole_file and any(d.code.startswith(c) for c in s.codes)), None)
+        for i in sorted((i for i in idx if diags[i].loc.line is not None), key=lambda i: diags[i].loc.line):
+            d = diags[i]
+            line = d.loc.line
+            while pending < len(order) and sups[order[pending]].start <= line:
+                k = order[pending]
+                for c in set(sups[k].codes):
+                    heapq.heappush(active.setdefault(c, []), (k, sups[k].end))
+                pending += 1
+            best = None
+            for n in range(len(d.code) + 1):
+                heap = active.get(d.code[:n])
+                while heap and heap[0][1] < line:        # ended: lines only grow, it never covers again
+                    heapq.heappop(heap)
+                if heap and (best is None or heap[0][0] < best):
+                    best = heap[0][0]
+            out[i] = sups[best] if best is not None else None
+    return out
 
 
 def covers(s: Suppression, code: str, line: int | None) -> bool:
@@ -134,23 +236,21 @@ def apply(diags: list, robot, enabled) -> tuple[list, list, list]:
         return diags, [], []
     known = known_codes()
     kept, used = [], set()
-    for d in diags:
-        hit = None
-        if d.loc is not None:
-            for s in by_file.get(d.loc.file, ()):
-                if covers(s, d.code, d.loc.line):
-                    hit = s
-                    break
+    hits = _first_covering(diags, by_file)
+    for d, hit in zip(diags, hits):
         if hit is None:
             kept.append(d)
         else:
             code = next(c for c in hit.codes if d.code.startswith(c))
             used.add((hit.file, hit.line, code))
     seen = []
+    matches: dict[str, list] = {}
     for sups in by_file.values():
         for s in sups:
             for c in s.codes:
-                matching = [k for k in known if k.startswith(c)]
+                matching = matches.get(c)
+                if matching is None:
+                    matching = matches[c] = [k for k in known if k.startswith(c)]
                 if not matching:
                     kept.append(Diagnostic("X009", "warning", f"suppression: {unknown_code_message(c, known)}",
                                            Loc(s.file, s.line), {"rule": "unused-suppression", "code": c}))

@@ -19,6 +19,7 @@ from myrabot_desc.fix.report import summary, unified_diff
 from myrabot_desc.fix.run import fix_tasks
 from myrabot_desc.fix.write import write_fixed
 from myrabot_desc.output import write_output
+from myrabot_desc.sanitize import clean
 
 
 def _progressbar(results, length):
@@ -55,8 +56,11 @@ def _progressbar(results, length):
               help="Check only the K-th of N deterministic parts of the file list (a CI matrix job each).")
 @click.option("-q", "--quiet", is_flag=True, help="No progress bar; text reports only the findings.")
 @click.option("--no-cache", is_flag=True,
-              help="Do not read or write the result cache (.myrabot-desc-cache/ next to the configuration "
-                   "file, or MYRABOT_DESC_CACHE_DIR).")
+              help="Do not read or write the result cache (a project with a configuration file uses it; entries "
+                   "are kept in the user's cache folder, ~/.cache/myrabot-desc, and signed with a per-user key).")
+@click.option("--cache-dir", "cache_dir", type=click.Path(file_okay=False), metavar="DIR", default=None,
+              help="Keep the cache entries in DIR (e.g. a repository-local .myrabot-desc-cache) instead of the "
+                   "user's cache folder (or MYRABOT_DESC_CACHE_DIR); entries stay signed with the user's key.")
 @click.option("--merge-sarif", is_flag=True,
               help="The FILEs are SARIF reports (from --shard jobs): merge them into one report.")
 @click.option("--fix", "fix_", is_flag=True,
@@ -68,7 +72,8 @@ def _progressbar(results, length):
               help="Show the fixes as a unified diff and write nothing (exit 1 when there is something to fix).")
 @click.option("--list-rules", is_flag=True, help="List every rule code and exit.")
 def check_cmd(inputs, inertia, suggest, meshes, fmt, select, ignore, strict, output, recursive, config_file,
-              isolated, jobs, shard_spec, quiet, no_cache, merge_sarif, fix_, unsafe_fixes, diff_, list_rules):
+              isolated, jobs, shard_spec, quiet, no_cache, cache_dir, merge_sarif, fix_, unsafe_fixes, diff_,
+              list_rules):
     """Lint robot models: tree, inertia, sensors and frames, Gazebo plugins, meshes, physics.
 
     Each finding has a stable code (X build, T tree, I inertia, S sensors/frames,
@@ -115,7 +120,7 @@ def check_cmd(inputs, inertia, suggest, meshes, fmt, select, ignore, strict, out
             raise click.UsageError("--unsafe-fixes goes with --fix or --diff")
         try:
             tasks, help_url = plan(inputs, inertia, suggest, meshes, select, ignore, strict, recursive, config_file,
-                                   isolated, shard_spec, no_cache or fix_ or diff_)
+                                   isolated, shard_spec, no_cache or fix_ or diff_, cache_dir)
         except UsageProblem as exc:
             raise usage_error(exc) from None
         if fix_ or diff_:
@@ -132,7 +137,7 @@ def check_cmd(inputs, inertia, suggest, meshes, fmt, select, ignore, strict, out
             write_output(output, click.unstyle(text))
         for r in results:
             if r.failure and (fmt != "text" or output != "-"):
-                click.echo(r.failure, err=True)
+                click.echo(clean(r.failure), err=True)
     sys.exit(code)
 
 
@@ -168,5 +173,5 @@ def _fix(tasks, fmt, output, quiet, help_url, shard_spec, unsafe, write: bool) -
         click.echo(line, err=True)
     for r in results:
         if r.failure and (fmt != "text" or output != "-" or not write):
-            click.echo(r.failure, err=True)
+            click.echo(clean(r.failure), err=True)
     return code

@@ -12,6 +12,7 @@ import re
 import sys
 
 from myrabot_desc.errors import InputError
+from myrabot_desc.sanitize import clean
 
 _ANSI = None            # compiled on first use (a plain build rarely prints a style)
 
@@ -72,7 +73,26 @@ class guarded:
         if issubclass(exc_type, Exception):  # a bug of ours: still one line, still exit 2
             if os.environ.get("MYRABOT_DESC_DEBUG") or _is_click_exception(exc):
                 return False
-            echo(f"error: internal error ({type(exc).__name__}: {exc}); "
+            echo(f"error: internal error ({type(exc).__name__}: {clean(exc)}); "
                  "set MYRABOT_DESC_DEBUG=1 for a traceback and please report it")
             sys.exit(2)
         return False
+
+
+def no_mujoco_log() -> None:
+    """MuJoCo's default log writes MUJOCO_LOG.TXT into the working folder (and WARNING lines to
+    stdout) on a model's warnings: off for this process (its warnings still reach us through the
+    Python bindings, which the converters report)."""
+    import os
+
+    os.environ.setdefault("MUJOCO_GL", "disable")      # no GL probing (convert never renders)
+    try:
+        import mujoco
+    except ImportError:
+        return
+    config = getattr(mujoco, "MjLogConfig", None)
+    if config is not None:
+        cfg = config()
+        cfg.logto_file = False
+        cfg.logto_console = False
+        cfg.set()

@@ -4,14 +4,17 @@ from __future__ import annotations
 
 import click
 
+from myrabot_desc.checks import CheckOptions, check_robot
+from myrabot_desc.checks.registry import EXTERNAL, load_all
 from myrabot_desc.commands.common import input_options
-from myrabot_desc.commands.console import guarded
+from myrabot_desc.commands.console import guarded, no_mujoco_log
 from myrabot_desc.convert.mjcf import convert_mjcf
-from myrabot_desc.convert.preflight import problems, refuse_or_record
+from myrabot_desc.convert.preflight import Problem, problems, refuse_or_record, tree_problems
 from myrabot_desc.convert.report import Report
 from myrabot_desc.convert.sdf import SdfOptions, to_sdf
 from myrabot_desc.convert.world import to_world
 from myrabot_desc.output import write_output
+from myrabot_desc.sanitize import clean, clean_lines
 
 
 @click.command("convert")
@@ -40,8 +43,9 @@ from myrabot_desc.output import write_output
               help="Write what became of every element of the source (kept, translated, approximated, dropped, "
                    "with file:line): JSON if FILE ends in .json, else text.")
 @click.option("--allow-errors", is_flag=True,
-              help="Convert a model that has errors (no tree, unreadable values, unreadable collision meshes) "
-                   "anyway, leaving those parts out; the report lists them.")
+              help="Convert a model that `check` reports errors in (its tree, joint types, masses and inertias, "
+                   "meshes, sensors, the build) anyway: those parts are left out, repaired or read as the URDF "
+                   "default, each listed in the report and on stderr. Without it such a model is refused (exit 2).")
 @click.option("-q", "--quiet", is_flag=True, help="Do not print warnings.")
 def convert_cmd(inputs, target, output, lump, uri_style, layout, base, scene, report_path, allow_errors, quiet):
     """Convert a robot for today's simulators: gz-sim (SDF) or MuJoCo (MJCF).
@@ -82,10 +86,11 @@ def convert_cmd(inputs, target, output, lump, uri_style, layout, base, scene, re
     with guarded():
         robot = inputs.load()
         report = Report(target, str(robot.source) if robot.source else "")
-        found = problems(robot) if robot.links else []
+        found = refusals(robot) if robot.links else []
         if not allow_errors:
             refuse_or_record(found, False)
         if target == "mjcf":
+            no_mujoco_log()
             result = convert_mjcf(robot, output, base=base, scene="scene.xml" if scene else None, report=report,
                                   allow_errors=allow_errors)
             refuse_or_record(found, True, report, result.notes)
@@ -114,11 +119,43 @@ def _report(notes, quiet):
     if quiet:
         return
     for w in notes.warnings:
-        click.echo(w, err=True)
+        click.echo(clean(w), err=True)
 
 
 def _write_report(report, path, quiet):
     if path:
         write_output(path, report.render(path))
     if not quiet and report.entries:
-        click.echo(report.summary(), err=True)
+        click.echo(clean_lines(report.summary()), err=True)
+
+
+# check's rules on what convert writes: the tree and joint types, masses and inertias, geometry and
+# meshes, sensors, the joints the drive plugin names, the build itself (X). Not the whole robot's
+# physics verdicts (P: it tips over, its dynamics are singular), nor what convert translates
+# itself: the drive plugin's wheel numbers (G001/G002: it writes the ones measured on the URDF)
+# and ROS Electric sensor angles in degrees (S006: it converts them to radians).
+CONVERT_CHECKS = ("T", "I", "M", "X", "S001", "S002", "S005", "G003", "G004", "G005", "G008")
+
+
+def check_errors(robot) -> list:
+    """The errors ``check`` reports (inline suppressions apply) on what convert writes, as Problems.
+    Only the rules that can report an error run (the SDF path stays free of numpy), with the codes
+    the build and the loader give."""
+    def ours(code):
+        return code.startswith(CONVERT_CHECKS)
+
+    select = tuple(c for c, r in load_all().items() if r.severity == "error" and ours(c)) + \
+        tuple(c for c in EXTERNAL if ours(c))
+    diags, _ctx = check_robot(robot, CheckOptions(), select=select, unused=False)
+    return [Problem(f"{d.code} {d.message}", d.loc, "value") for d in diags if d.severity == "error"]
+
+
+def refusals(robot) -> list:
+    """Why convert refuses ``robot``: the preflight's own reasons (a tree it cannot walk, a collision
+    mesh no reader takes, an <inertial> without <inertia>), then check's errors at other places."""
+    found = problems(robot)
+    seen = {p.loc for p in found}
+    # the preflight words the tree's faults itself (every root, every second parent): check's T001
+    # and T002 would say them again
+    skip = ("T001 ", "T002 ") if tree_problems(robot) else ()
+    return found + [p for p in check_errors(robot) if p.loc not in seen and not p.message.startswith(skip or "\0")]

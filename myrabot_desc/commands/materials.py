@@ -7,6 +7,7 @@ import click
 from myrabot_desc.commands.console import guarded
 from myrabot_desc.materials.export import export
 from myrabot_desc.output import write_output
+from myrabot_desc.sanitize import clean
 
 
 @click.command("materials", context_settings={"help_option_names": ["-h", "--help"]})
@@ -45,4 +46,4 @@ def materials_cmd(file, fmt, output, names, texture_prefix, stock):
         write_output(output, text)
         if output != "-":                  # on stdout the warnings are already in the text
             for w in warnings:
-                click.echo(f"warning: {w}", err=True)
+                click.echo(f"warning: {clean(w)}", err=True)

@@ -7,10 +7,13 @@ import time
 import click
 
 from myrabot_desc.commands.common import input_options
-from myrabot_desc.commands.console import guarded
+from myrabot_desc.commands.console import guarded, no_mujoco_log
+from myrabot_desc.errors import InputError
 from myrabot_desc.model.kinematics import require_tree
 from myrabot_desc.output import write_output
 from myrabot_desc.render import ALL, VIEWS, Layers, choose_gl, parse_size, png_bytes, read_pose, render_image
+from myrabot_desc.safety import limit
+from myrabot_desc.sanitize import clean
 from myrabot_desc.view.scene import build_scene, parse_joint_values
 
 
@@ -45,14 +48,44 @@ def render_cmd(inputs, output, view, joints, pose_file, collision, frames, inert
     with guarded():
         t0 = time.perf_counter()
         size = parse_size(size_text)
+        most = limit("max_render_pixels")
+        if size[0] * size[1] > most:
+            raise click.BadParameter(f"{size_text!r} is {size[0] * size[1]} pixels, over the {most}-pixel limit "
+                                     "(MYRABOT_DESC_MAX_RENDER_PIXELS)", param_hint="--size")
         choose_gl()
+        no_mujoco_log()
         robot = inputs.load()
         require_tree(robot)                 # a cycle or a second root: one line, like sim and view
+        if frames and len(robot.links) > limit("max_render_frames"):
+            raise InputError(f"--frames draws every link frame: {len(robot.links)} links, over the "
+                             f"{limit('max_render_frames')}-frame limit (MYRABOT_DESC_MAX_RENDER_FRAMES)", robot.loc)
         scene = build_scene(robot, collision=collision)
         q = read_pose(pose_file, scene) if pose_file else {}
         q.update(parse_joint_values(joints, scene))
         for line in scene.problems:
-            click.echo(line, err=True)
-        img = render_image(scene, q, ALL if view == "all" else (view,), size, Layers(collision, frames, inertia))
+            click.echo(clean(line), err=True)
+        _check_scales(robot, collision)
+        try:
+            img = render_image(scene, q, ALL if view == "all" else (view,), size, Layers(collision, frames, inertia))
+        except ValueError as exc:          # MuJoCo refuses what it cannot draw (its message names the part)
+            raise InputError(f"MuJoCo cannot draw this model: {' '.join(str(exc).split())[:300]}", robot.loc) from None
         write_output(output, png_bytes(img))
         click.echo(f"wrote {output} ({size[0]}x{size[1]}, {view} view, {time.perf_counter() - t0:.2f} s)", err=True)
+
+
+MIN_SCALE = 1e-6
+
+
+def _check_scales(robot, collision: bool) -> None:
+    """A mesh scale MuJoCo cannot draw (0, denormal 5e-324, NaN, inf): one file:line error."""
+    import math
+
+    for link in robot.links.values():
+        parts = list(link.visuals) + (list(link.collisions) if collision else [])
+        for part in parts:
+            g = part.geometry
+            scale = getattr(g, "scale", None) if getattr(g, "kind", None) == "mesh" else None
+            if scale and not all(isinstance(v, float) and math.isfinite(v) and abs(v) >= MIN_SCALE for v in scale):
+                raise InputError(f"mesh {g.filename} of link '{link.name}' has scale "
+                                 f"{' '.join(f'{v:g}' for v in scale)}: each factor must be a number of magnitude "
+                                 f"{MIN_SCALE:g} or more to be drawn", part.loc or link.loc)

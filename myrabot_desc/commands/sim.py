@@ -13,6 +13,7 @@ from myrabot_desc.commands.console import guarded
 from myrabot_desc.expand.packages import data_root
 from myrabot_desc.model.kinematics import require_tree
 from myrabot_desc.output import write_outputs
+from myrabot_desc.sanitize import clean_lines
 from myrabot_desc.sim import drive, plot, pointing, vuelta
 from myrabot_desc.sim.scene import load_layout
 
@@ -91,7 +92,7 @@ def _finish(res, as_json, csv_path, plot_path):
         outputs.append((csv_path, res.csv_bytes()))
     write_outputs(outputs)          # both or neither
     if csv_path != "-":
-        click.echo(res.as_json() if as_json else res.summary(), nl=False)
+        click.echo(res.as_json() if as_json else clean_lines(res.summary()), nl=False)
     sys.exit(0 if res.passed else 1)
 
 

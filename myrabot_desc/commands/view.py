@@ -8,6 +8,7 @@ import click
 
 from myrabot_desc.commands.common import input_options
 from myrabot_desc.commands.console import guarded
+from myrabot_desc.sanitize import clean
 from myrabot_desc.view.scene import parse_joint_values
 from myrabot_desc.view.server import Viewer
 
@@ -44,10 +45,10 @@ def view_cmd(inputs, host, port, open_browser, watch, findings, joints):
         if joints:
             viewer.set_joints(parse_joint_values(joints, viewer.scene))
         for line in viewer.scene.problems:
-            click.echo(line, err=True)
+            click.echo(clean(line), err=True)
         if watch:
             viewer.watch()
-        click.echo(f"myrabot-desc view: {viewer.robot.name} at {viewer.url}  (Ctrl-C stops)", err=True)
+        click.echo(f"myrabot-desc view: {clean(viewer.robot.name)} at {viewer.url}  (Ctrl-C stops)", err=True)
         click.echo(viewer.url)
         if open_browser:
             import webbrowser

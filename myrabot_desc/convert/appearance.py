@@ -12,8 +12,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from myrabot_desc.convert.common import sub
+from myrabot_desc.materials import textures
 from myrabot_desc.materials.resolve import resolver_for
-from myrabot_desc.safety import may_open
 
 
 @dataclass(frozen=True)
@@ -103,16 +103,7 @@ def texture_mean_rgb(path) -> tuple[float, float, float] | None:
     """Average colour of a texture image (MuJoCo gets one rgba per geom: a can is then red-ish,
     not white). None when the image cannot be read."""
 
-    if not may_open(path):      # a FIFO or device named as a texture would block or never end
-        return None
-    try:
-        from PIL import Image
-
-        with Image.open(path) as im:
-            px = im.convert("RGB").resize((1, 1), Image.Resampling.BOX).getpixel((0, 0))
-    except Exception:  # unreadable image: keep the material's own colour
-        return None
-    return tuple(round(c / 255.0, 4) for c in px)
+    return textures.mean_rgb(path)     # path gate, size and pixel limits (materials/textures.py)
 
 
 def material_element(parent, look: Look, uri_mapper=None):

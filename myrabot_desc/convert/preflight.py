@@ -13,13 +13,11 @@ from __future__ import annotations
 from pathlib import Path
 from typing import NamedTuple
 
-from lxml import etree
 
 from myrabot_desc.errors import InputError
 from myrabot_desc.expand.packages import unresolved_reason
 from myrabot_desc.model import meshes as meshio
 from myrabot_desc.model import tree
-from myrabot_desc.safety import parse_xml_bytes
 
 # loader issues that no URDF reader would accept (urdfdom refuses the document): the text is not a
 # number, the element lacks what identifies it. NaN, inf and out-of-range numbers parse; they stay
@@ -35,7 +33,7 @@ class Problem(NamedTuple):
     name: str = ""
 
     def __str__(self) -> str:
-        return f"{self.loc}: error: {self.message}" if self.loc else f"error: {self.message}"
+        return str(InputError(self.message, self.loc))
 
 
 def tree_problems(robot) -> list[Problem]:
@@ -60,6 +58,23 @@ def tree_problems(robot) -> list[Problem]:
     return out
 
 
+def inertial_problems(robot) -> list[Problem]:
+    """An <inertial> with a mass but no <inertia> element (a misspelt ``<intertia>``): urdfdom refuses
+    it, and converting it would invent a tensor."""
+    out: list[Problem] = []
+    for link in robot.links.values():
+        ine = link.inertial
+        ref = getattr(ine, "ref", None) if ine is not None else None
+        if ref is None or not hasattr(ref, "find") or ref.find("inertia") is not None:
+            continue
+        others = [c.tag for c in ref if isinstance(c.tag, str) and c.tag not in ("mass", "origin")]
+        hint = f" (it has <{others[0]}>: a misspelt <inertia>?)" if others else ""
+        out.append(Problem(f"link '{link.name}': <inertial> has no <inertia> element{hint}; URDF readers refuse "
+                           "it and a converter would have to invent the tensor", ine.loc or link.loc, "link",
+                           link.name))
+    return out
+
+
 def value_problems(robot) -> list[Problem]:
     return [Problem(f"{d.code} {d.message}", d.loc, "value") for d in robot.load_issues
             if any(k in d.message for k in UNREADABLE)]
@@ -80,11 +95,7 @@ def mesh_problems(robot) -> list[Problem]:
                 why = unresolved_reason(g.filename, robot.package_roots, base) or "cannot be found"
             else:
                 if g.path not in checked:
-                    try:
-                        size = meshio.precheck(g.path)
-                        checked[g.path] = triangle_problem(g.path, size)
-                    except meshio.MeshError as exc:
-                        checked[g.path] = str(exc)
+                    checked[g.path] = meshio.unreadable(g.path)
                 why = checked[g.path]
             if why:
                 out.append(Problem(f"collision mesh {g.filename} of link '{link.name}': {why}", c.loc or link.loc,
@@ -92,50 +103,13 @@ def mesh_problems(robot) -> list[Problem]:
     return out
 
 
-def triangle_problem(path, size: int) -> str | None:
-    """Why this mesh file holds no triangles a reader can take, or None. A structural look without
-    numpy: a binary STL's size must match its header, an ASCII STL needs a facet, an OBJ a face, a
-    COLLADA file must be XML with a triangle, polygon or polylist element."""
-
-    ext = path.suffix.lower()
-    if ext not in (".stl", ".obj", ".dae"):
-        return None
-    try:
-        with open(path, "rb") as fh:
-            data = fh.read(84) if ext == ".stl" else fh.read()
-            if ext == ".stl" and not data[:5].lower() == b"solid":
-                n = int.from_bytes(data[80:84], "little") if len(data) >= 84 else -1
-                if n <= 0 or size != 84 + 50 * n:
-                    return (f"{path.name} is not a binary STL ({size} bytes, its header announces {n} triangles)"
-                            if n > 0 else f"{path.name} holds no triangles")
-                return None
-            if ext == ".stl":
-                data += fh.read()
-    except OSError as exc:
-        return f"cannot read {path.name}: {exc.strerror}"
-    if ext == ".stl":
-        if b"facet" in data:
-            return None
-        # a binary STL whose 80-byte header starts with "solid": readers check the size instead
-        n = int.from_bytes(data[80:84], "little") if len(data) >= 84 else 0
-        return None if n > 0 and size == 84 + 50 * n else f"{path.name} holds no triangles (no facet)"
-    if ext == ".obj":
-        return None if any(line.startswith(b"f ") for line in data.splitlines()) else \
-            f"{path.name} holds no faces"
-
-    try:
-        root = parse_xml_bytes(data, path.name)
-    except InputError as exc:
-        return f"{path.name} is not readable COLLADA: {exc.message}"
-    for el in root.iter():
-        tag = etree.QName(el).localname if isinstance(el.tag, str) else ""
-        if tag in ("triangles", "polylist", "polygons", "trifans", "tristrips") and el.get("count", "0") != "0":
-            return None
-    return f"{path.name} holds no triangles (no <triangles>, <polylist> or <polygons> with a count)"
+def triangle_problem(path, size: int | None = None) -> str | None:
+    """Why this mesh file holds no triangles a reader can take, or None (model/meshes.unreadable)."""
+    return meshio.unreadable(path)
 
 
 def problems(robot) -> list[Problem]:
-    return tree_problems(robot) + value_problems(robot) + mesh_problems(robot)
+    return tree_problems(robot) + value_problems(robot) + inertial_problems(robot) + mesh_problems(robot)
 
 
 def refuse_or_record(found: list[Problem], allow: bool, report=None, notes=None) -> None:
@@ -144,8 +118,7 @@ def refuse_or_record(found: list[Problem], allow: bool, report=None, notes=None)
     if not found:
         return
     if not allow:
-        rest = "".join(f"\n{p}" for p in found[1:])
-        raise InputError(found[0].message + rest, found[0].loc)
+        raise InputError(found[0].message, found[0].loc, more=found[1:])
     for p in found:
         if notes is not None:
             notes.warn(f"{p.message}: converted anyway (--allow-errors)", p.loc)

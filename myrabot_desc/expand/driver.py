@@ -40,6 +40,7 @@ from myrabot_desc.expand.fast import pretty_xml
 from myrabot_desc.expand.packages import PackageResolver, split_package_uri
 from myrabot_desc.expand.provenance import SourceMap, Tracker, src_index
 from myrabot_desc.safety import Limits, _short, display, may_open, read_checked, safe_parser, scan_tag_attr
+from myrabot_desc.sanitize import clean, clean_lines
 
 
 class BuildResult:
@@ -167,6 +168,7 @@ class _Build:
         self.expanded = 0                      # elements produced by macro calls so far
         self.calls = 0
         self.env_used: dict[str, tuple[str, bool]] = {}   # $(env)/$(optenv) name -> (value, was set)
+        self.includes = 0                      # includes processed (the input counts as one)
 
     # ------------------------------------------------------------ reading files
     def allowed(self, path: Path) -> bool:
@@ -357,7 +359,7 @@ class _Build:
             self.diagnostics.append(Diagnostic(
                 "X007", "info", f"the build depends on the environment: {_env_summary(self.env_used)}; pin them as "
                 "xacro args or in the CI job", Loc(display(self.src)),
-                {"environment": {k: v for k, (v, _s) in sorted(self.env_used.items())}}))
+                {"environment": _shown_env(self.env_used)}))
         text, locations = self.render(doc)
         self.check_unexpanded(doc, locations)
         result = BuildResult(text=text, locations=locations, diagnostics=self.diagnostics, deps=self.deps,
@@ -388,6 +390,11 @@ class _Build:
         if self.key(path) in stack:
             chain = " -> ".join(str(p) for p in stack + [path])
             raise InputError(f"include cycle: {chain}", asked_at or self.last_loc)
+        self.includes += 1
+        if self.includes > self.limits.max_includes:
+            raise InputError(f"over {self.limits.max_includes} includes in one build (repeats counted); is a "
+                             "file included over and over? (see --max-includes or MYRABOT_DESC_MAX_INCLUDES)",
+                             asked_at or self.last_loc)
         if len(xacro.filestack or []) > self.limits.max_include_depth:
             raise InputError(f"includes nest deeper than {self.limits.max_include_depth} "
                              "(see --max-include-depth or MYRABOT_DESC_MAX_INCLUDE_DEPTH)", asked_at or self.last_loc)
@@ -563,19 +570,38 @@ def _defined_nearby(name: str, src: Path, roots) -> str | None:
     return None
 
 
+SHOW_ENV = "MYRABOT_DESC_SHOW_ENV_VALUES"
+
+
+def _shown_env(env_used: dict) -> dict:
+    """name -> what X007 may show: the file's default when the variable was unset (model text),
+    None when it was set (its value is the runner's: a model must not be able to print a CI secret
+    into a report or a log), unless MYRABOT_DESC_SHOW_ENV_VALUES=1."""
+    show = os.environ.get(SHOW_ENV, "") not in ("", "0")
+    return {k: (v if show or not was_set else None) for k, (v, was_set) in sorted(env_used.items())}
+
+
 def _env_summary(env_used: dict, most: int = 8) -> str:
-    """The variables a build read, for X007's one line: each with its value when there are few;
-    a base like Husky's reads ~90 ``$(optenv)``, so then the set ones with their values and the
-    unset ones (defaults used) by name, at most ``most`` of each (the JSON data has them all)."""
+    """The variables a build read, for X007's one line: each by name (set) or with the default it
+    fell back to; a base like Husky's reads ~90 ``$(optenv)``, so then the set ones and the unset
+    ones by name, at most ``most`` of each (the JSON data has them all)."""
+    shown = _shown_env(env_used)
     items = sorted(env_used.items())
+
+    def one(k, was_set):
+        v = shown[k]
+        if was_set:
+            return f"{k}={v!r}" if v is not None else f"{k} (set)"
+        return f"{k}={v!r} (unset: default)"
+
     if len(items) <= most:
-        return ", ".join(f"{k}={v!r}" + ("" if was_set else " (unset: default)") for k, (v, was_set) in items)
+        return ", ".join(one(k, was_set) for k, (_v, was_set) in items)
 
     def some(names):
         more = len(names) - most
         return ", ".join(names[:most]) + (f", and {more} more" if more > 0 else "")
 
-    set_ = [f"{k}={v!r}" for k, (v, was_set) in items if was_set]
+    set_ = [f"{k}={shown[k]!r}" if shown[k] is not None else k for k, (_v, was_set) in items if was_set]
     unset = [k for k, (_v, was_set) in items if not was_set]
     if not unset:
         told = f"all set ({some(set_)})"
@@ -583,7 +609,7 @@ def _env_summary(env_used: dict, most: int = 8) -> str:
         told = f"all unset, defaults used ({some(unset)})"
     else:
         told = f"{len(set_)} set ({some(set_)}) and {len(unset)} unset, defaults used ({some(unset)})"
-    return f"{len(items)} variables, {told} (check --format json lists every value)"
+    return f"{len(items)} variables, {told} (check --format json lists every one)"
 
 
 class _LazyModule(type(sys)):
@@ -690,10 +716,11 @@ def _to_stream(f, name: str, build: _Build, print_location):
         kwargs.pop("file", None)
         buf = io.StringIO()
         with contextlib.redirect_stderr(buf):   # color.message reads sys.stderr when called
-            f(*args, **kwargs)
+            f(*(clean(a) for a in args), **kwargs)      # one message, one line
             if location:
                 print_location()
-        build.messages.write(buf.getvalue())
+        # the file's own text (and YAML values it prints): no terminal escapes, no CI commands
+        build.messages.write(clean_lines(buf.getvalue()))
         return ""
     return wrapper
 
@@ -843,6 +870,8 @@ class _Hooks:
                 alt = b.src.parent / Path(filename).name
                 if alt.is_file():
                     path = alt
+            if not b.allowed(path):       # outside the roots: refused whether or not it exists
+                b.check_include(path, asked)
             if not path.is_file():
                 xacro.filestack.pop()
                 err = FileNotFoundError(2, "No such file or directory", str(path))

@@ -168,6 +168,9 @@ _tokens: dict[str, tuple] = {}
 _MAX_CACHE = 200_000
 
 
+MAX_EXPRESSIONS_PER_TEXT = 100_000     # tokens of one attribute or text (a real one has a handful)
+
+
 def make_eval_text():
     """Drop-in for xacro.eval_text with cached lexing and a no-'$' fast path."""
     import os
@@ -177,15 +180,41 @@ def make_eval_text():
     lexer = xacro.LEXER
     EXPR, EXT, TEXT, DDB = lexer.EXPR, lexer.EXTENSION, lexer.TEXT, lexer.DOLLAR_DOLLAR_BRACE
 
+    # xacro's QuickLexer slices the rest of the text after every token (quadratic: millions of
+    # ${a} in one attribute). The same four patterns, tried in the same order, as one expression
+    # scanned once by the regex engine give the same tokens in linear time.
+    import re
+
+    kinds = [(i, r.pattern[1:] if r.pattern.startswith("^") else r.pattern) for i, r in enumerate(lexer.res)]
+    scanner = re.compile("|".join(f"({p})" for _i, p in kinds))
+    group_kind = {}
+    g = 1
+    for i, p in kinds:
+        group_kind[g] = i
+        g += 1 + re.compile(p).groups
+
+    def lex(text):
+        out = []
+        pos = 0
+        for m in scanner.finditer(text):
+            if m.start() != pos or m.end() == pos:
+                break
+            out.append((group_kind[m.lastindex if m.lastindex in group_kind else _outer(m)], m.group(0)))
+            pos = m.end()
+            if len(out) > MAX_EXPRESSIONS_PER_TEXT:
+                raise xacro.XacroException(f"over {MAX_EXPRESSIONS_PER_TEXT} ${{}}/$() expressions and text "
+                                           "pieces in one attribute or text")
+        if pos != len(text):
+            raise xacro.XacroException("invalid expression: " + text[pos:])
+        return tuple(out)
+
+    def _outer(m):
+        return max(k for k in group_kind if m.start(k) == m.start() and m.end(k) == m.end())
+
     def tokens(text):
         t = _tokens.get(text)
         if t is None:
-            lex = xacro.QuickLexer(lexer)
-            lex.lex(text)
-            out = []
-            while lex.peek():
-                out.append(lex.next())
-            t = tuple(out)
+            t = lex(text)
             if len(_tokens) < _MAX_CACHE:
                 _tokens[text] = t
         return t

@@ -20,7 +20,7 @@ from pathlib import Path
 from urllib.parse import unquote
 
 from myrabot_desc.errors import InputError
-from myrabot_desc.safety import PSEUDO_FOLDERS, check_path, is_pseudo_folder, may_open, real_root
+from myrabot_desc.safety import PSEUDO_FOLDERS, check_path, is_pseudo_folder, limit, may_open, read_checked, real_root
 
 _NAME_RE = re.compile(r"<name>\s*([^<\s]+)\s*</name>")
 MAX_SCAN_DEPTH = 6  # how deep --package-path folders are searched
@@ -30,10 +30,13 @@ def package_name(folder: Path) -> str | None:
     """Name of the package rooted at ``folder`` (package.xml or manifest.xml), else None."""
     pxml = folder / "package.xml"
     if pxml.is_file():
+        # through the path gate: a regular file inside the package folder (a symlink out of it, to
+        # a file elsewhere on the machine, is not read), read no further than the manifest limit
         try:
-            m = _NAME_RE.search(pxml.read_text(encoding="utf-8", errors="replace")[:20000])
-        except OSError:
-            return None
+            data = read_checked(pxml, [folder], limit("max_manifest_bytes"), what="package.xml")
+        except InputError:
+            return folder.name
+        m = _NAME_RE.search(data[:20000].decode("utf-8", errors="replace"))
         return m.group(1) if m else folder.name
     if (folder / "manifest.xml").is_file():
         return folder.name
@@ -195,33 +198,48 @@ def _base_roots(base: Path) -> tuple[Path, ...]:
 
 
 def _locate(uri: str, package_roots: dict[str, Path], base: Path) -> tuple[Path | None, bool]:
-    """(the file ``uri`` names or None, whether it lies inside :func:`resource_roots`)."""
+    """(the file ``uri`` names or None, whether it lies inside :func:`resource_roots`).
+
+    A path outside the roots is returned (not inside) whether or not it exists: nothing about it is
+    looked at, so no message can tell a file that exists outside the roots from one that does not."""
     try:
-        path = _resolve_any(uri, package_roots, base)
+        path = _resolve_any(uri, package_roots, base, exists=False)
         if path is None:
             return None, False
-
-        return path, may_open(path, resource_roots(base, package_roots))   # symlinks resolved, regular files
-    except (OSError, ValueError):   # a 5000-character name (ENAMETOOLONG), a NUL byte: no such file
+        roots = resource_roots(base, package_roots)
+        real = path.resolve()
+        if not any(real == real_root(r) or real.is_relative_to(real_root(r)) for r in roots):
+            return path, False
+        if not path.is_file():
+            return None, False
+        return path, may_open(path, roots)   # symlinks resolved, regular files
+    except (OSError, ValueError, RuntimeError):   # a 5000-character name (ENAMETOOLONG), a NUL byte: no such file
         return None, False
 
 
 def outside_roots(uri: str, package_roots: dict[str, Path], base: Path) -> Path | None:
-    """The file ``uri`` names when it exists but lies outside :func:`resource_roots` (else None)."""
+    """The path ``uri`` names when it lies outside :func:`resource_roots`, existing or not (else None)."""
     path, inside = _locate(uri, package_roots, base)
-    return path if path is not None and not inside else None
+    return path if path is not None and not inside and _outside(path, package_roots, base) else None
+
+
+def _outside(path: Path, package_roots, base) -> bool:
+    real = path.resolve()
+    return not any(real == real_root(r) or real.is_relative_to(real_root(r)) for r in resource_roots(base, package_roots))
 
 
 def unresolved_reason(uri: str, package_roots: dict[str, Path], base: Path) -> str | None:
-    """Why a URI that does not resolve does not (for messages): "outside the allowed folders",
-    "not a regular file", or None when it simply names no file."""
+    """Why a URI that does not resolve does not (for messages): "outside the allowed folders" (never
+    whether such a file exists), "not a regular file", or None when it simply names no file."""
 
     path, inside = _locate(uri, package_roots, base)
     if path is not None and not inside:
+        if _outside(path, package_roots, base):
+            return "outside the allowed folders"
         try:
             check_path(path, resource_roots(base, package_roots))
         except InputError as exc:
-            return "outside the allowed folders" if "outside" in exc.message else exc.message.split(": ", 1)[-1]
+            return exc.message.split(": ", 1)[-1]
     return None
 
 
@@ -231,7 +249,7 @@ def resolve_resource_uri(uri: str, package_roots: dict[str, Path], base: Path) -
     return path if inside else None
 
 
-def _resolve_any(uri: str, package_roots: dict[str, Path], base: Path) -> Path | None:
+def _resolve_any(uri: str, package_roots: dict[str, Path], base: Path, exists: bool = True) -> Path | None:
     """Resolve a mesh/texture URI to a file. Never leaves the package root it names."""
 
     uri = uri.strip()
@@ -257,7 +275,7 @@ def _resolve_any(uri: str, package_roots: dict[str, Path], base: Path) -> Path |
         return None
     else:
         path = (base / uri)
-    return path if path.is_file() else None
+    return path if not exists or path.is_file() else None
 
 
 _PACKAGE_FILENAME = re.compile(r'(filename=)"(package://[^"]+)"')

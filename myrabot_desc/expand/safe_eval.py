@@ -22,8 +22,12 @@ passed around (``sorted(..., key=python.pop)`` emptied the shared symbol table).
    same bounds; ``+ * % ** <<`` on non-literals -> bounded helpers (strings, lists, ``bytes``
    and every ``%`` form, mapping keys included); each comprehension loop -> ``_md_iter``, each
    lambda body -> ``_md_enter``/``_md_leave`` (nesting depth), counted as work.
-3. **Budgets** per build (Budget): work units (loop steps + items allocated), wall time spent
-   in expressions, characters printed; any one result stays under MAX_SEQUENCE_LEN items.
+3. **Budgets** per build (Budget): work units (loop steps + items allocated), CPU time spent
+   in expressions, characters printed; any one result stays under MAX_SEQUENCE_LEN items. A
+   single built-in call runs in C, where the budget cannot stop it (signal handlers run between
+   bytecodes): the built-ins whose cost grows with their arguments have them bounded first
+   (_precheck: factorial/comb/perm, gcd/lcm, round, prod, the sizes of what grows, and the items
+   a set/dict call hashes, grouped by hash in one pass: hash_collisions).
 4. **A fresh namespace per build** (fresh_namespace): xacro's global symbols rebuilt for each
    build, without ``type``/``vars``, with our YAML loader, a bounded ``range`` and a ``tokenize``
    whose separators cannot form a regular expression; nothing one model does reaches the next.
@@ -94,10 +98,14 @@ MAX_POW_RESULT_BITS = 4096       # ints larger than this are refused
 MAX_SEQUENCE_LEN = 1_000_000     # 'a' * n or [0] * n, and any one result
 MAX_TOTAL_CHARS = 20_000_000     # characters all expressions of one build may produce
 MAX_WORK = 10_000_000            # loop steps + items allocated by all expressions of one build
-MAX_EVAL_SECONDS = 3.0           # wall time all expressions of one build may take
+MAX_EVAL_SECONDS = 3.0           # CPU time all expressions of one build may take
 MAX_LAMBDA_DEPTH = 100           # lambdas calling lambdas (the C stack is not for hostile recursion)
 MAX_FORMAT_WIDTH = 1000          # '%1000d'
 MAX_FACTORIAL_ARG = 5000         # math.factorial / comb / perm
+MAX_INT_ARGS_BITS = 4 * MAX_POW_RESULT_BITS   # the integers one gcd()/lcm()/prod() call takes, in all
+MAX_SAME_HASH = 64               # distinct items of one set/dict sharing one hash value
+MAX_ROUND_DIGITS = 1000          # round(x, -n)
+MAX_DISPLAY_ITEMS = 10_000       # {k: v, ...} written out in one expression
 
 
 class RefusedExpression(Exception):
@@ -155,6 +163,9 @@ def _vet(expr: str, check_call, allowed_nodes) -> ast.Expression:
         if isinstance(node, ast.Constant) and isinstance(node.value, str) and "__" in node.value \
                 and "{" in node.value:
             raise RefusedExpression("format-style string reaching dunder attributes is not allowed")
+        if isinstance(node, (ast.Dict, ast.Set)) and len(node.keys if isinstance(node, ast.Dict) else node.elts) \
+                > MAX_DISPLAY_ITEMS:
+            raise RefusedExpression(f"a dict or set display of over {MAX_DISPLAY_ITEMS} items is not allowed")
         if isinstance(node, ast.Call) and check_call is not None:
             check_call(node.func)
     return tree
@@ -170,7 +181,7 @@ class Budget:
         self.work = MAX_WORK
         self.chars = MAX_TOTAL_CHARS
         self.seconds = 0.0          # spent by finished top-level evaluations
-        self.started = None         # monotonic start of the running top-level evaluation
+        self.started = None         # CPU-time start of the running top-level evaluation (process_time)
         self.depth = 0              # lambda nesting
         self.nesting = 0            # evaluations running inside evaluations (lazy properties)
         self.max_seconds = max_seconds
@@ -181,7 +192,7 @@ class Budget:
             raise RefusedExpression(f"expressions did over {MAX_WORK} steps/items in all (a loop or size bomb)")
 
     def clock(self) -> None:
-        t = self.seconds + (time.monotonic() - self.started if self.started is not None else 0.0)
+        t = self.seconds + (time.process_time() - self.started if self.started is not None else 0.0)
         if t > self.max_seconds:
             raise RefusedExpression(f"expressions ran for over {self.max_seconds:g} s in all (a loop bomb?)")
 
@@ -274,6 +285,51 @@ def _bounded_lshift(a, b):
 
 
 _BIG_CALLS = {"factorial", "comb", "perm"}
+# Calls that hash every item they are given (a set, a dict, set algebra): one call runs in C, where
+# no budget check can stop it, so what it is given is checked first (hash_collisions)
+_HASHING = {set, frozenset, dict}
+_HASHING_METHODS = {"union", "intersection", "difference", "symmetric_difference", "issubset", "issuperset",
+                    "isdisjoint", "update", "intersection_update", "difference_update",
+                    "symmetric_difference_update"}
+
+
+def hash_collisions(items) -> None:
+    """Refuse items that would make one set/dict call quadratic: many distinct items with one hash
+    value (integers equal modulo 2**61 - 1 hash alike, and every probe then compares them all). One
+    linear pass groups the items by hash; a group past MAX_SAME_HASH must be one value repeated."""
+    groups: dict = {}
+    for x in items:
+        try:
+            h = hash(x)
+        except TypeError:
+            continue            # unhashable: the call itself says so
+        g = groups.get(h)
+        if g is None:
+            groups[h] = [x]
+        elif len(g) < MAX_SAME_HASH:
+            g.append(x)
+        elif x is not g[0] and x != g[0]:
+            raise RefusedExpression(f"over {MAX_SAME_HASH} different values with one hash value (a hash "
+                                    "collision bomb)")
+
+
+def _hash_inputs(f, name, recv, args, kwargs) -> list | None:
+    """The items a hashing call will hash, or None when it hashes nothing of the caller's."""
+    if f in _HASHING:
+        if not args:
+            return None
+        src = args[0]
+        if f is dict:
+            if isinstance(src, dict):
+                return list(src.keys())
+            return [kv[0] for kv in src if isinstance(kv, (tuple, list)) and kv]
+        return list(src)
+    if type(recv) in (set, frozenset) and name in _HASHING_METHODS:
+        return [x for a in args for x in a] + list(recv)
+    if type(recv) is dict and name == "update" and args:
+        return list(args[0].keys()) if isinstance(args[0], dict) else \
+            [kv[0] for kv in args[0] if isinstance(kv, (tuple, list)) and kv]
+    return None
 
 
 def _precheck(f, args, kwargs) -> None:
@@ -295,6 +351,23 @@ def _precheck(f, args, kwargs) -> None:
         return
     if name in _BIG_CALLS and any(isinstance(a, int) and abs(a) > MAX_FACTORIAL_ARG for a in args):
         raise RefusedExpression(f"{name}() of a number over {MAX_FACTORIAL_ARG} is too large")
+    if name in ("gcd", "lcm") and getattr(f, "__module__", None) == "math":
+        if len(args) > MAX_SEQUENCE_LEN:
+            raise RefusedExpression(f"{name}() of over {MAX_SEQUENCE_LEN} numbers is too large")
+        bits = sum(a.bit_length() for a in args if isinstance(a, int))
+        if bits > MAX_INT_ARGS_BITS:
+            raise RefusedExpression(f"{name}() of numbers of {bits} bits in all is too large "
+                                    f"(at most {MAX_INT_ARGS_BITS})")
+        _b().spend(len(args))
+    if f is round and len(args) > 1 and isinstance(args[1], int) and abs(args[1]) > MAX_ROUND_DIGITS:
+        raise RefusedExpression(f"round() to {args[1]} digits is not allowed (at most {MAX_ROUND_DIGITS})")
+    if f in _HASHING or (type(recv) in (set, frozenset, dict) and name in _HASHING_METHODS):
+        items = _hash_inputs(f, name, recv, args, kwargs)
+        if items is not None:
+            if len(items) > MAX_SEQUENCE_LEN:
+                raise RefusedExpression(f"{name}() of over {MAX_SEQUENCE_LEN} items is too large")
+            _b().spend(len(items))
+            hash_collisions(items)
     if f is sum and (len(args) > 1 or "start" in kwargs):
         start = args[1] if len(args) > 1 else kwargs["start"]
         if not isinstance(start, (int, float)):
@@ -357,6 +430,9 @@ def _md_call(f, *args, **kwargs):
         if fname in ("join", "extend", "update") and args and not isinstance(args[0], _SIZED) \
                 and type(getattr(f, "__self__", None)) in (str, bytes, list, dict, set):
             args = (list(args[0]),) + args[1:]      # a generator: its steps counted, then its size checked
+        elif (f in _HASHING or (fname in _HASHING_METHODS and type(getattr(f, "__self__", None)) in
+                                (set, frozenset))) and args and not isinstance(args[0], _SIZED):
+            args = (list(_md_iter(args[0])),) + args[1:]      # a generator or a range: materialised, counted
         elif fname == "sort" and "key" in kwargs and type(getattr(f, "__self__", None)) is list:
             kwargs["key"] = _charged(kwargs["key"])
     _precheck(f, args, kwargs)
@@ -562,7 +638,7 @@ def _run(code, table, budget: Budget):
     top = budget.nesting == 0
     depth = budget.depth
     if top:
-        budget.started = time.monotonic()
+        budget.started = time.process_time()
     budget.nesting += 1
     try:
         value = eval(code, _Scope(table))
@@ -574,7 +650,7 @@ def _run(code, table, budget: Budget):
         budget.nesting -= 1
         budget.depth = depth
         if top:
-            budget.seconds += time.monotonic() - budget.started
+            budget.seconds += time.process_time() - budget.started
             budget.started = None
         _budget[0] = saved
     if top:

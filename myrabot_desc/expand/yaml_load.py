@@ -76,6 +76,28 @@ def _unit_constructor(factor):
     return construct
 
 
+def _located(construct):
+    """A constructor whose Python errors (a 5,000-digit integer over Python's digit limit, a date
+    like 2024-13-45, a float overflow) become a ConstructorError at the value's line."""
+    def wrapper(loader, node):
+        try:
+            return construct(loader, node)
+        except (ValueError, OverflowError, TypeError) as exc:
+            from yaml.constructor import ConstructorError
+
+            if isinstance(exc, ConstructorError):
+                raise
+            what = str(exc).split(";")[0][:160]
+            raise ConstructorError(None, None, f"cannot read the value {_short_value(node)} ({what})",
+                                   node.start_mark) from None
+    return wrapper
+
+
+def _short_value(node) -> str:
+    v = node.value if isinstance(node.value, str) else ""
+    return repr(v if len(v) <= 40 else v[:40] + "...")
+
+
 def _refuse_tag(loader, suffix, node):
     from yaml.constructor import ConstructorError
 
@@ -97,6 +119,8 @@ def _safe_loader():
         for tag, factor in UNITS.items():
             Loader.yaml_constructors[tag] = _unit_constructor(factor)
         Loader.yaml_constructors[None] = SafeConstructor.construct_undefined
+        for tag, f in list(Loader.yaml_constructors.items()):
+            Loader.yaml_constructors[tag] = _located(f)
         _LOADER = Loader
     return _LOADER
 

@@ -1,10 +1,21 @@
 """Load mesh files from untrusted models with size and triangle limits.
 
 check (--inertia, --meshes), convert --to mjcf and sim read meshes named by model files. A
-mesh is refused before trimesh sees it when the file is larger than ``max_mesh_bytes`` or a
-binary STL header announces more than ``max_mesh_triangles`` faces; after loading, when it
-holds more triangles than that. Both limits are in safety.LIMITS
-(MYRABOT_DESC_MAX_MESH_BYTES, MYRABOT_DESC_MAX_MESH_TRIANGLES).
+mesh is refused before any reader builds an array from it (``_read``: every path reads the bytes
+there) when
+
+* the file is larger than ``max_mesh_bytes``, or a compressed one (zip/3MF/ZAE by the sizes its
+  directory declares, gzip/bzip2/xz by inflating it in bounded steps, whatever its name) would
+  inflate past that; zstd and other compressions no reader here takes are refused;
+* it announces or holds more than ``max_mesh_triangles`` triangles, counted on the bytes before
+  parsing: a binary STL's header, an ASCII STL's ``facet`` words, a PLY header's face count, an
+  OBJ's polygon corners (one 7-million-corner polygon is 7 million triangles), a COLLADA file's
+  index numbers;
+* a COLLADA file has more than ``max_mesh_elements`` elements (3 million ``<p>``: seconds of
+  parsing and a gigabyte before a single triangle), counted as tags in the bytes.
+
+After loading, a mesh with more triangles than the limit is refused too. The limits are in
+safety.LIMITS (MYRABOT_DESC_MAX_MESH_BYTES, _TRIANGLES, _ELEMENTS).
 """
 
 from __future__ import annotations
@@ -14,7 +25,7 @@ import struct
 from pathlib import Path
 
 from myrabot_desc.errors import InputError
-from myrabot_desc.safety import limit, parse_xml_bytes, read_checked, safe_parser
+from myrabot_desc.safety import limit, open_checked, parse_xml_bytes, read_checked, safe_parser
 
 ENV_BYTES = "MYRABOT_DESC_MAX_MESH_BYTES"
 ENV_TRIANGLES = "MYRABOT_DESC_MAX_MESH_TRIANGLES"
@@ -47,7 +58,7 @@ def precheck(path: Path) -> int:
                 head = fh.read(84)
         except OSError as exc:
             raise MeshError(f"cannot read {path.name}: {exc.strerror}") from None
-        if not head[:5].lower() == b"solid":
+        if not head[:5].lower() == b"solid" and not any(head.startswith(m) for m in COMPRESSED):
             n = struct.unpack("<I", head[80:84])[0]
             if n > max_tris:
                 raise MeshError(f"{path.name}: the STL header announces {n} triangles, over the {max_tris} "
@@ -55,17 +66,192 @@ def precheck(path: Path) -> int:
     return size
 
 
+def unreadable(path: Path) -> str | None:
+    """Why a mesh file holds no triangles a reader can take, or None: the limits (``precheck``, and
+    ``check_content`` on its bytes: compression, counts), then a structural look without numpy: a
+    binary STL's size must match its header, an ASCII STL needs a facet, an OBJ a face, a COLLADA
+    file must be XML with a triangle, polygon or polylist element with a count. (check's M005 and
+    convert's preflight ask it of collision meshes.)"""
+    try:
+        size = precheck(path)
+        ext = path.suffix.lower()
+        with open_checked(path, None, "mesh") as fh:
+            head = fh.read(84)
+        if ext == ".stl" and head[:5].lower() != b"solid" and not any(head.startswith(m) for m in COMPRESSED):
+            n = int.from_bytes(head[80:84], "little") if len(head) >= 84 else -1
+            if n <= 0 or size != 84 + 50 * n:
+                return (f"{path.name} is not a binary STL ({size} bytes, its header announces {n} triangles)"
+                        if n > 0 else f"{path.name} holds no triangles")
+            return None                   # a well-formed binary STL: its header said it all (precheck)
+        data = _read(path, limit("max_mesh_bytes"))          # check_content: compression, counts, elements
+    except MeshError as exc:
+        return str(exc)
+    except InputError as exc:
+        return f"cannot read {path.name}: {exc.message}"
+    if ext not in (".stl", ".obj", ".dae") or any(data.startswith(m) for m in COMPRESSED) or data[:4] == b"PK\x03\x04":
+        return None
+    if ext == ".stl":
+        if b"facet" in data:
+            return None
+        # a binary STL whose 80-byte header starts with "solid": readers check the size instead
+        n = int.from_bytes(data[80:84], "little") if len(data) >= 84 else 0
+        return None if n > 0 and size == 84 + 50 * n else f"{path.name} holds no triangles (no facet)"
+    if ext == ".obj":
+        return None if data.startswith(b"f ") or b"\nf " in data else f"{path.name} holds no faces"
+    try:
+        root = parse_xml_bytes(data, path.name)
+    except InputError as exc:
+        return f"{path.name} is not readable COLLADA: {exc.message}"
+    for el in root.iter():
+        tag = el.tag.rsplit("}", 1)[-1] if isinstance(el.tag, str) else ""
+        if tag in ("triangles", "polylist", "polygons", "trifans", "tristrips") and el.get("count", "0") != "0":
+            return None
+    return f"{path.name} holds no triangles (no <triangles>, <polylist> or <polygons> with a count)"
+
+
 ZIP_EXTS = {".zip", ".3mf", ".zae"}
 MAX_ARCHIVE_MEMBERS = 10_000
 
 
 def _read(path: Path, max_bytes: int) -> bytes:
-    """The mesh's bytes: a regular file only (a FIFO or device would block or never end)."""
+    """The mesh's bytes: a regular file only (a FIFO or device would block or never end), checked
+    by :func:`check_content` before anything parses them."""
 
     try:
-        return read_checked(path, None, max_bytes, what="mesh")
+        data = read_checked(path, None, max_bytes, what="mesh")
     except InputError as exc:
         raise MeshError(f"{path.name}: {exc.message}") from None
+    check_content(path, data)
+    return data
+
+
+DAE_STRIDE = 4          # index numbers per corner (VERTEX, NORMAL, TEXCOORD, COLOR)
+COMPRESSED = {b"\x1f\x8b": "gzip", b"BZh": "bzip2", b"\xfd7zXZ\x00": "xz", b"(\xb5/\xfd": "zstd",
+              b"\x5d\x00\x00": "lzma"}
+INFLATE_STEP = 1 << 20
+
+
+def check_content(path: Path, data: bytes) -> None:
+    """The limits on a mesh's bytes (see the module docstring); MeshError naming the file and why."""
+    max_bytes = limit("max_mesh_bytes")
+    max_tris = limit("max_mesh_triangles")
+    ext = path.suffix.lower()
+    if ext in ZIP_EXTS or data[:4] == b"PK\x03\x04" or ext == ".3dxml":
+        _check_archive(path, data, max_bytes)
+        return
+    kind = next((k for magic, k in COMPRESSED.items() if data.startswith(magic)), None)
+    if kind is not None:
+        _check_inflated(path, data, kind, max_bytes)
+        return
+    n = _announced_triangles(ext, data)
+    if n is not None and n > max_tris:
+        raise MeshError(f"{path.name} holds {n} triangles, over the {max_tris} limit ({ENV_TRIANGLES})")
+    if ext == ".dae" or data.lstrip()[:5] in (b"<?xml", b"<COLL"):
+        # every element has a '<' that does not start an end tag: an upper bound, counted in C
+        n = data.count(b"<") - data.count(b"</")
+        most = limit("max_mesh_elements")
+        if n > most:
+            raise MeshError(f"{path.name} has {n} XML elements, over the {most} limit "
+                            "(MYRABOT_DESC_MAX_MESH_ELEMENTS)")
+
+
+def _check_inflated(path: Path, data: bytes, kind: str, max_bytes: int) -> None:
+    """Inflate ``data`` in bounded steps (nothing kept), refusing it past ``max_bytes``; several
+    concatenated streams count together (as bz2/gzip readers read them)."""
+    import bz2
+    import lzma
+    import zlib
+
+    makers = {"gzip": lambda: zlib.decompressobj(31), "bzip2": bz2.BZ2Decompressor, "xz": lzma.LZMADecompressor,
+              "lzma": lambda: lzma.LZMADecompressor(format=lzma.FORMAT_ALONE)}
+    if kind not in makers:
+        raise MeshError(f"{path.name} is {kind}-compressed, which no mesh reader here takes")
+    total, rest, streams = 0, data, 0
+    try:
+        while rest:
+            streams += 1
+            if streams > MAX_ARCHIVE_MEMBERS:
+                raise MeshError(f"{path.name} holds over {MAX_ARCHIVE_MEMBERS} compressed streams")
+            d = makers[kind]()
+            if kind == "gzip":
+                out = d.decompress(rest, INFLATE_STEP)
+                total += len(out)
+                while d.unconsumed_tail and total <= max_bytes:
+                    out = d.decompress(d.unconsumed_tail, INFLATE_STEP)
+                    total += len(out)
+                rest = d.unused_data if d.eof else b""
+            else:
+                out = d.decompress(rest, max_length=INFLATE_STEP)
+                total += len(out)
+                while not d.eof and not d.needs_input and total <= max_bytes:
+                    out = d.decompress(b"", max_length=INFLATE_STEP)
+                    total += len(out)
+                rest = d.unused_data if d.eof else b""
+            if total > max_bytes:
+                raise MeshError(f"{path.name} inflates to over {max_bytes} bytes, over the mesh limit ({ENV_BYTES})")
+            rest = rest.lstrip(b"\x00")
+    except MeshError:
+        raise
+    except (OSError, EOFError, ValueError, lzma.LZMAError, zlib.error) as exc:
+        raise MeshError(f"{path.name}: not a readable {kind} stream ({exc})") from None
+
+
+def _count_tokens(text) -> int:
+    """Whitespace-separated tokens of a (possibly huge) str or bytes, without a list of them."""
+    if len(text) < 1_000_000:
+        return len(text.split())
+    import numpy as np
+
+    b = np.frombuffer(text.encode("utf-8", "replace") if isinstance(text, str) else text, dtype=np.uint8)
+    space = (b == 32) | (b == 9) | (b == 10) | (b == 13) | (b == 11) | (b == 12)
+    return int(np.count_nonzero(~space[1:] & space[:-1]) + (0 if space[0] else 1)) if len(b) else 0
+
+
+def _announced_triangles(ext: str, data: bytes) -> int | None:
+    """The triangles a file announces or holds, from its bytes alone (None: nothing cheap to say)."""
+    import re
+
+    if ext == ".stl":
+        if data[:5].lower() == b"solid" and len(data) != 84 + 50 * int.from_bytes(data[80:84], "little"):
+            return data.count(b"facet") // 2 or data.count(b"vertex") // 3
+        return int.from_bytes(data[80:84], "little") if len(data) >= 84 else None
+    if ext == ".ply":
+        head = data[:4096]
+        m = re.search(rb"element\s+face\s+(\d+)", head)
+        return int(m.group(1)) if m else None
+    if ext == ".obj":
+        if data.count(b" ") + data.count(b"\t") < limit("max_mesh_triangles"):
+            return None          # fewer separators than the limit: fewer corners too
+        n = 0
+        pos = 0
+        while True:     # face lines: a polygon of k corners is k - 2 triangles (fanned)
+            i = data.find(b"f ", pos)
+            if i < 0:
+                return n
+            if i == 0 or data[i - 1:i] == b"\n":
+                end = data.find(b"\n", i)
+                end = len(data) if end < 0 else end
+                n += max(_count_tokens(data[i + 2:end]) - 2, 0)
+                pos = end
+            else:
+                pos = i + 2
+    if ext == ".dae":
+        # triangles are made of index numbers in <p> elements, three corners of 1 to DAE_STRIDE
+        # numbers each: a file over the limit even at that stride is refused before any parse (the
+        # lean reader counts each primitive exactly, with its stride, as it reads it)
+        if data.count(b" ") < 3 * DAE_STRIDE * limit("max_mesh_triangles"):
+            return None
+        total = 0
+        pos = 0
+        while True:
+            i = data.find(b"<p>", pos)
+            if i < 0:
+                return total // (3 * DAE_STRIDE)
+            j = data.find(b"</p>", i)
+            j = len(data) if j < 0 else j
+            total += _count_tokens(data[i + 3:j])
+            pos = j + 4
+    return None
 
 
 def _check_archive(path: Path, data: bytes, max_bytes: int) -> None:
@@ -118,10 +304,8 @@ def load(path: Path, process: bool = True, textures: bool = True):
     path = Path(path)
     precheck(path)
     max_bytes, max_tris = limits()
-    data = _read(path, max_bytes)
+    data = _read(path, max_bytes)        # every limit on the bytes (archives, compression, counts)
     ext = path.suffix.lower()
-    if ext in ZIP_EXTS or data[:4] == b"PK\x03\x04":
-        _check_archive(path, data, max_bytes)
     try:
         resolver = _resolver(path, max_bytes) if textures else _NoFiles()
         mesh = trimesh.load(io.BytesIO(data), file_type=ext.lstrip(".") or None, force="mesh", process=process,
@@ -373,7 +557,7 @@ def facts(path: Path, scale=(1.0, 1.0, 1.0)) -> MeshFacts:
     if ext in readers:
         data = _read(path, max_bytes)
         try:
-            parts = readers[ext](data)
+            parts = _named(path, readers[ext], data)
             del data
             v, f = _concatenate(path, parts, max_tris)
             v, f = _place(v, f, S)
@@ -413,11 +597,19 @@ def _triangles(path: Path, ext: str):
         max_bytes, max_tris = limits()
         data = _read(path, max_bytes)
         try:
-            return _concatenate(path, readers[ext](data), max_tris)
+            return _concatenate(path, _named(path, readers[ext], data), max_tris)
         except _NotLean:
             pass
     m = load(path)
     return np.asarray(m.vertices), np.asarray(m.faces)
+
+
+def _named(path: Path, reader, data):
+    """A lean reader's parts; its MeshError names the file."""
+    try:
+        return reader(data)
+    except MeshError as exc:
+        raise MeshError(f"{path.name} {exc}") from None
 
 
 def _place(v, f, T):
@@ -676,6 +868,8 @@ def _dae_parts(data: bytes):
         return _numbers(text, np.float32)
 
     sources = {}
+    counted = [0]
+    max_tris = limit("max_mesh_triangles")
 
     def source(el, want):
         """(data (n, k) float32, k) of a <source>: pycollada's FloatSource (NaN read as 0)."""
@@ -728,6 +922,17 @@ def _dae_parts(data: bytes):
             raise _NotLean(f"inputs {sems}")
         stride = max(o for o, _s, _e in inputs) + 1
         ps = prim.findall(tag("p"))
+        # the triangles this primitive adds, from its index count, before any array is made
+        # (a polygon of k corners adds at most k - 2; a list of triangles a third of its corners)
+        corners = sum(_count_tokens(p.text or "") for p in ps) // stride
+        if kind == "triangles":
+            counted[0] += corners // 3
+        else:                     # fanned: k corners make k - 2 triangles
+            vc = prim.find(tag("vcount")) if kind == "polylist" else None
+            polygons = _count_tokens(vc.text or "") if vc is not None else len(ps)
+            counted[0] += max(corners - 2 * polygons, 0)
+        if counted[0] > max_tris:
+            raise MeshError(f"holds over {max_tris} triangles, the limit ({ENV_TRIANGLES})")
         if kind == "polygons":
             if prim.find(tag("ph")) is not None:
                 raise _NotLean("polygons with holes")

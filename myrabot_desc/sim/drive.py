@@ -14,6 +14,8 @@ import math
 import time
 
 from myrabot_desc.model.kinematics import center_of_mass
+from myrabot_desc.model.pin_model import build_model
+from myrabot_desc.safety import sim_steps
 from myrabot_desc.sim import stability
 from myrabot_desc.sim.diffdrive import find_drive, integrate
 from myrabot_desc.sim.result import Check, Series, SimResult
@@ -44,7 +46,7 @@ def run(robot, *, rate=1000.0, duration=None, script=DEFAULT_SCRIPT, wheels="plu
     dt = 1.0 / rate
     total = sum(s for _, _, s in script)
     duration = total if duration is None else float(duration)
-    N = int(round(duration * rate))
+    N = sim_steps(duration, rate)      # bounded: safety.LIMITS max_sim_steps
     segments, bounds, k = [], [], 0
     for v, w, s in script:
         n = int(round(s * rate))

@@ -18,6 +18,7 @@ from __future__ import annotations
 import math
 import time
 
+from myrabot_desc.safety import sim_steps
 from myrabot_desc.sim import prepared
 from myrabot_desc.sim import scene as sc
 from myrabot_desc.sim import servo as sv
@@ -108,7 +109,7 @@ def run_escoja(robot, layout_objects, *, which="1", rate=1000.0, duration=None, 
     t_home = max(s.arrival() for s in servos)
     if duration is None:
         duration = math.ceil((t_home + 0.5) * 10) / 10
-    N = int(round(duration * rate))
+    N = sim_steps(duration, rate)      # bounded: safety.LIMITS max_sim_steps
     base = _base_track(robot, N, dt)
     t = base.t
     arm_q = np.column_stack([s.positions(t) for s in servos])
@@ -172,7 +173,7 @@ def run_seguir(robot, layout_objects, *, which="1", keys=DEFAULT_KEYS, rate=1000
     t_end_path = move_at + len(seq) * RETARDO
     if duration is None:
         duration = math.ceil((t_end_path + 1.5) * 10) / 10
-    N = int(round(duration * rate))
+    N = sim_steps(duration, rate)      # bounded: safety.LIMITS max_sim_steps
     c0 = obj.centre()
 
     def centre_at(t):

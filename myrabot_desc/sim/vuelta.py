@@ -25,6 +25,7 @@ from __future__ import annotations
 import math
 import time
 
+from myrabot_desc.safety import sim_steps
 from myrabot_desc.sim import prepared, stability
 from myrabot_desc.sim import servo as sv
 from myrabot_desc.sim.collide import collision_check, unique_configs
@@ -45,7 +46,7 @@ def run(robot, *, rate=1000.0, duration=25.0, presses=(1.0,), feedback_rate=100.
     drive.wheel_speed_max, drive.wheel_accel_max = wheel_speed_max, wheel_accel_max
     arm = prepared.arm(robot)
     dt = 1.0 / rate
-    N = int(round(duration * rate))
+    N = sim_steps(duration, rate)      # bounded: safety.LIMITS max_sim_steps
     every = max(1, int(round(rate / feedback_rate)))
     servos = [sv.Servo(0.0, sv.speed_rad_s(SPEED_UNITS, arm.velocity[i]), arm.lower[i], arm.upper[i])
               for i in range(len(arm.names))]

@@ -54,6 +54,7 @@ URDF = """<?xml version="1.0"?>
 @pytest.fixture(autouse=True)
 def _isolated_cache(tmp_path, monkeypatch):
     monkeypatch.setenv("MYRABOT_DESC_CACHE_DIR", str(tmp_path / "cache"))
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "xdg"))        # the user's key lives there
 
 
 def blocks(folder: Path, comment: str = "") -> Path:
@@ -330,16 +331,21 @@ def test_cache_gives_the_same_report_and_sees_an_edited_include(tmp_path):
 
 def test_no_configuration_no_cache_written(tmp_path, monkeypatch):
     monkeypatch.delenv("MYRABOT_DESC_CACHE_DIR")
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "xdg"))
+    user = tmp_path / "xdg" / "myrabot-desc" / "check"
     blocks(tmp_path / "pkg")
     run("pkg/robot.urdf.xacro", cwd=tmp_path)
-    assert not list(tmp_path.rglob(".myrabot-desc-cache"))
+    assert not user.exists() and not list(tmp_path.rglob(".myrabot-desc-cache"))
     (tmp_path / "pyproject.toml").write_text("[tool.myrabot-desc]\n")       # a project opts in
     run("pkg/robot.urdf.xacro", cwd=tmp_path)
+    # entries go to the user's cache folder, never into the repository (unless --cache-dir says so)
+    assert len(list(user.glob("*.json"))) == 1 and not list(tmp_path.rglob(".myrabot-desc-cache"))
+    run("pkg/robot.urdf.xacro", "--cache-dir", ".myrabot-desc-cache", cwd=tmp_path)
     assert (tmp_path / ".myrabot-desc-cache" / ".gitignore").read_text().endswith("*\n")
     (tmp_path / "pyproject.toml").write_text("[tool.myrabot-desc]\ncache = false\n")
-    shutil.rmtree(tmp_path / ".myrabot-desc-cache")
+    shutil.rmtree(user)
     run("pkg/robot.urdf.xacro", cwd=tmp_path)
-    assert not (tmp_path / ".myrabot-desc-cache").exists()
+    assert not user.exists()
 
 
 # ---------------------------------------------------------------- X007
@@ -354,8 +360,14 @@ def test_x007_lists_environment_variables_and_values(tmp_path, monkeypatch):
     res = run(model, "--format", "json", "--select", "X007", cwd=tmp_path)
     d = json.loads(res.stdout)["files"][0]["diagnostics"]
     assert [x["code"] for x in d] == ["X007"] and d[0]["severity"] == "info"
-    assert d[0]["data"]["environment"] == {"LINT_TEST_BASE": "chassis", "LINT_TEST_UNSET": "tool"}
-    assert "LINT_TEST_BASE='chassis'" in d[0]["message"] and "LINT_TEST_UNSET='tool' (unset: default)" in d[0]["message"]
+    # a value from the environment is never printed by default (a model could print a CI secret); the
+    # default an unset $(optenv) fell back to is the file's own text
+    assert d[0]["data"]["environment"] == {"LINT_TEST_BASE": None, "LINT_TEST_UNSET": "tool"}
+    assert "chassis" not in res.stdout
+    assert "LINT_TEST_BASE (set)" in d[0]["message"] and "LINT_TEST_UNSET='tool' (unset: default)" in d[0]["message"]
+    monkeypatch.setenv("MYRABOT_DESC_SHOW_ENV_VALUES", "1")          # the runner may ask for them
+    res = run(model, "--format", "json", "--select", "X007", cwd=tmp_path)
+    assert json.loads(res.stdout)["files"][0]["diagnostics"][0]["data"]["environment"]["LINT_TEST_BASE"] == "chassis"
     # the cache notices a changed variable
     monkeypatch.setenv("LINT_TEST_BASE", "base")
     res = run(model, "--format", "json", "--select", "X007", cwd=tmp_path)
@@ -363,8 +375,8 @@ def test_x007_lists_environment_variables_and_values(tmp_path, monkeypatch):
 
 
 def test_x007_summarises_many_variables(tmp_path, monkeypatch):
-    """A base like Husky reads ~90 $(optenv): the set ones keep their values, the unset ones are
-    named (eight of each at most), and the JSON data still has every value."""
+    """A base like Husky reads ~90 $(optenv): the set ones and the unset ones are named (eight of
+    each at most), and the JSON data has every variable (the defaults of the unset ones)."""
     names = [f"LINT_MANY_{i:02d}" for i in range(12)]
     links = "".join(f'  <link name="l{i}_$(optenv {n} d{i})"/>\n' for i, n in enumerate(names))
     model = tmp_path / "many.urdf.xacro"
@@ -377,7 +389,7 @@ def test_x007_summarises_many_variables(tmp_path, monkeypatch):
     res = run(model, "--format", "json", "--select", "X007", cwd=tmp_path)
     d = json.loads(res.stdout)["files"][0]["diagnostics"][0]
     assert len(d["data"]["environment"]) == 12 and d["data"]["environment"]["LINT_MANY_11"] == "d11"
-    assert ("12 variables, 2 set (LINT_MANY_03='x', LINT_MANY_07='y') and 10 unset, defaults used "
+    assert ("12 variables, 2 set (LINT_MANY_03, LINT_MANY_07) and 10 unset, defaults used "
             "(LINT_MANY_00, LINT_MANY_01, LINT_MANY_02, LINT_MANY_04, LINT_MANY_05, LINT_MANY_06, LINT_MANY_08, "
             "LINT_MANY_09, and 2 more)") in d["message"]
 

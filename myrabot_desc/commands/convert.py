@@ -6,6 +6,7 @@ import click
 
 from myrabot_desc.commands.common import input_options
 from myrabot_desc.commands.console import guarded
+from myrabot_desc.commands.extras import require
 from myrabot_desc.convert.mjcf import convert_mjcf
 from myrabot_desc.convert.preflight import problems, refuse_or_record
 from myrabot_desc.convert.report import Report
@@ -80,6 +81,8 @@ def convert_cmd(inputs, target, output, lump, uri_style, layout, base, scene, re
     file:line line for each, nothing written).
     """
     with guarded():
+        if target == "mjcf":
+            require("mjcf", "convert --to mjcf")
         robot = inputs.load()
         report = Report(target, str(robot.source) if robot.source else "")
         found = problems(robot) if robot.links else []

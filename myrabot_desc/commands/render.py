@@ -8,6 +8,7 @@ import click
 
 from myrabot_desc.commands.common import input_options
 from myrabot_desc.commands.console import guarded
+from myrabot_desc.commands.extras import require
 from myrabot_desc.model.kinematics import require_tree
 from myrabot_desc.output import write_output
 from myrabot_desc.render import ALL, VIEWS, Layers, choose_gl, parse_size, png_bytes, read_pose, render_image
@@ -43,6 +44,7 @@ def render_cmd(inputs, output, view, joints, pose_file, collision, frames, inert
       myrabot-desc render robot.urdf.xacro -p my_pkg=../my_pkg --pose pose.yaml --collision
     """
     with guarded():
+        require("render", "render")
         t0 = time.perf_counter()
         size = parse_size(size_text)
         choose_gl()

@@ -8,6 +8,7 @@ import click
 
 from myrabot_desc.commands.common import input_options
 from myrabot_desc.commands.console import guarded
+from myrabot_desc.commands.extras import require
 from myrabot_desc.view.scene import parse_joint_values
 from myrabot_desc.view.server import Viewer
 
@@ -38,6 +39,7 @@ def view_cmd(inputs, host, port, open_browser, watch, findings, joints):
       myrabot-desc view robot.urdf --port 0 --no-watch   # any free port, no reloading
     """
     with guarded():
+        require("view", "view")
         if not 0 <= port <= 65535:
             raise click.BadParameter(f"{port} is not a port number", param_hint="--port")
         viewer = Viewer(inputs.load, host=host, port=port, findings=findings)

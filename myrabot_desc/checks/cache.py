@@ -136,6 +136,8 @@ def _plain_result(res) -> dict:
     return {"robot": res.robot, "links": res.links, "joints": res.joints,
             "suggestions": [list(s) for s in res.suggestions],
             "seen": [list(k) for k in res.suppressions_seen], "used": [list(k) for k in res.suppressions_used],
+            "suppressed": [[d.code, d.severity, d.message, d.loc.file if d.loc else None,
+                            d.loc.line if d.loc else None, _plain(d.data), list(k)] for d, k in res.suppressed],
             "diagnostics": [[d.code, d.severity, d.message, d.loc.file if d.loc else None,
                              d.loc.line if d.loc else None, _plain(d.data)] for d in res.diagnostics]}
 
@@ -145,6 +147,8 @@ def _result(e: dict, task):
                      joints=e["joints"], suggestions=[tuple(s) for s in e["suggestions"]])
     res.suppressions_seen = [tuple(k) for k in e["seen"]]
     res.suppressions_used = [tuple(k) for k in e["used"]]
+    res.suppressed = [(Diagnostic(c, s, m, Loc(f, ln) if f is not None else None, dict(data)), tuple(k))
+                      for c, s, m, f, ln, data, k in e.get("suppressed", ())]
     res.diagnostics = [Diagnostic(c, s, m, Loc(f, ln) if f is not None else None, dict(data))
                        for c, s, m, f, ln, data in e["diagnostics"]]
     return res

@@ -29,6 +29,7 @@ class Context:
         self.suggestions: list[tuple[str, str]] = []   # (link, "<inertia .../>") for --suggest
         self.suppressions_seen: list = []   # (file, line, code) of inline suppressions (check_robot fills them)
         self.suppressions_used: list = []
+        self.suppressed: list = []          # (finding, (file, line, code)) dropped by a suppression
 
     # ---------------------------------------------------------------- locations
     def loc_of(self, el) -> Loc | None:

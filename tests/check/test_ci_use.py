@@ -226,6 +226,33 @@ def test_sarif_is_valid_with_invocations_and_artifacts(tmp_path):
     assert {r["id"]: r["helpUri"] for r in rules}["I008"] == "https://example.org/docs/rules.md#i008"
 
 
+def test_sarif_lists_suppressed_findings_with_their_suppression(tmp_path):
+    """A finding silenced by an inline comment is in the SARIF report with ``suppressions`` (code
+    scanning shows it dismissed), not left out; the text report still leaves it out. Rule texts have
+    no docstring indentation."""
+    jsonschema = pytest.importorskip("jsonschema")
+    robot = blocks(tmp_path / "pkg", "<!-- myrabot-desc: ignore[I008] foam: light on purpose -->")
+    for extra in ([], ["-j", "2"]):
+        res = run(robot, "--format", "sarif", *extra, cwd=tmp_path)
+        doc = json.loads(res.stdout)
+        jsonschema.validate(doc, json.loads(SCHEMA.read_text()), cls=jsonschema.Draft4Validator)
+        results = doc["runs"][0]["results"]
+        i008 = [r for r in results if r["ruleId"] == "I008"]
+        assert len(i008) == 2                                   # links a and b, both silenced
+        for r in i008:
+            (sup,) = r["suppressions"]
+            assert sup["kind"] == "inSource" and sup["status"] == "accepted"
+            assert sup["justification"] == "myrabot-desc: ignore[I008] at pkg/parts.xacro:4"
+            assert sup["location"]["physicalLocation"]["region"] == {"startLine": 4}
+        assert all("suppressions" not in r for r in results if r["ruleId"] != "I008")
+        assert res.exit_code == 0
+    assert "I008" not in run(robot, cwd=tmp_path).stdout
+    rules = {r["id"]: r for r in doc["runs"][0]["tool"]["driver"]["rules"]}
+    text = rules["G001"]["fullDescription"]["text"]
+    assert "\n    " not in text and "\nThe plugin turns a twist" in text
+    assert all("\n    " not in r["fullDescription"]["text"] for r in rules.values())
+
+
 # ---------------------------------------------------------------- workers, shards, merge
 def _many(tmp_path, n=7) -> Path:
     for i in range(n):

@@ -11,6 +11,7 @@ from myrabot_desc.commands.console import guarded
 from myrabot_desc.commands.extras import require
 from myrabot_desc.view.scene import parse_joint_values
 from myrabot_desc.view.server import Viewer
+from myrabot_desc.view.text import visible as safe_name
 
 
 @click.command("view")
@@ -49,7 +50,8 @@ def view_cmd(inputs, host, port, open_browser, watch, findings, joints):
             click.echo(line, err=True)
         if watch:
             viewer.watch()
-        click.echo(f"myrabot-desc view: {viewer.robot.name} at {viewer.url}  (Ctrl-C stops)", err=True)
+        # the address once, on stdout (viser's own banner is off); what is served on stderr
+        click.echo(f"myrabot-desc view: {safe_name(viewer.robot.name)}, Ctrl-C stops", err=True)
         click.echo(viewer.url)
         if open_browser:
             import webbrowser

@@ -9,7 +9,7 @@ import click
 from myrabot_desc.commands.common import input_options
 from myrabot_desc.commands.console import guarded
 from myrabot_desc.commands.extras import require
-from myrabot_desc.view.scene import parse_joint_values
+from myrabot_desc.view.scene import clamp_notes, parse_joint_values
 from myrabot_desc.view.server import Viewer
 from myrabot_desc.view.text import visible as safe_name
 
@@ -45,7 +45,10 @@ def view_cmd(inputs, host, port, open_browser, watch, findings, joints):
             raise click.BadParameter(f"{port} is not a port number", param_hint="--port")
         viewer = Viewer(inputs.load, host=host, port=port, findings=findings)
         if joints:
-            viewer.set_joints(parse_joint_values(joints, viewer.scene))
+            asked = parse_joint_values(joints, viewer.scene)
+            for line in clamp_notes(asked, viewer.scene):
+                click.echo(line, err=True)
+            viewer.set_joints(asked)
         for line in viewer.scene.problems:
             click.echo(line, err=True)
         if watch:

@@ -28,7 +28,7 @@ from myrabot_desc.view import guard, overlays
 from myrabot_desc.view.decimate import browser_parts
 from myrabot_desc.view.overlays import finding_links
 from myrabot_desc.view.scene import build_scene
-from myrabot_desc.view.text import md, md_code
+from myrabot_desc.view.text import md, md_code, md_code_block, visible
 
 HIGHLIGHT = (255, 0, 200)
 TOGGLES = {            # name -> (label, default)
@@ -522,11 +522,9 @@ class Session:
     def _values_text(self) -> str:
         if not self.scene.joints:
             return "no movable joints"
-        # inside fenced blocks: a name cannot close the fence (it never holds a newline or backticks
-        # after md_code_block), and nothing in a fence is Markdown or HTML
-        args = " ".join(f"{n}:={self.q.get(n, 0.0):.4g}" for n in self.scene.joints)
-        yaml = "\n".join(f"  {n}: {self.q.get(n, 0.0):.6g}" for n in self.scene.joints)
-        from myrabot_desc.view.text import md_code_block
+        # in fenced blocks whose fence no name can close, each name on one line (visible escapes)
+        args = " ".join(f"{visible(n)}:={self.q.get(n, 0.0):.4g}" for n in self.scene.joints)
+        yaml = "\n".join(f"  {visible(n)}: {self.q.get(n, 0.0):.6g}" for n in self.scene.joints)
 
         return (md_code_block(args) + "\nYAML (`render --pose`):\n"
                 + md_code_block(f"joints:\n{yaml}", "yaml"))

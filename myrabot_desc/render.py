@@ -261,7 +261,7 @@ def _dots(img, cam: Camera, dots) -> None:
     from PIL import ImageDraw
 
     d = ImageDraw.Draw(img)
-    base = max(3, min(img.width, img.height) // 150)
+    base = max(2, min(img.width, img.height) // 250)
     for p, kind in sorted(dots, key=lambda t: t[1] == "robot"):
         x, y = project(cam, p, img.width, img.height)
         r = base * (2 if kind == "robot" else 1)

@@ -37,7 +37,7 @@ ARM = """<?xml version="1.0"?>
 """
 
 
-def wait_for(cond, timeout=20.0, what="condition"):
+def wait_for(cond, timeout=120.0, what="condition"):
     end = time.monotonic() + timeout
     while time.monotonic() < end:
         if cond():

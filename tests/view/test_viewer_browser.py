@@ -21,7 +21,7 @@ DRIVER = shutil.which("chromedriver")
 W, H = 1280, 800
 
 
-def wait_for(cond, timeout=30.0, every=0.1, what="condition"):
+def wait_for(cond, timeout=180.0, every=0.1, what="condition"):
     end = time.monotonic() + timeout
     while time.monotonic() < end:
         got = cond()
@@ -61,7 +61,7 @@ def browser(viewer, tmp_path_factory):
     d.set_window_size(W, H)
     d.get(viewer.url)
     wait_for(lambda: viewer.server.get_clients(), what="the browser to connect")
-    wait_for(lambda: robot_pixels(shot(d)) > 2000, timeout=60, what="the robot on the canvas")
+    wait_for(lambda: robot_pixels(shot(d)) > 2000, timeout=300, what="the robot on the canvas")
     dismiss_notifications(d)
     yield d
     d.quit()
@@ -76,7 +76,7 @@ def dismiss_notifications(d):
             b.click()
         except Exception:  # already gone
             pass
-    wait_for(lambda: not d.find_elements(By.CSS_SELECTOR, ".mantine-Notification-root"), timeout=10,
+    wait_for(lambda: not d.find_elements(By.CSS_SELECTOR, ".mantine-Notification-root"), timeout=60,
              what="the notifications to close")
     time.sleep(0.5)
 
@@ -255,9 +255,9 @@ def test_two_sessions_keep_separate_toggles_and_joints(browser, viewer, tmp_path
     try:
         other.get(viewer.url)
         second = wait_for(lambda: viewer.session if viewer.session is not first and viewer.session.ready else None,
-                          timeout=60, what="the second tab's session")
+                          timeout=300, what="the second tab's session")
         assert len(viewer.sessions) == 2
-        wait_for(lambda: robot_pixels(shot(other)) > 2000, timeout=60, what="the robot in the second tab")
+        wait_for(lambda: robot_pixels(shot(other)) > 2000, timeout=300, what="the robot in the second tab")
         dismiss_notifications(other)
         before_first = shot(browser)
         before_second = shot(other)
@@ -304,11 +304,11 @@ def test_model_text_cannot_run_script_in_the_page(tmp_path, tmp_path_factory):
     d = _chrome(tmp_path_factory)
     try:
         d.get(v.url)
-        s = wait_for(lambda: v.session if v.session is not None and v.session.ready else None, timeout=60,
+        s = wait_for(lambda: v.session if v.session is not None and v.session.ready else None, timeout=300,
                      what="the session")
-        wait_for(lambda: v.findings_ready, timeout=60, what="the findings")
+        wait_for(lambda: v.findings_ready, timeout=300, what="the findings")
         body = wait_for(lambda: (lambda t: t if "M001" in t else None)(d.find_element(By.TAG_NAME, "body").text),
-                        timeout=60, what="the findings in the panel")
+                        timeout=300, what="the findings in the panel")
         click_text(d, "M001", tag="button")                   # its detail is Markdown with the mesh name
         wait_for(lambda: s.selected_finding is not None, what="the finding selected")
         time.sleep(1.5)

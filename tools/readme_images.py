@@ -46,8 +46,11 @@ def views() -> None:
     from myrabot_desc.commands.common import ModelInputs as Inputs
     from myrabot_desc.view.server import Viewer
 
-    def shoot(path):
-        time.sleep(3)
+    def shoot(path, panel_to=None):
+        if panel_to:             # scroll the panel to a section
+            el = d.find_element(By.XPATH, f"//*[normalize-space(text())='{panel_to}']")
+            d.execute_script("arguments[0].scrollIntoView({block: 'start'});", el)
+        time.sleep(8)
         d.save_screenshot(str(path))
 
     v = Viewer(Inputs().load, port=0)
@@ -67,17 +70,18 @@ def views() -> None:
             for b in d.find_elements(By.CSS_SELECTOR, ".mantine-Notification-closeButton"):
                 b.click()
             s = v.session
+            s.set_joints({"arti1": 0.6, "arti2": 0.6})
             s.set_toggle("inertia", True)
             i = next(k for k, (f, links) in enumerate(v.findings) if f.code == "I008" and links == ["e_pilar_link"])
             s.select_finding(i)
-            shoot(IMG / "view_inertia.png")
+            shoot(IMG / "view_inertia.png", panel_to="Findings")
             s.set_toggle("inertia", False)
             s.select_finding(i)
             s.highlight([])
             for group in ("frames", "support", "wheels", "com"):
                 s.set_toggle(group, True)
             s.overlay_text()
-            shoot(IMG / "view_support.png")
+            shoot(IMG / "view_support.png", panel_to="Show")
         finally:
             d.quit()
             v.stop()

@@ -167,7 +167,7 @@ def _add_wheels(viewer, sc) -> None:
         label += ", plugin (magenta)"
     top = max(T0[u.left.link][2, 3], T0[u.right.link][2, 3]) + 2 * u.radius
     viewer._nodes["wheels"].append(sc.add_label("/overlays/wheel_label", label, font_screen_scale=0.8,
-                                                anchor="bottom-right",
+                                                anchor="top-right",
                                                 position=tuple(float(c) for c in T0[u.left.link][:2, 3]) + (float(top),)))
 
 
@@ -214,7 +214,7 @@ def update_dynamic(viewer, T) -> None:
     nodes["drop"] = sc.add_line_segments("/overlays/support/drop", drop, (120, 120, 120), thickness=thick / 2)
     # short, anchored at its right end so it grows away from the panel (right); the numbers are in the panel
     nodes["label"] = sc.add_label("/overlays/support/label", f"COM {'inside' if inside else 'OUTSIDE'}",
-                                  position=proj, font_screen_scale=0.8, anchor="bottom-right")
+                                  position=proj, font_screen_scale=0.8, anchor="top-right")
     _panel(viewer)
 
 

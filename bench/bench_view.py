@@ -215,9 +215,8 @@ def bench_usable(files, repeat):
                                 raise RuntimeError(f"{label}: no working slider after 120 s")
                             s = v.session
                             start = s.q.get(joint) if s is not None else None
-                            thumbs = d.find_elements(By.XPATH, f"//*[normalize-space(text())='{joint}']/ancestor::div"
-                                                               f"[.//*[contains(@class,'mantine-Slider-root')]][1]"
-                                                               f"//*[@role='slider']")
+                            # the panel's first slider is the first joint's
+                            thumbs = d.find_elements(By.XPATH, "//*[@role='slider']")
                             if thumbs and s is not None:
                                 try:
                                     ActionChains(d, duration=0).click_and_hold(thumbs[0]).move_by_offset(25, 0) \

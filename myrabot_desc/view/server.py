@@ -317,6 +317,13 @@ class Session:
             gui.reset()
             gui.configure_theme(show_share_button=False, control_width="large", show_logo=False)
             sc.set_up_direction("+z")
+            # No image-based lighting: with software WebGL (no GPU) viser's environment map keeps
+            # the page busy for seconds per object (the sliders did not answer for 15 s); plain
+            # lights instead, without shadows
+            sc.configure_environment_map(None)
+            sc.configure_default_lights(enabled=True, cast_shadow=False)
+            sc.add_light_hemisphere("/lights/sky", sky_color=(255, 255, 255), ground_color=(120, 110, 100),
+                                    intensity=1.6)
             self._nodes = {k: [] for k in TOGGLES}
             self._built = set()
             self._link_nodes, self._visuals, self._findings_shown = {}, {}, -1

@@ -559,28 +559,43 @@ class Session:
             counts = {s: sum(1 for d, _ in v.findings if d.severity == s) for s in ("error", "warning", "info")}
             head = md(v.findings_failure) if v.findings_failure else (
                 f"{counts['error']} errors, {counts['warning']} warnings, {counts['info']} info "
-                "— click one to highlight its links; hover for the whole text")
+                "— tick one to highlight its links; hover its box for the whole text")
             self._gui["findings_head"].content = head
             with self.server.atomic(), self._gui["findings_folder"]:
                 for i, (d, links) in enumerate(v.findings[:MAX_FINDINGS]):
                     mark = {"error": "E", "warning": "W", "info": "i"}.get(d.severity, "?")
                     text = f"{mark} {d.code} {d.message}"
                     label = text if len(text) <= 60 else text[:57] + "..."
-                    # a button's label and hint are plain text in the page (not Markdown)
-                    b = gui.add_button(label, hint=f"{d.loc}: {d.severity}: {d.code} {d.message}",
-                                       color={"error": "red", "warning": "yellow"}.get(d.severity))
-                    b.on_click(self._finding_cb(i))
+                    # a checkbox, not a button: viser shows a checkbox's hint on hover (a button's
+                    # it ignores), and the hint holds the whole text; label and hint are plain text
+                    b = gui.add_checkbox(label, initial_value=False,
+                                         hint=f"{d.loc}: {d.severity}: {d.code} {d.message}")
+                    b.on_update(self._finding_cb(i))
                     self._gui["finding_buttons"].append(b)
 
     def _finding_cb(self, i: int):
-        def cb(_event):
-            self.select_finding(i)
+        def cb(event):
+            if self._quiet:
+                return
+            if event.target.value:
+                self.select_finding(i)
+            elif self.selected_finding == i:
+                self.selected_finding = None
+                self.highlight([])
+                self._gui["finding_detail"].visible = False
 
         return cb
 
     def select_finding(self, i: int) -> None:
         d, links = self.viewer.findings[i]
         self.selected_finding = i
+        self._quiet = True                       # one finding ticked at a time
+        try:
+            for k, box in enumerate(self._gui.get("finding_buttons", ())):
+                if box.value != (k == i):
+                    box.value = k == i
+        finally:
+            self._quiet = False
         self.highlight(links)
         detail = self._gui["finding_detail"]
         where = md_code(str(d.loc)) if d.loc else "(no location)"

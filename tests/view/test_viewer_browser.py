@@ -214,7 +214,7 @@ def test_finding_click_highlights_its_link(browser, viewer):
     idx = next(i for i, (d, links) in enumerate(viewer.findings) if links == ["e_pilar_link"])
     d, _ = viewer.findings[idx]
     before = shot(browser)
-    click_text(browser, f"{d.code} link e_pilar_link", tag="button")
+    click_text(browser, f"{d.code} link e_pilar_link", tag="label")
     wait_for(lambda: viewer.highlighted == {"e_pilar_link"}, what="the highlight on the server")
     assert viewer.selected_finding == idx
     img = wait_for(lambda: (lambda im: im if magenta(im) > magenta(before) + 3000 else None)(shot(browser)),
@@ -226,6 +226,16 @@ def test_finding_click_highlights_its_link(browser, viewer):
     from selenium.webdriver.common.by import By
 
     assert str(d.loc) in browser.find_element(By.TAG_NAME, "body").text
+    # hovering the finding's box shows its whole text (the label is cut at 60 characters)
+    from selenium.webdriver.common.action_chains import ActionChains
+
+    text = f"{d.code} link e_pilar_link"
+    label = browser.find_element(By.XPATH, f"//label[contains(normalize-space(.), \"{text}\")]")
+    box = label.find_element(By.XPATH, "./ancestor::div[.//input[@type='checkbox']][1]//input[@type='checkbox']")
+    ActionChains(browser).move_to_element(box).perform()
+    tip = wait_for(lambda: [t for t in browser.find_elements(By.CSS_SELECTOR, "[role=tooltip]") if t.text],
+                   what="the tooltip")
+    assert d.message in tip[0].text
 
 
 # ---------------------------------------------------------------- sessions and security
@@ -309,7 +319,7 @@ def test_model_text_cannot_run_script_in_the_page(tmp_path, tmp_path_factory):
         wait_for(lambda: v.findings_ready, timeout=300, what="the findings")
         body = wait_for(lambda: (lambda t: t if "M001" in t else None)(d.find_element(By.TAG_NAME, "body").text),
                         timeout=300, what="the findings in the panel")
-        click_text(d, "M001", tag="button")                   # its detail is Markdown with the mesh name
+        click_text(d, "M001", tag="label")                    # its detail is Markdown with the mesh name
         wait_for(lambda: s.selected_finding is not None, what="the finding selected")
         time.sleep(1.5)
         body = d.find_element(By.TAG_NAME, "body").text

@@ -62,8 +62,13 @@ demo: install
 	@echo "see the robot in your browser (joint sliders, inertia boxes, check findings):"
 	@echo "  $(BIN)/myrabot-desc view --open"
 
+# The tests run on every core (pytest-xdist, work stealing: the slow corpus and browser tests are
+# spread out). TEST_USUALLY: a whole run's wall time from a fresh clone on 2 cores, as measured.
+TEST_WORKERS ?= auto
+TEST_USUALLY := TBD
 test: install
-	$(BIN)/python -m pytest -q
+	@echo "make test: usually $(TEST_USUALLY); $(TEST_WORKERS) workers (pytest-xdist)"
+	$(BIN)/python -m pytest -q -n $(TEST_WORKERS) --dist worksteal
 
 bench: install
 	@for b in bench/bench_*.py; do echo "== $$b"; $(BIN)/python $$b || exit 1; done

@@ -175,6 +175,9 @@ def build_model(scene, q: dict, layers: Layers):
                 world.add_geom(type=mujoco.mjtGeom.mjGEOM_CAPSULE, fromto=[*a, *b], size=[rad, 0, 0], rgba=colour,
                                contype=0, conaffinity=0, group=2)
                 extra.append(b)
+    boxes: list = []
+    marks: dict = {}
+    dots: list = []           # (world point, "link" | "robot"): centres of mass
     if layers.inertia:
         for link in scene.robot.links.values():
             if link.name not in T:
@@ -186,18 +189,26 @@ def build_model(scene, q: dict, layers: Layers):
             # half extents, 0.5 mm proud: a box that fits its geometry exactly would flicker into it
             size = [max(s / 2, 1e-4) + 0.0005 for s in box.size]
             corners = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)]) * size
-            extra.extend(corners @ M[:3, :3].T + M[:3, 3])
+            boxes.append(corners @ M[:3, :3].T + M[:3, 3])
             place(M, type=mujoco.mjtGeom.mjGEOM_BOX, size=size,
                   rgba=[0.15, 0.35, 1.0, 0.45] if box.valid else [1.0, 0.1, 0.1, 0.6], group=3)
-            place(M, type=mujoco.mjtGeom.mjGEOM_SPHERE, size=[0.008 * diag, 0, 0], rgba=[0.1, 0.1, 0.1, 1], group=3)
+            marks["impossible" if not box.valid else "box"] = True
+            dots.append((M[:3, 3], "link"))          # drawn over the picture (render_image): never hidden
         mass, com = center_of_mass(scene.robot, scene.pose(q))
         if mass > 0:
-            world.add_geom(type=mujoco.mjtGeom.mjGEOM_SPHERE, pos=list(com), size=[0.02 * diag, 0, 0],
-                           rgba=[1.0, 0.0, 0.8, 1], contype=0, conaffinity=0, group=3)
+            dots.append((np.asarray(com, dtype=float), "robot"))
     model = spec.compile()
+    if boxes:
+        # the picture frames the robot: an inertia box adds to the frame only as far as it stays
+        # near the robot (a wrong inertia can make a box metres wide around a link of millimetres;
+        # framing it would shrink the robot to a dot inside a blue cube)
+        lo, hi = pts.min(axis=0), pts.max(axis=0)
+        reach = 0.08 * diag
+        extra.extend(np.clip(np.vstack(boxes), lo - reach, hi + reach))
     if extra:
         pts = np.vstack([pts, np.asarray(extra, dtype=float).reshape(-1, 3)])
-    return model, T, pts
+    marks["dots"] = dots
+    return model, T, pts, marks
 
 
 # ------------------------------------------------------------------ drawing
@@ -210,7 +221,7 @@ def render_image(scene, q: dict | None = None, views=("iso",), size=(800, 600), 
     W, H = size
     tiles = len(views) > 1
     tw, th = (W // 2, H // 2) if tiles else (W, H)
-    model, T, pts = build_model(scene, q or {}, layers)
+    model, T, pts, marks = build_model(scene, q or {}, layers)
     model.vis.global_.offwidth = max(tw, 64)
     model.vis.global_.offheight = max(th, 64)
     data = mujoco.MjData(model)
@@ -234,12 +245,68 @@ def render_image(scene, q: dict | None = None, views=("iso",), size=(800, 600), 
             img = Image.fromarray(np.ascontiguousarray(renderer.render()))
             if layers.frames:
                 _label_frames(img, cam, T)
+            _dots(img, cam, marks["dots"])
             if tiles:
                 _caption(img, view)
             out.paste(img, ((i % 2) * tw, (i // 2) * th))
     finally:
         renderer.close()
+    _legend(out, layers, marks)
     return out
+
+
+def _dots(img, cam: Camera, dots) -> None:
+    """Centres of mass as dots over the picture (inside a link's geometry a sphere would be hidden):
+    black for each link, a larger magenta one for the robot, each with a white ring."""
+    from PIL import ImageDraw
+
+    d = ImageDraw.Draw(img)
+    base = max(2, min(img.width, img.height) // 250)
+    for p, kind in sorted(dots, key=lambda t: t[1] == "robot"):
+        x, y = project(cam, p, img.width, img.height)
+        r = base * (2 if kind == "robot" else 1)
+        d.ellipse([x - r - 1.5, y - r - 1.5, x + r + 1.5, y + r + 1.5], fill=(255, 255, 255))
+        d.ellipse([x - r, y - r, x + r, y + r], fill=(255, 0, 204) if kind == "robot" else (25, 25, 25))
+
+
+# (colour, shape, text) of every mark a layer draws
+LEGEND = {
+    "collision": [((255, 140, 25), "square", "collision geometry")],
+    "frames": [((230, 25, 25), "line", "x"), ((25, 190, 25), "line", "y"), ((25, 50, 240), "line", "z axis of a link frame")],
+    "inertia": [((40, 90, 255), "square", "equivalent inertia box"), ((255, 25, 25), "square", "impossible moments"),
+                ((25, 25, 25), "dot", "link centre of mass"), ((255, 0, 204), "dot", "robot centre of mass")],
+}
+
+
+def _legend(img, layers: Layers, marks: dict | None = None) -> None:
+    """A key for the overlays drawn (bottom left): every colour and mark of the picture named."""
+    from PIL import ImageDraw
+
+    marks = marks or {}
+    items = [it for name in ("collision", "frames", "inertia") if getattr(layers, name) for it in LEGEND[name]]
+    if not marks.get("impossible"):
+        items = [it for it in items if it[2] != "impossible moments"]
+    if not any(kind == "robot" for _, kind in marks.get("dots", ())):
+        items = [it for it in items if it[2] != "robot centre of mass"]
+    if not items:
+        return
+    d = ImageDraw.Draw(img)
+    size = max(11, min(16, img.height // 50))
+    font = _font(size)
+    x, y = 8, img.height - size - 10
+    width = sum(d.textlength(text, font=font) + size + 20 for _, _, text in items) + 8
+    d.rectangle([x - 4, y - 5, x + width, y + size + 5], fill=(250, 250, 252), outline=(190, 190, 200))
+    for rgb, shape, text in items:
+        box = [x, y + 2, x + size - 4, y + size - 2]
+        if shape == "square":
+            d.rectangle(box, fill=rgb)
+        elif shape == "dot":
+            d.ellipse(box, fill=rgb)
+        else:
+            d.line([box[0], (box[1] + box[3]) / 2, box[2], (box[1] + box[3]) / 2], fill=rgb, width=3)
+        x += size + 2
+        d.text((x, y), text, fill=(40, 40, 40), font=font)
+        x += d.textlength(text, font=font) + 16
 
 
 def open_renderer(mujoco, model, height: int, width: int):

@@ -47,7 +47,8 @@ def check_robot(robot, options: CheckOptions | None = None, select=(), ignore=()
     def enabled(code):
         return (not select or matches(code, select)) and not (ignore and matches(code, ignore))
 
-    out, seen, used = suppress.apply(out, robot, enabled)
+    ctx.suppressed = []
+    out, seen, used = suppress.apply(out, robot, enabled, dropped=ctx.suppressed)
     if not enabled("X009"):
         out, seen = [d for d in out if d.code != "X009"], []
     ctx.suppressions_seen, ctx.suppressions_used = seen, used

@@ -476,6 +476,8 @@ def _plain_result(res) -> dict:
     return {"robot": res.robot, "links": res.links, "joints": res.joints,
             "suggestions": [list(s) for s in res.suggestions],
             "seen": [list(k) for k in res.suppressions_seen], "used": [list(k) for k in res.suppressions_used],
+            "suppressed": [[d.code, d.severity, d.message, d.loc.file if d.loc else None,
+                            d.loc.line if d.loc else None, _plain(d.data), list(k)] for d, k in res.suppressed],
             "diagnostics": [[d.code, d.severity, d.message, d.loc.file if d.loc else None,
                              d.loc.line if d.loc else None, _plain(d.data)] for d in res.diagnostics]}
 
@@ -498,6 +500,12 @@ def _key3(k) -> tuple:
     return (_str(k[0]), _int(k[1]), _str(k[2]))
 
 
+def _diagnostic(c, s, m, f, ln, data) -> Diagnostic:
+    if not isinstance(c, str) or not _CODE.match(c) or s not in SEVERITIES or not isinstance(data, dict):
+        raise ValueError("not a finding")
+    return Diagnostic(c, s, _str(m), Loc(_str(f), _int(ln, True)) if f is not None else None, dict(data))
+
+
 def _result(e: dict, task):
     """A FileResult from a verified entry, every field checked for its type (ValueError/TypeError
     otherwise: the entry is then ignored)."""
@@ -506,10 +514,6 @@ def _result(e: dict, task):
                      suggestions=[(_str(a), _str(b)) for a, b in e["suggestions"]])
     res.suppressions_seen = [_key3(k) for k in e["seen"]]
     res.suppressions_used = [_key3(k) for k in e["used"]]
-    diags = []
-    for c, s, m, f, ln, data in e["diagnostics"]:
-        if not isinstance(c, str) or not _CODE.match(c) or s not in SEVERITIES or not isinstance(data, dict):
-            raise ValueError("not a finding")
-        diags.append(Diagnostic(c, s, _str(m), Loc(_str(f), _int(ln, True)) if f is not None else None, dict(data)))
-    res.diagnostics = diags
+    res.diagnostics = [_diagnostic(*d) for d in e["diagnostics"]]
+    res.suppressed = [(_diagnostic(*d[:6]), _key3(d[6])) for d in e.get("suppressed", ())]
     return res

@@ -32,6 +32,7 @@ class Context:
         self.suggestions: list[tuple[str, str]] = []   # (link, "<inertia .../>") for --suggest
         self.suppressions_seen: list = []   # (file, line, code) of inline suppressions (check_robot fills them)
         self.suppressions_used: list = []
+        self.suppressed: list = []          # (finding, (file, line, code)) dropped by a suppression
         self.fixes: list = []               # (Diagnostic, rule.Fix) of the findings a rule knows how to repair
 
     def fact(self, name: str, build, meshes: bool = False):

@@ -9,6 +9,7 @@ from __future__ import annotations
 import functools
 import json
 import os
+import textwrap
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -45,6 +46,7 @@ class FileResult:
     suppressions_seen: list = field(default_factory=list)   # (file, line, code) for codes the run checks
     suppressions_used: list = field(default_factory=list)   # those that silenced a finding
     fixes: list | None = None                   # check --fix/--diff: each fix as data (fix/report.change_data)
+    suppressed: list = field(default_factory=list)   # (finding, (file, line, code)): listed in SARIF only
 
     def count(self, severity: str) -> int:
         return sum(1 for d in self.diagnostics if d.severity == severity)
@@ -244,10 +246,16 @@ def _rule_name(code: str) -> str:
     return EXTERNAL.get(code, (code.lower(),))[0]
 
 
+def _cleandoc(doc: str) -> str:
+    """A docstring without its source indentation (the first line has none; the rest share it)."""
+    first, _, rest = (doc or "").expandtabs().partition("\n")
+    return (first.strip() + "\n" + textwrap.dedent(rest)).strip()
+
+
 def rule_table():
     """[(code, name, severity, summary, full doc)] for every known code, sorted."""
 
-    rows = [(c, r.name, r.severity, r.summary, r.doc) for c, r in load_all().items()]
+    rows = [(c, r.name, r.severity, r.summary, _cleandoc(r.doc)) for c, r in load_all().items()]
     rows += [(c, n, s, summ, summ) for c, (n, s, summ) in EXTERNAL.items()]
     return sorted(rows)
 
@@ -296,7 +304,9 @@ def render_sarif(results, version: str, exit_code: int = 0, help_url: str | None
             notes.append({"level": "error", "message": {"text": r.failure}, "locations": [loc],
                           "descriptor": {"id": "X000", "index": index["X000"]}})
             continue
-        for d in r.diagnostics:
+        # the suppressed findings too, each with the inline comment that silenced it: code
+        # scanning shows them as dismissed instead of not knowing about them
+        for d, key in [(d, None) for d in r.diagnostics] + list(r.suppressed):
             item = {"ruleId": d.code, "level": SARIF_LEVEL.get(d.severity, "error"), "message": {"text": d.message}}
             if d.code in index:
                 item["ruleIndex"] = index[d.code]
@@ -305,10 +315,15 @@ def render_sarif(results, version: str, exit_code: int = 0, help_url: str | None
             if props:
                 item["properties"] = props
             fixes = [sarif_fix(f, location) for f in (r.fixes or ())
-                     if f.get("edits") and f["status"] in ("proposed", "unsafe")
+                     if key is None and f.get("edits") and f["status"] in ("proposed", "unsafe")
                      and (f["code"], f["message"]) == (d.code, d.message)]
             if fixes:
                 item["fixes"] = fixes
+            if key is not None:
+                file, line, code = key
+                item["suppressions"] = [{"kind": "inSource", "status": "accepted",
+                                         "justification": f"myrabot-desc: ignore[{code}] at {_uri(file)}:{line}",
+                                         "location": location(file, line)}]
             res.append(item)
     invocation = {"executionSuccessful": exit_code in (0, 1), "exitCode": exit_code,
                   "toolExecutionNotifications": notes}

@@ -92,6 +92,7 @@ def check_one(task: Task):
             diags, ctx = check_robot(robot, task.options, task.select, task.ignore, unused=False)
         res.diagnostics = diags
         res.suppressions_seen, res.suppressions_used = ctx.suppressions_seen, ctx.suppressions_used
+        res.suppressed = list(ctx.suppressed)
         res.robot = robot.name
         res.links, res.joints = len(robot.links), len(robot.joints)
         res.suggestions = list(ctx.suggestions)

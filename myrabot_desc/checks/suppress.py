@@ -222,10 +222,11 @@ def source_files(robot) -> list[str]:
     return list(files)
 
 
-def apply(diags: list, robot, enabled) -> tuple[list, list, list]:
+def apply(diags: list, robot, enabled, dropped: list | None = None) -> tuple[list, list, list]:
     """Drop the suppressed findings. Returns (kept findings, keys of the suppressions seen for codes
     the run checks, keys that silenced something); a key is (file, line, code).
-    Suppressions naming unknown codes come back as X009 findings straight away."""
+    Suppressions naming unknown codes come back as X009 findings straight away. ``dropped``, when
+    given, receives (finding, key) for each finding dropped (SARIF lists them as suppressed)."""
 
     by_file: dict[str, list[Suppression]] = {}
     for f in source_files(robot):
@@ -243,6 +244,8 @@ def apply(diags: list, robot, enabled) -> tuple[list, list, list]:
         else:
             code = next(c for c in hit.codes if d.code.startswith(c))
             used.add((hit.file, hit.line, code))
+            if dropped is not None:
+                dropped.append((d, (hit.file, hit.line, code)))
     seen = []
     matches: dict[str, list] = {}
     for sups in by_file.values():

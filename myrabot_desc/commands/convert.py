@@ -8,6 +8,7 @@ from myrabot_desc.checks import CheckOptions, check_robot
 from myrabot_desc.checks.registry import EXTERNAL, load_all
 from myrabot_desc.commands.common import input_options
 from myrabot_desc.commands.console import guarded, no_mujoco_log
+from myrabot_desc.commands.extras import require
 from myrabot_desc.convert.mjcf import convert_mjcf
 from myrabot_desc.convert.preflight import Problem, problems, refuse_or_record, tree_problems
 from myrabot_desc.convert.report import Report
@@ -84,6 +85,8 @@ def convert_cmd(inputs, target, output, lump, uri_style, layout, base, scene, re
     file:line line for each, nothing written).
     """
     with guarded():
+        if target == "mjcf":
+            require("mjcf", "convert --to mjcf")
         robot = inputs.load()
         report = Report(target, str(robot.source) if robot.source else "")
         found = refusals(robot) if robot.links else []

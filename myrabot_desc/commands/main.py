@@ -12,6 +12,7 @@ import importlib
 import click
 
 from myrabot_desc import __version__
+from myrabot_desc.commands.version import describe
 from myrabot_desc.safety import limits_help
 
 # name -> (module, attribute, one-line help shown by --help without importing)
@@ -63,8 +64,16 @@ from the model's folder and package roots, and these limits apply (environment):
 """
 
 
+def _version(ctx, param, value):
+    if not value or ctx.resilient_parsing:
+        return
+    click.echo(f"myrabot-desc, version {describe(__version__)}")
+    ctx.exit()
+
+
 @click.group(cls=LazyGroup, epilog=EPILOG + limits_help() + "\n", context_settings={"help_option_names": ["-h", "--help"]})
-@click.version_option(__version__, prog_name="myrabot-desc")
+@click.option("--version", is_flag=True, expose_value=False, is_eager=True, callback=_version,
+              help="Show the version (and the commit, when it is not a release) and exit.")
 def main():
     """Robot descriptions without ROS: build xacro (old and new), check what is
     wrong and why, convert for today's simulators, and smoke-test the motion."""

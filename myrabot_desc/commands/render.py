@@ -8,13 +8,14 @@ import click
 
 from myrabot_desc.commands.common import input_options
 from myrabot_desc.commands.console import guarded, no_mujoco_log
+from myrabot_desc.commands.extras import require
 from myrabot_desc.errors import InputError
 from myrabot_desc.model.kinematics import require_tree
 from myrabot_desc.output import write_output
 from myrabot_desc.render import ALL, VIEWS, Layers, choose_gl, parse_size, png_bytes, read_pose, render_image
 from myrabot_desc.safety import limit
 from myrabot_desc.sanitize import clean
-from myrabot_desc.view.scene import build_scene, parse_joint_values
+from myrabot_desc.view.scene import build_scene, clamp_notes, parse_joint_values
 
 
 @click.command("render")
@@ -24,7 +25,7 @@ from myrabot_desc.view.scene import build_scene, parse_joint_values
 @click.option("--view", "view", type=click.Choice([*VIEWS, "all"]), default="iso", show_default=True,
               help="Camera: iso, front (from +x), side (from -y), top; all = the four in a 2x2 grid.")
 @click.option("--joint", "joints", multiple=True, metavar="NAME=VALUE",
-              help="A joint's position (rad or m), clamped to its limits. Repeatable.")
+              help="A joint's position (rad or m); a value outside its limits is drawn at the limit, and said. Repeatable.")
 @click.option("--pose", "pose_file", metavar="FILE.yaml",
               help="Joint values from YAML (NAME: VALUE, as `view` copies them); --joint wins.")
 @click.option("--collision", is_flag=True, help="Draw the collision geometry (orange) over ghosted visuals.")
@@ -46,6 +47,7 @@ def render_cmd(inputs, output, view, joints, pose_file, collision, frames, inert
       myrabot-desc render robot.urdf.xacro -p my_pkg=../my_pkg --pose pose.yaml --collision
     """
     with guarded():
+        require("render", "render")
         t0 = time.perf_counter()
         size = parse_size(size_text)
         most = limit("max_render_pixels")
@@ -61,7 +63,10 @@ def render_cmd(inputs, output, view, joints, pose_file, collision, frames, inert
                              f"{limit('max_render_frames')}-frame limit (MYRABOT_DESC_MAX_RENDER_FRAMES)", robot.loc)
         scene = build_scene(robot, collision=collision)
         q = read_pose(pose_file, scene) if pose_file else {}
-        q.update(parse_joint_values(joints, scene))
+        asked = parse_joint_values(joints, scene)
+        q.update(asked)
+        for line in clamp_notes(q, scene):
+            click.echo(line, err=True)
         for line in scene.problems:
             click.echo(clean(line), err=True)
         _check_scales(robot, collision)

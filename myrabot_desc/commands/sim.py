@@ -10,6 +10,7 @@ import click
 
 from myrabot_desc.commands.common import input_options
 from myrabot_desc.commands.console import guarded
+from myrabot_desc.commands.extras import require
 from myrabot_desc.expand.packages import data_root
 from myrabot_desc.model.kinematics import require_tree
 from myrabot_desc.output import write_outputs
@@ -96,8 +97,11 @@ def _finish(res, as_json, csv_path, plot_path):
     sys.exit(0 if res.passed else 1)
 
 
-def _load(inputs):
-    """The model, which must be one tree to move (a broken one fails here with file:line, not deep inside)."""
+def _load(inputs, plot_path=None):
+    """The model, which must be one tree to move (a broken one fails here with file:line, not deep inside).
+    A plot needs the [plot] extra: said before anything runs."""
+    if plot_path:
+        require("plot", "sim --plot")
     robot = inputs.load()
     require_tree(robot)
     return robot
@@ -172,7 +176,7 @@ def vuelta_cmd(inputs, duration, rate, as_json, csv_path, plot_path, progress, w
     """
     duration = 25.0 if duration is None else duration
     with guarded():
-        robot = _load(inputs)
+        robot = _load(inputs, plot_path)
         prog, close = _runner(duration, progress)
         try:
             res = vuelta.run(robot, rate=rate, duration=duration, presses=presses or (1.0,),
@@ -221,7 +225,7 @@ def drive_cmd(inputs, duration, rate, as_json, csv_path, plot_path, progress, wh
     except ValueError as exc:
         raise click.BadParameter(str(exc), param_hint="--twist") from None
     with guarded():
-        robot = _load(inputs)
+        robot = _load(inputs, plot_path)
         prog, close = _runner(duration or sum(s for *_, s in script), progress)
         try:
             res = drive.run(robot, rate=rate, duration=duration, script=script, wheels=wheels,
@@ -286,7 +290,7 @@ def escoja_cmd(inputs, duration, rate, as_json, csv_path, plot_path, progress, l
       myrabot-desc sim escoja --plot out/escoja.png
     """
     with guarded():
-        robot = _load(inputs)
+        robot = _load(inputs, plot_path)
         objects = _layout("escoja", layout_path)
         prog, close = _runner(duration, progress)
         try:
@@ -332,7 +336,7 @@ def seguir_cmd(inputs, duration, rate, as_json, csv_path, plot_path, progress, l
     except ValueError as exc:
         raise click.BadParameter(str(exc), param_hint="--keys") from None
     with guarded():
-        robot = _load(inputs)
+        robot = _load(inputs, plot_path)
         objects = _layout("seguir", layout_path)
         prog, close = _runner(duration, progress)
         try:

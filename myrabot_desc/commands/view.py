@@ -8,8 +8,9 @@ import click
 
 from myrabot_desc.commands.common import input_options
 from myrabot_desc.commands.console import guarded
+from myrabot_desc.commands.extras import require
 from myrabot_desc.sanitize import clean
-from myrabot_desc.view.scene import parse_joint_values
+from myrabot_desc.view.scene import clamp_notes, parse_joint_values
 from myrabot_desc.view.server import Viewer
 
 
@@ -39,16 +40,21 @@ def view_cmd(inputs, host, port, open_browser, watch, findings, joints):
       myrabot-desc view robot.urdf --port 0 --no-watch   # any free port, no reloading
     """
     with guarded():
+        require("view", "view")
         if not 0 <= port <= 65535:
             raise click.BadParameter(f"{port} is not a port number", param_hint="--port")
         viewer = Viewer(inputs.load, host=host, port=port, findings=findings)
         if joints:
-            viewer.set_joints(parse_joint_values(joints, viewer.scene))
+            asked = parse_joint_values(joints, viewer.scene)
+            for line in clamp_notes(asked, viewer.scene):
+                click.echo(line, err=True)
+            viewer.set_joints(asked)
         for line in viewer.scene.problems:
             click.echo(clean(line), err=True)
         if watch:
             viewer.watch()
-        click.echo(f"myrabot-desc view: {clean(viewer.robot.name)} at {viewer.url}  (Ctrl-C stops)", err=True)
+        # the address once, on stdout (viser's own banner is off); what is served on stderr
+        click.echo(f"myrabot-desc view: {clean(viewer.robot.name)}, Ctrl-C stops", err=True)
         click.echo(viewer.url)
         if open_browser:
             import webbrowser

@@ -16,6 +16,9 @@ import math
 
 W_IN, H_IN, DPI = 14.0, 7.0, 100          # 1400 x 700 pixels
 START, END, MIDDLE = "#2ca02c", "#d62728", "#9a9a9a"
+MOVES = 0.005                              # m: a path shorter than this is not drawn in the legend
+QUANTITY = {"m/s": "speed", "rad/s": "turn rate", "deg": "angle", "rad": "angle", "m": "distance",
+            "mm": "distance", "N": "force", "N·m": "torque"}
 
 
 def render(res) -> bytes:
@@ -62,35 +65,48 @@ def _top_view(ax, res) -> None:
 
     b = res.base
     fp = np.asarray(res.outline() or [], dtype=float).reshape(-1, 2)
-    for obj in res.scene:
+    named: set = set()
+    for obj in res.scene:                   # the table and the cans, each kind once in the legend
         fill, edge = obj.colour()
+        label = None if obj.model in named else obj.model
+        named.add(obj.model)
         for kind, data in obj.outline():
             if kind == "circle":
                 (cx, cy), r = data
-                ax.add_patch(Circle((cx, cy), r, facecolor=_rgb(fill), edgecolor=_rgb(edge), lw=1, zorder=1))
+                ax.add_patch(Circle((cx, cy), r, facecolor=_rgb(fill), edgecolor=_rgb(edge), lw=1, zorder=1,
+                                    label=label))
             else:
                 ax.add_patch(Polygon(np.asarray(data), closed=True, facecolor=_rgb(fill), edgecolor=_rgb(edge),
-                                     lw=1, zorder=1))
+                                     lw=1, zorder=1, label=label))
+            label = None
     for label, mx, my in res.moving:
         x, y = _decimate(mx, my)
+        seen = len(x) > 1 and float(np.hypot(np.ptp(x), np.ptp(y))) > MOVES
         ax.plot(x, y, color="#999999" if label == "expected" else "#1f3cc8", lw=1.5, zorder=2,
-                label="expected path" if label == "expected" else f"{label} path")
+                label=None if not seen else "expected path" if label == "expected" else f"{label} path")
     n = len(b.t)
+    # a base that stays put is one footprint: no start/end pair or path in the legend that no one can see
+    still = n < 2 or (float(np.hypot(np.ptp(b.axle_x), np.ptp(b.axle_y))) <= MOVES
+                      and float(np.ptp(np.unwrap(b.yaw))) < 0.01)
     idx = sorted(set(np.linspace(0, n - 1, 9).astype(int).tolist()))
     reach = 0.12
     if len(fp):
         reach = float(np.max(np.hypot(fp[:, 0], fp[:, 1]))) * 0.8
+    if still:
+        idx = idx[-1:]
     for i in idx:
         colour = START if i == 0 else END if i == n - 1 else MIDDLE
         c, s = math.cos(b.yaw[i]), math.sin(b.yaw[i])
         label = "robot at start" if i == 0 else "robot at end" if i == n - 1 else None
+        if still:
+            colour, label = "#333333", "robot (the base does not move)"
         if len(fp):
             pts = np.column_stack([b.x[i] + c * fp[:, 0] - s * fp[:, 1], b.y[i] + s * fp[:, 0] + c * fp[:, 1]])
             ax.add_patch(Polygon(pts, closed=True, fill=False, edgecolor=colour, lw=1.4 if label else 0.8,
                                  zorder=3, label=label))
         ax.plot([b.x[i], b.x[i] + reach * c], [b.y[i], b.y[i] + reach * s], color=colour, lw=1.4, zorder=3)
     x, y = _decimate(b.axle_x, b.axle_y)
-    ax.plot(x, y, color="black", lw=1.8, zorder=4, label="base path (axle midpoint)")
+    ax.plot(x, y, color="black", lw=1.8, zorder=4, label=None if still else "base path (axle midpoint)")
     ax.set_aspect("equal", adjustable="datalim")
     ax.autoscale_view()
     ax.margins(0.08)
@@ -116,7 +132,9 @@ def _lanes(fig, spec, res) -> None:
             by_unit.setdefault(s.unit, []).append(s)
     for unit, items in by_unit.items():
         unit = unit.split(" (")[0]             # 'deg (error)': the label says what it is
-        lanes.append((unit if len(items) > 1 else f"{items[0].label}\n({unit})", items))
+        # an axis names its quantity and unit: "speed (m/s)", not "m/s"
+        what = QUANTITY.get(unit, "value") if len(items) > 1 else items[0].label
+        lanes.append((f"{what}\n({unit})", items))
     if not lanes:
         return
     sub = spec.subgridspec(len(lanes), 1, hspace=0.12)

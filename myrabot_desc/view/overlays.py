@@ -43,12 +43,17 @@ def size_of(viewer) -> float:
     return float(np.linalg.norm(np.ptp(v, axis=0))) if len(v) else 1.0
 
 
-def add_parts(viewer, sc) -> None:
+def add_links(viewer, sc) -> None:
+    """A frame node per link (placed by ``_place``); every part and overlay of the link sits under it."""
     T = viewer.scene.transforms(viewer.q)
+    viewer._diag = size_of(viewer)
     for link in viewer.robot.links:
         if link in T:
             viewer._link_nodes[link] = sc.add_frame(f"/robot/{node_name(link)}", show_axes=False)
-    for p in viewer.scene.parts:
+
+
+def add_parts(viewer, sc, parts) -> None:
+    for p in parts:
         if p.link not in viewer._link_nodes:
             continue
         rgb = _rgb(p.rgba)
@@ -63,35 +68,57 @@ def add_parts(viewer, sc) -> None:
             viewer._visuals.setdefault(p.link, []).append((h, rgb))
 
 
-def add_overlays(viewer, sc) -> None:
-    import numpy as np
+def add_group(viewer, sc, group: str) -> None:
+    """The nodes of one overlay toggle group (built when it is first switched on)."""
+    diag = viewer._diag
+    nodes = viewer._nodes[group]
+    if group in ("frames", "names", "com", "inertia"):
+        for link in viewer._link_nodes:
+            base = f"/robot/{node_name(link)}"
+            L = 0.05 * diag
+            if group == "frames":
+                nodes.append(sc.add_frame(f"{base}/axes", axes_length=L, axes_radius=L / 25, origin_radius=L / 12))
+                continue
+            if group == "names":            # a label's text is plain text in the page
+                nodes.append(sc.add_label(f"{base}/name", link, font_screen_scale=0.7))
+                continue
+            box = inertia_box(viewer.robot.links[link].inertial)
+            if box is None:
+                continue
+            if group == "com":
+                nodes.append(sc.add_icosphere(f"{base}/com", radius=0.006 * diag, color=(20, 20, 20), subdivisions=1,
+                                              position=tuple(box.pose[:3, 3])))
+            else:
+                nodes.append(sc.add_box(f"{base}/inertia", color=(40, 90, 255) if box.valid else (255, 30, 30),
+                                        dimensions=tuple(max(s, 1e-5) for s in box.size), opacity=0.45,
+                                        position=tuple(box.pose[:3, 3]), wxyz=_wxyz(box.pose[:3, :3])))
+        if group == "com":
+            viewer._robot_com = sc.add_icosphere("/overlays/com", radius=0.015 * diag, color=(255, 0, 200),
+                                                 subdivisions=2)
+            nodes.append(viewer._robot_com)
+            viewer._com_label = sc.add_label("/overlays/com/label", "centre of mass", font_screen_scale=0.8,
+                                             anchor="bottom-right")
+            nodes.append(viewer._com_label)
+    elif group == "support":
+        viewer._support_nodes = {}
+        nodes.append(sc.add_grid("/overlays/ground", width=max(2 * diag, 1.0), height=max(2 * diag, 1.0),
+                                 cell_size=0.05, section_size=0.25, plane_opacity=0.15))
+    elif group == "wheels":
+        _add_wheels(viewer, sc)
 
-    diag = size_of(viewer)
-    viewer._diag = diag
-    nodes = viewer._nodes
-    for link in viewer._link_nodes:
-        base = f"/robot/{node_name(link)}"
-        L = 0.05 * diag
-        nodes["frames"].append(sc.add_frame(f"{base}/axes", axes_length=L, axes_radius=L / 25, origin_radius=L / 12))
-        nodes["names"].append(sc.add_label(f"{base}/name", link, font_screen_scale=0.7))
-        ine = viewer.robot.links[link].inertial
-        box = inertia_box(ine)
-        if box is None:
-            continue
-        nodes["com"].append(sc.add_icosphere(f"{base}/com", radius=0.006 * diag, color=(20, 20, 20), subdivisions=1,
-                                             position=tuple(box.pose[:3, 3])))
-        nodes["inertia"].append(sc.add_box(f"{base}/inertia", color=(40, 90, 255) if box.valid else (255, 30, 30),
-                                           dimensions=tuple(max(s, 1e-5) for s in box.size), opacity=0.45,
-                                           position=tuple(box.pose[:3, 3]), wxyz=_wxyz(box.pose[:3, :3])))
-    viewer._robot_com = sc.add_icosphere("/overlays/com", radius=0.015 * diag, color=(255, 0, 200), subdivisions=2)
-    nodes["com"].append(viewer._robot_com)
-    viewer._com_label = sc.add_label("/overlays/com/label", "", font_screen_scale=0.8)
-    nodes["com"].append(viewer._com_label)
-    # ground, contacts, support polygon: built now, moved by update_dynamic
-    viewer._support_nodes = {}
-    nodes["support"].append(sc.add_grid("/overlays/ground", width=max(2 * diag, 1.0), height=max(2 * diag, 1.0),
-                                        cell_size=0.05, section_size=0.25, plane_opacity=0.15))
-    _add_wheels(viewer, sc)
+
+def drive_of(robot):
+    """(the drive as the URDF and its plugin see it, or None; the numbers as text)."""
+    try:
+        drive = find_drive(robot, wheels="urdf")
+    except (InputError, KeyError, ValueError):
+        return None, None
+    u = drive.urdf
+    text = f"URDF: radius {u.radius:.4g} m, separation {u.separation:.4g} m"
+    p = drive.plugin
+    if p is not None:
+        text += f"\nplugin {p.name}: radius {p.radius:.4g} m, separation {p.separation:.4g} m"
+    return drive, text
 
 
 def _circle(centre, axis, radius, n=48):
@@ -109,15 +136,13 @@ def _circle(centre, axis, radius, n=48):
 
 
 def _add_wheels(viewer, sc) -> None:
-    """The URDF's wheels (green, on the wheel links) and the plugin's belief (magenta, root frame)."""
+    """The URDF's wheels (green, on the wheel links) and the plugin's belief (magenta, root frame);
+    their numbers go to the panel (``Session.overlay_text``), a short label stays by the wheels."""
     import numpy as np
 
-    try:
-        drive = find_drive(viewer.robot, wheels="urdf")
-    except (InputError, KeyError, ValueError):
-        viewer.drive = None
+    drive = viewer.drive
+    if drive is None:
         return
-    viewer.drive = drive
     u = drive.urdf
     T0 = viewer.scene.transforms({})
     thick = 0.004 * viewer._diag
@@ -126,8 +151,8 @@ def _add_wheels(viewer, sc) -> None:
         seg = _circle((0, 0, 0), j.axis, w.radius)
         viewer._nodes["wheels"].append(sc.add_line_segments(f"/robot/{node_name(w.link)}/wheel_urdf", seg,
                                                             WHEEL_URDF_RGB, thickness=thick))
-    text = f"URDF: radius {u.radius:.4g} m, separation {u.separation:.4g} m"
     p = drive.plugin
+    label = "wheels: URDF (green)"
     if p is not None:
         lw, rw = np.array(T0[u.left.link][:3, 3]), np.array(T0[u.right.link][:3, 3])
         lateral = lw - rw
@@ -139,34 +164,34 @@ def _add_wheels(viewer, sc) -> None:
             viewer._nodes["wheels"].append(sc.add_line_segments(f"/overlays/wheel_plugin_{side}",
                                                                 _circle(c, lateral, p.radius), WHEEL_PLUGIN_RGB,
                                                                 thickness=thick))
-        text += f"\nplugin {p.name}: radius {p.radius:.4g} m, separation {p.separation:.4g} m"
+        label += ", plugin (magenta)"
     top = max(T0[u.left.link][2, 3], T0[u.right.link][2, 3]) + 2 * u.radius
-    viewer._nodes["wheels"].append(sc.add_label("/overlays/wheel_label", text, font_screen_scale=0.8,
+    viewer._nodes["wheels"].append(sc.add_label("/overlays/wheel_label", label, font_screen_scale=0.8,
+                                                anchor="top-right",
                                                 position=tuple(float(c) for c in T0[u.left.link][:2, 3]) + (float(top),)))
-    viewer.wheel_text = text
 
 
 def update_dynamic(viewer, T) -> None:
     """What moves with the joints besides the links: the robot's centre of mass and the support."""
     import numpy as np
 
-    if not hasattr(viewer, "_robot_com"):
-        return
     mass, com = center_of_mass(viewer.robot, viewer.q)
-    if mass > 0:
-        viewer._robot_com.position = tuple(float(c) for c in com)
-        viewer._com_label.content = f"centre of mass {mass:.3g} kg ({com[0]:.3f}, {com[1]:.3f}, {com[2]:.3f}) m"
     viewer.com = (mass, com)
-    if not viewer.toggles.get("support"):
-        for h in viewer._support_nodes.values():
+    if mass > 0 and getattr(viewer, "_robot_com", None) is not None and "com" in viewer._built:
+        viewer._robot_com.position = tuple(float(c) for c in com)
+    if not viewer.toggles.get("support") or "support" not in viewer._built:
+        for h in getattr(viewer, "_support_nodes", {}).values():
             h.remove()
         viewer._support_nodes = {}
+        viewer.support = None
+        _panel(viewer)
         return
 
     s = support(viewer.robot, viewer.q)
     viewer.support = s
     sc = viewer.server.scene
     if s is None:
+        _panel(viewer)
         return
     z = s.ground_z + 0.0005
     ground = viewer._nodes["support"][0]
@@ -187,9 +212,15 @@ def update_dynamic(viewer, T) -> None:
                                     color=(0, 190, 0) if inside else (255, 0, 0), position=proj)
     drop = np.array([[s.com, proj]], dtype=float)
     nodes["drop"] = sc.add_line_segments("/overlays/support/drop", drop, (120, 120, 120), thickness=thick / 2)
-    nodes["label"] = sc.add_label("/overlays/support/label",
-                                  f"centre of mass {'inside' if inside else 'OUTSIDE'} the support polygon "
-                                  f"({s.margin * 1000:.0f} mm from its edge)", position=proj, font_screen_scale=0.8)
+    # short, anchored at its right end so it grows away from the panel (right); the numbers are in the panel
+    nodes["label"] = sc.add_label("/overlays/support/label", f"COM {'inside' if inside else 'OUTSIDE'}",
+                                  position=proj, font_screen_scale=0.8, anchor="top-right")
+    _panel(viewer)
+
+
+def _panel(viewer) -> None:
+    if hasattr(viewer, "overlay_text"):
+        viewer.overlay_text()
 
 
 def finding_links(robot, d) -> list[str]:

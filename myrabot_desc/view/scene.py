@@ -252,6 +252,20 @@ def parse_joint_values(items, scene: Scene, where: str = "--joint") -> dict[str,
     return out
 
 
+def clamp_notes(q: dict, scene: Scene) -> list[str]:
+    """One line for each joint value outside its slider range: what is drawn instead."""
+    out = []
+    for name, v in q.items():
+        r = scene.joints.get(name)
+        if r is None or r.lower <= v <= r.upper:
+            continue
+        unit = "m" if r.type == "prismatic" else "rad"
+        at = r.upper if v > r.upper else r.lower
+        out.append(f"warning: joint {name} = {v:g} {unit} is outside its limits [{r.lower:g}, {r.upper:g}]; "
+                   f"drawn at {at:g}")
+    return out
+
+
 def check_joint_name(name: str, scene: Scene, where: str) -> None:
     if name in scene.joints:
         return

@@ -227,6 +227,33 @@ def test_sarif_is_valid_with_invocations_and_artifacts(tmp_path):
     assert {r["id"]: r["helpUri"] for r in rules}["I008"] == "https://example.org/docs/rules.md#i008"
 
 
+def test_sarif_lists_suppressed_findings_with_their_suppression(tmp_path):
+    """A finding silenced by an inline comment is in the SARIF report with ``suppressions`` (code
+    scanning shows it dismissed), not left out; the text report still leaves it out. Rule texts have
+    no docstring indentation."""
+    jsonschema = pytest.importorskip("jsonschema")
+    robot = blocks(tmp_path / "pkg", "<!-- myrabot-desc: ignore[I008] foam: light on purpose -->")
+    for extra in ([], ["-j", "2"]):
+        res = run(robot, "--format", "sarif", *extra, cwd=tmp_path)
+        doc = json.loads(res.stdout)
+        jsonschema.validate(doc, json.loads(SCHEMA.read_text()), cls=jsonschema.Draft4Validator)
+        results = doc["runs"][0]["results"]
+        i008 = [r for r in results if r["ruleId"] == "I008"]
+        assert len(i008) == 2                                   # links a and b, both silenced
+        for r in i008:
+            (sup,) = r["suppressions"]
+            assert sup["kind"] == "inSource" and sup["status"] == "accepted"
+            assert sup["justification"] == "myrabot-desc: ignore[I008] at pkg/parts.xacro:4"
+            assert sup["location"]["physicalLocation"]["region"] == {"startLine": 4}
+        assert all("suppressions" not in r for r in results if r["ruleId"] != "I008")
+        assert res.exit_code == 0
+    assert "I008" not in run(robot, cwd=tmp_path).stdout
+    rules = {r["id"]: r for r in doc["runs"][0]["tool"]["driver"]["rules"]}
+    text = rules["G001"]["fullDescription"]["text"]
+    assert "\n    " not in text and "\nThe plugin turns a twist" in text
+    assert all("\n    " not in r["fullDescription"]["text"] for r in rules.values())
+
+
 # ---------------------------------------------------------------- workers, shards, merge
 def _many(tmp_path, n=7) -> Path:
     for i in range(n):
@@ -398,9 +425,10 @@ def test_x007_summarises_many_variables(tmp_path, monkeypatch):
 @pytest.mark.slow
 @pytest.mark.skipif(shutil.which("git") is None, reason="needs git")
 def test_pre_commit_hook_in_a_scratch_repository(tmp_path):
-    """The hook at a v0.2.0 tag of a clone of this repository (pre-commit installs it into its own
-    environment: minutes the first time) passes on a repository with a macro-only parts file and a
-    suppressed finding, and fails (strict) when the suppression goes."""
+    """The hook pinned by commit (``rev: <sha>``, as docs/check.md says: the repository has no tags)
+    on a clone of this repository (pre-commit installs the core into its own environment) passes on
+    a repository with a macro-only parts file and a suppressed finding, and fails (strict) when the
+    suppression goes."""
     pc = Path(sys.executable).parent / "pre-commit"
     if not pc.exists():
         pytest.skip("pre-commit is not installed (pip install '.[test]')")
@@ -409,17 +437,26 @@ def test_pre_commit_hook_in_a_scratch_repository(tmp_path):
     env.pop("MYRABOT_DESC_CACHE_DIR", None)
     tool = tmp_path / "tool"
     subprocess.run(["git", "clone", "-q", str(ROOT), str(tool)], check=True, env=env)
-    subprocess.run(["git", "-C", str(tool), "tag", "-f", "v0.2.0"], check=True, env=env, capture_output=True)
+    sha = subprocess.run(["git", "-C", str(tool), "rev-parse", "HEAD"], check=True, env=env, capture_output=True,
+                         text=True).stdout.strip()
     repo = tmp_path / "repo"
     blocks(repo / "urdf", "<!-- myrabot-desc: ignore[I008] foam -->")
     (repo / "pyproject.toml").write_text('[tool.myrabot-desc]\nignore = ["P004"]\n')
     (repo / ".pre-commit-config.yaml").write_text(
-        f"repos:\n  - repo: {tool}\n    rev: v0.2.0\n    hooks:\n      - id: myrabot-desc-check-strict\n")
+        f"repos:\n  - repo: {tool}\n    rev: {sha}\n    hooks:\n      - id: myrabot-desc-check-strict\n")
     subprocess.run(["git", "init", "-q", str(repo)], check=True, env=env)
     subprocess.run(["git", "-C", str(repo), "add", "-A"], check=True, env=env)
     p = subprocess.run([str(pc), "run", "--all-files"], cwd=repo, env=env, capture_output=True, text=True)
     assert p.returncode == 0, p.stdout + p.stderr
     assert "Passed" in p.stdout
+    # pre-commit installed the core only, and the tool names the commit it was pinned at
+    hook_bin = next((tmp_path / "pc-home").glob("repo*/py_env-*/bin"))
+    q = subprocess.run([str(hook_bin / "python"), "-c", "import importlib.util as u; "
+                        "print([m for m in ('mujoco', 'viser', 'matplotlib', 'example_robot_data') if u.find_spec(m)])"],
+                       capture_output=True, text=True, env=env)
+    assert q.stdout.strip() == "[]", q.stdout + q.stderr
+    q = subprocess.run([str(hook_bin / "myrabot-desc"), "--version"], capture_output=True, text=True, env=env)
+    assert f"(commit {sha}; not a release)" in q.stdout, q.stdout + q.stderr
     blocks(repo / "urdf")                                # the suppression goes: I008 twice, strict fails
     subprocess.run(["git", "-C", str(repo), "add", "-A"], check=True, env=env)
     p = subprocess.run([str(pc), "run", "--all-files"], cwd=repo, env=env, capture_output=True, text=True)

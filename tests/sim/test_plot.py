@@ -44,3 +44,30 @@ def test_plot_file_is_deterministic(tmp_path):
         assert r.exit_code == 0, r.output
     assert a.read_bytes() == b.read_bytes()
     assert Image.open(a).size == (1400, 700)
+
+
+def _legend_texts(ax) -> list[str]:
+    return [t.get_text() for t in ax.get_legend().get_texts()]
+
+
+def test_legends_list_what_is_drawn_and_axes_name_quantities():
+    """escoja: the base stays put (one footprint, no start/end pair or path in the legend) and the
+    table and both cans are in the legend; drive: each lane names its quantity with its unit."""
+    from myrabot_desc.model.loader import load_robot
+    from myrabot_desc.sim import drive, pointing
+    from myrabot_desc.sim.plot import figure
+    from myrabot_desc.expand.packages import data_root
+    from myrabot_desc.sim.scene import load_layout
+
+    robot = load_robot()
+    res = pointing.run_escoja(robot, load_layout(data_root() / "layouts" / "escoja.yaml"), which="1")
+    top = figure(res).axes[0]
+    texts = _legend_texts(top)
+    assert "robot (the base does not move)" in texts
+    assert not {"robot at start", "robot at end", "base path (axle midpoint)"} & set(texts)
+    assert {"mesa", "lata_cocacola", "lata_amstel"} <= set(texts), texts
+    res = drive.run(robot, script=[(0.1, 0.3, 3.0)])
+    fig = figure(res)
+    top, *lanes = fig.axes
+    assert [a.get_ylabel() for a in lanes] == ["speed\n(m/s)", "turn rate\n(rad/s)"]
+    assert {"robot at start", "robot at end", "base path (axle midpoint)"} <= set(_legend_texts(top))

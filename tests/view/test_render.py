@@ -190,3 +190,60 @@ def test_a_model_that_is_not_a_tree_exits_2(tmp_path):
                    '<joint name="k" type="fixed"><parent link="a"/><child link="b"/></joint></robot>')
     _, err = render(tmp_path, str(cyc), expect=2)
     assert f"{cyc}:1: error: the model needs exactly one root link" in err
+
+
+TINY = """<?xml version="1.0"?>
+<robot name="tiny_links">
+  <material name="green"><color rgba="0.1 0.8 0.1 1"/></material>
+  <link name="base"><visual><geometry><box size="0.3 0.2 0.1"/></geometry><material name="green"/></visual>
+    <inertial><mass value="2"/><inertia ixx="0.008" iyy="0.017" izz="0.022" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <link name="arm"><visual><origin xyz="0 0 0.15"/><geometry><cylinder radius="0.03" length="0.3"/></geometry>
+    <material name="green"/></visual>
+    <inertial><origin xyz="0 0 0.15"/><mass value="0.5"/><inertia ixx="0.0039" iyy="0.0039" izz="0.0002" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="shoulder" type="revolute"><parent link="base"/><child link="arm"/><origin xyz="0 0 0.05"/>
+    <axis xyz="0 1 0"/><limit lower="-1.5" upper="1.5" effort="1" velocity="1"/></joint>
+  <link name="tiny1"><visual><geometry><sphere radius="0.005"/></geometry></visual>
+    <inertial><mass value="0.01"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="t1" type="fixed"><parent link="base"/><child link="tiny1"/><origin xyz="0.1 0.05 0.06"/></joint>
+  <link name="tiny2"><visual><geometry><sphere radius="0.005"/></geometry></visual>
+    <inertial><mass value="0.01"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="t2" type="fixed"><parent link="arm"/><child link="tiny2"/><origin xyz="0 0 0.3"/></joint>
+</robot>
+"""
+
+
+def _green(img) -> int:
+    """The robot's own pixels (it is green; under a translucent blue box green still leads, while
+    the background under a box turns blue)."""
+    r, g, b = img[..., 0], img[..., 1], img[..., 2]
+    return int(((g - r > 40) & (g > b))[: int(img.shape[0] * 0.9)].sum())
+
+
+def test_inertia_frames_the_robot_not_its_boxes(tmp_path):
+    """Two tiny links with 1 m radius of gyration: their boxes are metres wide. The picture frames
+    the robot (its pixels about as many as without the boxes), and a legend names every mark."""
+    f = tmp_path / "tiny.urdf"
+    f.write_text(TINY)
+    plain, _ = render(tmp_path, str(f), name="plain.png")
+    boxed, _ = render(tmp_path, str(f), "--inertia", name="boxed.png")
+    assert _green(plain) > 10_000
+    # framed on the robot (plus a margin for the boxes near it): a third of the plain picture's
+    # pixels and more (the boxes' blue covers some); framed on the boxes, the robot had none
+    assert _green(boxed) > 0.3 * _green(plain), (_green(boxed), _green(plain))
+    # the legend (bottom left): a magenta dot for the robot's centre of mass, black for each link's
+    legend = boxed[-40:, :300]
+    magenta = (legend[..., 0] > 200) & (legend[..., 1] < 60) & (legend[..., 2] > 160)
+    black = (legend.sum(axis=2) < 120)
+    assert magenta.sum() > 20 and black.sum() > 20
+    # the dots themselves, over the picture
+    body = boxed[:-40]
+    assert ((body[..., 0] > 200) & (body[..., 1] < 60) & (body[..., 2] > 160)).sum() > 50
+
+
+def test_a_clamped_joint_value_is_said(tmp_path):
+    f = tmp_path / "tiny.urdf"
+    f.write_text(TINY)
+    img, err = render(tmp_path, str(f), "--joint", "shoulder=5")
+    assert "warning: joint shoulder = 5 rad is outside its limits [-1.5, 1.5]; drawn at 1.5" in err
+    same, err2 = render(tmp_path, str(f), "--joint", "shoulder=1.5", name="r2.png")
+    assert "outside" not in err2 and np.array_equal(img, same)

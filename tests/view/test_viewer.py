@@ -37,7 +37,7 @@ ARM = """<?xml version="1.0"?>
 """
 
 
-def wait_for(cond, timeout=20.0, what="condition"):
+def wait_for(cond, timeout=120.0, what="condition"):
     end = time.monotonic() + timeout
     while time.monotonic() < end:
         if cond():
@@ -56,7 +56,7 @@ def arm(tmp_path):
 def test_watch_reloads_and_keeps_the_joint_values(arm):
     from myrabot_desc.view.server import Viewer
 
-    v = Viewer(Inputs(files=[str(arm)]).load, port=0)
+    v = Viewer(Inputs(files=[str(arm)]).load, port=0, shared=True)
     try:
         assert list(v.scene.joints) == ["shoulder"]              # the mimic joint follows, no slider
         assert str(arm) in v.files()
@@ -109,7 +109,7 @@ def test_view_shows_an_example_robot_data_robot():
     urdf = ERD / "ur_description/urdf/ur5_robot.urdf"
     if not urdf.is_file():
         pytest.skip("example-robot-data is not installed")
-    v = Viewer(Inputs(files=[str(urdf)]).load, port=0, findings=False)
+    v = Viewer(Inputs(files=[str(urdf)]).load, port=0, findings=False, shared=True)
     try:
         assert set(v.scene.joints) >= {"shoulder_pan_joint", "elbow_joint", "wrist_3_joint"}
         assert sum(p.layer == "visual" for p in v.scene.parts) >= 7
@@ -166,8 +166,10 @@ def test_wheels_as_the_plugin_believes_them_against_the_urdf():
 
     wander = FIX / "wander_bot"
     v = Viewer(Inputs(files=[str(wander / "urdf" / "robot.xacro")], packages={"wander_bot": str(wander)}).load,
-               port=0, findings=False)
+               port=0, findings=False, shared=True)
     try:
+        assert v._nodes["wheels"] == []                 # an overlay is built when first switched on
+        v.set_toggle("wheels", True)
         assert "URDF: radius 0.08 m, separation 0.3 m" in v.wheel_text
         assert "radius 0.1 m, separation 0.4 m" in v.wheel_text
         assert len(v._nodes["wheels"]) == 5            # two URDF rims, two plugin rims, the numbers

@@ -21,7 +21,7 @@ DRIVER = shutil.which("chromedriver")
 W, H = 1280, 800
 
 
-def wait_for(cond, timeout=30.0, every=0.1, what="condition"):
+def wait_for(cond, timeout=180.0, every=0.1, what="condition"):
     end = time.monotonic() + timeout
     while time.monotonic() < end:
         got = cond()
@@ -61,7 +61,7 @@ def browser(viewer, tmp_path_factory):
     d.set_window_size(W, H)
     d.get(viewer.url)
     wait_for(lambda: viewer.server.get_clients(), what="the browser to connect")
-    wait_for(lambda: robot_pixels(shot(d)) > 2000, timeout=60, what="the robot on the canvas")
+    wait_for(lambda: robot_pixels(shot(d)) > 2000, timeout=300, what="the robot on the canvas")
     dismiss_notifications(d)
     yield d
     d.quit()
@@ -76,7 +76,7 @@ def dismiss_notifications(d):
             b.click()
         except Exception:  # already gone
             pass
-    wait_for(lambda: not d.find_elements(By.CSS_SELECTOR, ".mantine-Notification-root"), timeout=10,
+    wait_for(lambda: not d.find_elements(By.CSS_SELECTOR, ".mantine-Notification-root"), timeout=60,
              what="the notifications to close")
     time.sleep(0.5)
 
@@ -214,7 +214,7 @@ def test_finding_click_highlights_its_link(browser, viewer):
     idx = next(i for i, (d, links) in enumerate(viewer.findings) if links == ["e_pilar_link"])
     d, _ = viewer.findings[idx]
     before = shot(browser)
-    click_text(browser, f"{d.code} link e_pilar_link", tag="button")
+    click_text(browser, f"{d.code} link e_pilar_link", tag="label")
     wait_for(lambda: viewer.highlighted == {"e_pilar_link"}, what="the highlight on the server")
     assert viewer.selected_finding == idx
     img = wait_for(lambda: (lambda im: im if magenta(im) > magenta(before) + 3000 else None)(shot(browser)),
@@ -226,3 +226,109 @@ def test_finding_click_highlights_its_link(browser, viewer):
     from selenium.webdriver.common.by import By
 
     assert str(d.loc) in browser.find_element(By.TAG_NAME, "body").text
+    # hovering the finding's box shows its whole text (the label is cut at 60 characters)
+    from selenium.webdriver.common.action_chains import ActionChains
+
+    text = f"{d.code} link e_pilar_link"
+    label = browser.find_element(By.XPATH, f"//label[contains(normalize-space(.), \"{text}\")]")
+    box = label.find_element(By.XPATH, "./ancestor::div[.//input[@type='checkbox']][1]//input[@type='checkbox']")
+    ActionChains(browser).move_to_element(box).perform()
+    tip = wait_for(lambda: [t for t in browser.find_elements(By.CSS_SELECTOR, "[role=tooltip]") if t.text],
+                   what="the tooltip")
+    assert d.message in tip[0].text
+
+
+# ---------------------------------------------------------------- sessions and security
+def _chrome(tmp_path_factory):
+    if not CHROMIUM or not DRIVER:
+        pytest.skip("no chromium/chromedriver installed (Debian: apt-get install chromium chromium-driver)")
+    from selenium import webdriver
+    from selenium.webdriver.chrome.options import Options
+    from selenium.webdriver.chrome.service import Service
+
+    o = Options()
+    o.binary_location = CHROMIUM
+    for a in ("--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+              "--disable-background-networking", "--disable-component-update", "--disable-sync",
+              f"--window-size={W},{H}", f"--user-data-dir={tmp_path_factory.mktemp('chrome')}"):
+        o.add_argument(a)
+    d = webdriver.Chrome(service=Service(DRIVER), options=o)
+    d.set_window_size(W, H)
+    return d
+
+
+def test_two_sessions_keep_separate_toggles_and_joints(browser, viewer, tmp_path_factory):
+    """A second tab is a session of its own: switching an overlay on or moving a joint there changes
+    nothing in the first tab (server state and pixels)."""
+    first = viewer.session
+    other = _chrome(tmp_path_factory)
+    try:
+        other.get(viewer.url)
+        second = wait_for(lambda: viewer.session if viewer.session is not first and viewer.session.ready else None,
+                          timeout=300, what="the second tab's session")
+        assert len(viewer.sessions) == 2
+        wait_for(lambda: robot_pixels(shot(other)) > 2000, timeout=300, what="the robot in the second tab")
+        dismiss_notifications(other)
+        before_first = shot(browser)
+        before_second = shot(other)
+        click_text(other, "inertia boxes", tag="label")
+        wait_for(lambda: second.toggles["inertia"], what="the toggle in the second session")
+        wait_for(lambda: (lambda im: im if bluer(im, before_second) > 3000 else None)(shot(other)),
+                 what="blue boxes in the second tab")
+        second.set_joints({"arti1": 1.2})
+        time.sleep(1.0)
+        assert first.toggles["inertia"] is False and first.q.get("arti1") != 1.2
+        assert bluer(shot(browser), before_first) < 500        # the first tab shows no box
+    finally:
+        other.quit()
+    wait_for(lambda: len(viewer.sessions) == 1, what="the second session to end with its tab")
+
+
+EVIL = """<?xml version="1.0"?>
+<robot name="evil&lt;iframe srcdoc=&quot;&lt;script&gt;parent.document.title='PWNED'&lt;/script&gt;&quot;&gt;&lt;/iframe&gt;">
+  <link name="base">
+    <visual><geometry><mesh filename="a`b&lt;img src=x onerror=&quot;document.title='PWNED3'&quot;&gt;.stl"/></geometry></visual>
+    <visual><geometry><box size="0.2 0.2 0.1"/></geometry></visual>
+    <inertial><mass value="1"/><inertia ixx="0.004" iyy="0.004" izz="0.007" ixy="0" ixz="0" iyz="0"/></inertial>
+  </link>
+  <link name="arm"><visual><origin xyz="0 0 0.2"/><geometry><cylinder radius="0.03" length="0.4"/></geometry></visual>
+    <inertial><mass value="0.5"/><inertia ixx="0.0068" iyy="0.0068" izz="0.0002" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="j&#10;```&#10;&lt;img src=x onerror=&quot;document.title='PWNED2'&quot;&gt;&#10;```" type="revolute">
+    <parent link="base"/><child link="arm"/><axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>
+"""
+
+
+def test_model_text_cannot_run_script_in_the_page(tmp_path, tmp_path_factory):
+    """The three injection points of a hostile model (an <iframe srcdoc> in the robot name, a
+    backtick and an <img onerror> in a mesh file name, a newline and a code fence in a joint name)
+    reach the page as text: no element is made from them and no script runs."""
+    from selenium.webdriver.common.by import By
+
+    from myrabot_desc.commands.common import ModelInputs as Inputs
+    from myrabot_desc.view.server import Viewer
+
+    f = tmp_path / "evil.urdf"
+    f.write_text(EVIL)
+    v = Viewer(Inputs(files=[str(f)]).load, port=0)
+    d = _chrome(tmp_path_factory)
+    try:
+        d.get(v.url)
+        s = wait_for(lambda: v.session if v.session is not None and v.session.ready else None, timeout=300,
+                     what="the session")
+        wait_for(lambda: v.findings_ready, timeout=300, what="the findings")
+        body = wait_for(lambda: (lambda t: t if "M001" in t else None)(d.find_element(By.TAG_NAME, "body").text),
+                        timeout=300, what="the findings in the panel")
+        click_text(d, "M001", tag="label")                    # its detail is Markdown with the mesh name
+        wait_for(lambda: s.selected_finding is not None, what="the finding selected")
+        time.sleep(1.5)
+        body = d.find_element(By.TAG_NAME, "body").text
+        assert "<iframe srcdoc=" in body                     # the robot name, shown as text
+        assert "a`b<img src=x" in body                        # the mesh file name, shown as text
+        assert "j\\n```\\n<img src=x" in body                 # the joint name, one visible line
+        assert d.title != "PWNED" and "PWNED" not in d.title
+        assert d.find_elements(By.TAG_NAME, "iframe") == []
+        assert not [i for i in d.find_elements(By.TAG_NAME, "img") if (i.get_attribute("src") or "").endswith("/x")]
+    finally:
+        d.quit()
+        v.stop()

@@ -40,6 +40,7 @@ class Item(NamedTuple):
     change: str               # the change as text: '+1.0 mm', '×1.04', 'added'
     size: float               # for ranking: mm, deg, % or STRUCTURAL
     where: Any = None         # Where of the new value (None: no source span)
+    values: tuple = ()        # the new value's numbers as written (SI units), to find the line that wrote them
 
 
 class Where(NamedTuple):
@@ -49,6 +50,7 @@ class Where(NamedTuple):
     kind: str                 # literal | property | param | default | arg | expr | element | changed-line
     name: str | None = None   # the property, parameter or arg name
     side: str = "new"         # 'old' for a removed part (its place in the old revision)
+    hops: tuple = ()          # model.sources.Hop: the way from the use to the literal
 
     def text(self, shown=lambda f: f) -> str:
         s = self.span
@@ -59,6 +61,8 @@ class Where(NamedTuple):
             loc += f" ({self.kind} {self.name})"
         elif self.kind == "expr":
             loc += " (expression)"
+        elif self.kind == "yaml":
+            loc += " (YAML)"
         return loc
 
 
@@ -219,7 +223,7 @@ class Side:
         kind = o.kind if o.written is not None or o.kind != "literal" else "literal"
         if o.written is None and o.expr is not None:
             kind = "expr"
-        return Where(span, kind, o.name, side)
+        return Where(span, kind, o.name, side, tuple(h for h in o.hops if h.span is not None))
 
 
 # ---------------------------------------------------------------------------------------- geometry
@@ -293,12 +297,14 @@ class _Builder:
             d = [_r((y - x) * 1000, 4) for x, y in zip(a.origin.xyz, b.origin.xyz)]
             ch["xyz_mm"] = {"old": mm(a.origin.xyz), "new": mm(b.origin.xyz), "delta": d}
             self.add("joint", name, "origin xyz", fmt(mm(a.origin.xyz), "mm"), fmt(mm(b.origin.xyz), "mm"),
-                     f"{fmt(math.hypot(*d))} mm", math.hypot(*d), sn.where(b, "origin.xyz"))
+                     f"{fmt(math.hypot(*d))} mm", math.hypot(*d), sn.where(b, "origin.xyz"),
+                     tuple(y for x, y in zip(a.origin.xyz, b.origin.xyz) if differs(x, y)))
         if differs(a.origin.rpy, b.origin.rpy):
             ch["rpy_deg"] = {"old": deg(a.origin.rpy), "new": deg(b.origin.rpy)}
             turn = max(abs(_wrap(y - x)) for x, y in zip(deg(a.origin.rpy), deg(b.origin.rpy)))
             self.add("joint", name, "origin rpy", fmt(deg(a.origin.rpy), "deg"), fmt(deg(b.origin.rpy), "deg"),
-                     f"{fmt(turn)} deg", turn, sn.where(b, "origin.rpy"))
+                     f"{fmt(turn)} deg", turn, sn.where(b, "origin.rpy"),
+                     tuple(y for x, y in zip(a.origin.rpy, b.origin.rpy) if differs(x, y)))
         if differs(a.axis, b.axis):
             ch["axis"] = {"old": list(a.axis), "new": list(b.axis)}
             self.add("joint", name, "axis", fmt(list(a.axis)), fmt(list(b.axis)), "changed", STRUCTURAL / 4,
@@ -321,8 +327,10 @@ class _Builder:
                     field = "limit." + label
                     change = (f"{signed(y - x, unit)}" if x is not None and y is not None else
                               ("removed" if y is None else "added"))
+                    raw = getattr(b.limit, label, None) if b.limit is not None else None
                     self.add("joint", name, f"limit {label}", fmt(x, unit), fmt(y, unit), change, size,
-                             sn.where(b, field) if y is not None else sn.where(b, None))
+                             sn.where(b, field) if y is not None else sn.where(b, None),
+                             (raw,) if raw is not None else ())
             if d:
                 ch["limit"] = d
         for k in ("mimic", "dynamics", "safety_controller"):
@@ -353,24 +361,26 @@ class _Builder:
                 ch["mass_kg"] = {"old": ia.mass, "new": ib.mass, "delta": round(ib.mass - ia.mass, 9)}
                 self.add("link", name, "mass", fmt(ia.mass, "kg"), fmt(ib.mass, "kg"),
                          f"{signed(ib.mass - ia.mass, 'kg')} ({signed(100 * (ib.mass - ia.mass) / ia.mass if ia.mass else 100.0)} %)",
-                         rel_size(ia.mass, ib.mass), sn.where(ib, "mass"))
+                         rel_size(ia.mass, ib.mass), sn.where(ib, "mass"), (ib.mass,))
             if differs(ia.origin.xyz, ib.origin.xyz):
                 ch["inertial_xyz_mm"] = {"old": mm(ia.origin.xyz), "new": mm(ib.origin.xyz)}
                 dist = math.dist(ia.origin.xyz, ib.origin.xyz) * 1000
                 self.add("link", name, "centre of mass (link frame)", fmt(mm(ia.origin.xyz), "mm"),
-                         fmt(mm(ib.origin.xyz), "mm"), f"{fmt(dist)} mm", dist, sn.where(ib, "origin.xyz"))
+                         fmt(mm(ib.origin.xyz), "mm"), f"{fmt(dist)} mm", dist, sn.where(ib, "origin.xyz"),
+                         tuple(y for x, y in zip(ia.origin.xyz, ib.origin.xyz) if differs(x, y)))
             if differs(ia.origin.rpy, ib.origin.rpy):
                 ch["inertial_rpy_deg"] = {"old": deg(ia.origin.rpy), "new": deg(ib.origin.rpy)}
                 turn = max(abs(_wrap(y - x)) for x, y in zip(deg(ia.origin.rpy), deg(ib.origin.rpy)))
                 self.add("link", name, "inertia axes (rpy)", fmt(deg(ia.origin.rpy), "deg"),
-                         fmt(deg(ib.origin.rpy), "deg"), f"{fmt(turn)} deg", turn, sn.where(ib, "origin.rpy"))
+                         fmt(deg(ib.origin.rpy), "deg"), f"{fmt(turn)} deg", turn, sn.where(ib, "origin.rpy"),
+                         tuple(y for x, y in zip(ia.origin.rpy, ib.origin.rpy) if differs(x, y) and y))
             comps = {}
             for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz"):
                 x, y = getattr(ia, k), getattr(ib, k)
                 if differs(x, y):
                     comps[k] = {"old": x, "new": y}
                     self.add("link", name, k, fmt(x, "kg·m²"), fmt(y, "kg·m²"),
-                             f"×{fmt(y / x)}" if x else signed(y), rel_size(x, y), sn.where(ib, k))
+                             f"×{fmt(y / x)}" if x else signed(y), rel_size(x, y), sn.where(ib, k), (y,))
             if comps:
                 ch["inertia"] = comps
         for kind in ("visual", "collision"):

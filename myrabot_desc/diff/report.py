@@ -30,7 +30,7 @@ def md(text) -> str:
 
 def _rows(res: DiffResult):
     for it in res.items:
-        yield it, where_text(it.where, res.shown)
+        yield it, where_text(it.where, res.shown, res.shown_old)
 
 
 def text(res: DiffResult) -> str:

@@ -21,6 +21,7 @@ from typing import NamedTuple
 
 from myrabot_desc.checks import CheckOptions, check_robot
 from myrabot_desc.checks.baseline import finding_key
+from myrabot_desc.diff.attribution import changed_lines, refine
 from myrabot_desc.diff.compare import STRUCTURAL, Item, compare, fmt
 from myrabot_desc.errors import InputError, UsageProblem
 from myrabot_desc.model.loader import load_robot
@@ -33,9 +34,10 @@ class DiffResult(NamedTuple):
     new_label: str
     data: dict                  # the changes (compare.Comparison.data, findings added)
     items: list                 # compare.Item, largest first
-    shown: object               # file name as built -> as the user reads it
+    shown: object               # file name as built -> as the user reads it (new side)
     old: object                 # the Robots
     new: object
+    shown_old: object = None    # the same for the old side
 
 
 class _Tree:
@@ -148,7 +150,8 @@ def diff_findings(old_diags, new_diags, shown_old, shown_new) -> tuple[dict, lis
             data.setdefault("findings_removed", []).append(
                 {"code": x.code, "severity": x.severity, "message": x.message, "where": _loc(x, shown_old)})
             items.append(Item("finding", x.code, "disappears", x.message, "", "disappears",
-                              STRUCTURAL / 2 if x.severity == "error" else 2.0, None))
+                              STRUCTURAL / 2 if x.severity == "error" else 2.0,
+                              (_loc(x, shown_old) + " (old)") if _loc(x, shown_old) else None))
         for y in came[n:]:
             data.setdefault("findings_added", []).append(
                 {"code": y.code, "severity": y.severity, "message": y.message, "where": _loc(y, shown_new)})
@@ -188,7 +191,12 @@ def diff_models(old_path, new_path, build: dict, old_tree=None, new_tree=None, c
     old = _load(old_path, _build_options(build, old_tree))
     new = _load(new_path, _build_options(build, new_tree))
     cmp = compare(old, new, _placeholders(old, old_tree), _placeholders(new, new_tree))
-    data, items = dict(cmp.data), list(cmp.items)
+    data = dict(cmp.data)
+    roots = [(Path(new_path).resolve().parent, Path(old_path).resolve().parent)]
+    roots += [(new.package_roots[n], old.package_roots[n]) for n in new.package_roots if n in old.package_roots]
+    if old_tree is not None and new_tree is not None:
+        roots.append((new_tree.root, old_tree.root))
+    items = refine(cmp.items, changed_lines(new, roots)) if cmp.items else []
     shown_old, shown_new = _shower(old_tree), _shower(new_tree)
     if checks:
         fdata, fitems = diff_findings(_findings(old, select, ignore), _findings(new, select, ignore),
@@ -196,7 +204,7 @@ def diff_models(old_path, new_path, build: dict, old_tree=None, new_tree=None, c
         data.update(fdata)
         items += fitems
         items.sort(key=lambda it: -it.size)
-    return DiffResult(labels[0], labels[1], data, items, shown_new, old, new)
+    return DiffResult(labels[0], labels[1], data, items, shown_new, old, new, shown_old)
 
 
 def diff_paths(old_path: str, new_path: str, build: dict, **kw) -> DiffResult:
@@ -222,27 +230,18 @@ def diff_revisions(path: str, rev_spec: str, build: dict, **kw) -> DiffResult:
         res = diff_models(str(old_file), str(new_file), build, ta, tb,
                           labels=(f"{display(path)}@{a}", f"{display(path)}@{b}" if b else display(path)), **kw)
         # resolve every lazily-read span and shown name while the exported files still exist
-        items = [it._replace(where=_fixed_where(it.where, res.shown)) for it in res.items]
-        data = _fix_where_in(res.data, res.shown)
-        return res._replace(items=items, data=data, shown=lambda f: f)
+        items = [it._replace(where=where_text(it.where, res.shown, res.shown_old)) for it in res.items]
+        same = lambda f: f        # noqa: E731
+        return res._replace(items=items, shown=same, shown_old=same)
 
 
-def _fixed_where(w, shown):
-    if w is None or isinstance(w, str):
-        return w
-    return w.text(shown)
-
-
-def _fix_where_in(data, shown):
-    return data
-
-
-def where_text(w, shown) -> str | None:
+def where_text(w, shown, shown_old=None) -> str | None:
+    """A Where as 'file:line:col (how)', its file named as the user reads it."""
     if w is None:
         return None
     if isinstance(w, str):
         return w
-    return w.text(shown)
+    return w.text(shown_old if w.side == "old" and shown_old is not None else shown)
 
 
 __all__ = ["DiffResult", "diff_paths", "diff_revisions", "diff_models", "parse_rev", "where_text", "fmt"]

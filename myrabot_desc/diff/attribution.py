@@ -11,8 +11,8 @@ each change's ``where`` to the changed line that wrote it, when one is found:
 1. the origin's own line, or a hop of it (the call site of a parameter, a property's definition),
    when that line changed;
 2. a changed line defining a property or arg that the expression names;
-3. a changed line of a YAML file that holds the new number (several: the one whose keys name the
-   part, ``wrist_1_joint: max_effort``).
+3. a changed line that holds the new number: of a YAML file (several: the one whose keys name the
+   part, ``wrist_1_joint: max_effort``), or an attribute of a model file (a macro call's argument).
 """
 
 from __future__ import annotations
@@ -160,6 +160,11 @@ def _refine_one(it, w: Where, lines: Lines, yaml_keys) -> Where | None:
     for h in w.hops:                                       # 1. a literal hop on a changed line
         if lines.line_changed(h.span) and "$" not in (h.span.text or ""):
             return Where(h.span, h.kind if h.kind != "literal" else "literal", h.name, "new", w.hops)
+    if w.kind == "element":                                 # an element: its place, or a call site that changed
+        for h in w.hops:
+            if lines.line_changed(h.span) and h.kind in ("param", "default"):
+                return Where(h.span, h.kind, h.name, "new", w.hops)
+        return None
     text = " ".join(h.span.text for h in w.hops if h.span is not None) or w.span.text
     idents = set(_IDENT.findall(text)) if "$" in text else set()
     if w.name:
@@ -171,29 +176,42 @@ def _refine_one(it, w: Where, lines: Lines, yaml_keys) -> Where | None:
             m = _DEF.search(t.encode())
             if m and m.group(1).decode() in idents and "${" not in t:
                 return Where(_line_span(lines, path, line, t, m.start()), "property", m.group(1).decode(), "new")
-    if not it.values:
-        return None
-    want = _tokens(it.subject, it.what)
-    best = None                                            # 3. a YAML line with the new number
-    for path, changed in lines.changed.items():
-        if path.suffix not in YAML_SUFFIXES:
+    for path, changed in lines.changed.items():            # 2b. a YAML key the expression names
+        if path.suffix not in YAML_SUFFIXES or not idents:
             continue
         keys = yaml_keys.get(path)
         if keys is None:
             keys = yaml_keys[path] = _yaml_keys(path)
+        hits = [(sum(k in idents for k in keys.get(line, [])), line, t) for line, t in changed.items()
+                if keys.get(line) and keys[line][-1] in idents]
+        if hits:
+            _n, line, t = max(hits)
+            return Where(_line_span(lines, path, line, t, len(t) - len(t.lstrip())), "yaml", None, "new")
+    if not it.values:
+        return None
+    want = _tokens(it.subject, it.what)
+    best = None                                            # 3. a changed line with the new number
+    for path, changed in lines.changed.items():
+        is_yaml = path.suffix in YAML_SUFFIXES
+        keys = yaml_keys.get(path) if is_yaml else {}
+        if keys is None:
+            keys = yaml_keys[path] = _yaml_keys(path)
         for line, t in changed.items():
-            value = t.split("#", 1)[0].split(":", 1)[-1]
+            if is_yaml:
+                value = t.split("#", 1)[0].split(":", 1)[-1]
+            else:
+                value = " ".join(re.findall(r"=\s*[\"']([^\"']*)[\"']", t))
             nums = [float(x) for x in _NUM.findall(value)]
             if not any(any(abs(n - v) <= 1e-12 + 1e-9 * abs(v) for v in it.values) for n in nums):
                 continue
             path_keys = keys.get(line, [])
-            score = len(want & _tokens(*path_keys)) + (10 if it.subject in path_keys else 0)
+            score = len(want & _tokens(*path_keys)) + (10 if it.subject in path_keys else 0) + (0.5 if is_yaml else 0)
             if best is None or score > best[0]:
-                best = (score, path, line, t)
+                best = (score, path, line, t, is_yaml)
     if best is not None:
-        _s, path, line, t = best
+        _s, path, line, t, is_yaml = best
         col = len(t) - len(t.lstrip())
-        return Where(_line_span(lines, path, line, t, col), "yaml", None, "new")
+        return Where(_line_span(lines, path, line, t, col), "yaml" if is_yaml else "changed-line", None, "new")
     return None
 
 

@@ -63,6 +63,8 @@ class Where(NamedTuple):
             loc += " (expression)"
         elif self.kind == "yaml":
             loc += " (YAML)"
+        elif self.kind == "changed-line":
+            loc += " (changed line)"
         return loc
 
 
@@ -204,8 +206,18 @@ class Side:
                 self._extent[key] = None
         return self._extent[key]
 
-    def where(self, part, field: str | None = None, side: str | None = None) -> Where | None:
-        """Where ``field`` of ``part`` is written (the element's start tag when ``field`` is None)."""
+    def element_where(self, part, *path: str) -> Where | None:
+        """Where the element at ``path`` below ``part``'s element is written (its start tag)."""
+        el = getattr(part, "ref", None)
+        for tag in path:
+            if el is None:
+                return None
+            el = next((c for c in el if isinstance(c.tag, str) and (tag == "*" or c.tag == tag)), None)
+        return self.where(el, None) if el is not None else None
+
+    def where(self, part, field: str | None = None, side: str | None = None, hops_of: tuple = ()) -> Where | None:
+        """Where ``field`` of ``part`` is written (the element's start tag when ``field`` is None; then
+        ``hops_of``: fields whose ways from the use are kept, to find a changed call site)."""
         side = side or ("old" if self.label == "old" else "new")
         try:
             if field is None:
@@ -213,7 +225,12 @@ class Side:
                 if ref is None:
                     ref = getattr(part, "element", None)
                 span = self.robot.sources.start_tag(ref) if ref is not None else None
-                return Where(span, "element", None, side) if span is not None else None
+                hops = ()
+                for f in hops_of:
+                    w = self.where(part, f, side)
+                    if w is not None:
+                        hops += w.hops
+                return Where(span, "element", None, side, hops) if span is not None else None
             o = self.robot.origin(part, field)
         except Exception:        # a part read from a document without spans
             return None
@@ -329,7 +346,7 @@ class _Builder:
                               ("removed" if y is None else "added"))
                     raw = getattr(b.limit, label, None) if b.limit is not None else None
                     self.add("joint", name, f"limit {label}", fmt(x, unit), fmt(y, unit), change, size,
-                             sn.where(b, field) if y is not None else sn.where(b, None),
+                             sn.where(b, field) if y is not None else sn.element_where(b, "limit"),
                              (raw,) if raw is not None else ())
             if d:
                 ch["limit"] = d
@@ -405,12 +422,14 @@ class _Builder:
                 d["xyz_mm"] = {"old": mm(x.origin.xyz), "new": mm(y.origin.xyz)}
                 dist = math.dist(x.origin.xyz, y.origin.xyz) * 1000
                 self.add("link", lb, f"{key} origin xyz", fmt(mm(x.origin.xyz), "mm"), fmt(mm(y.origin.xyz), "mm"),
-                         f"{fmt(dist)} mm", dist, sn.where(y, "origin.xyz"))
+                         f"{fmt(dist)} mm", dist, sn.where(y, "origin.xyz"),
+                         tuple(q for p, q in zip(x.origin.xyz, y.origin.xyz) if differs(p, q)))
             if differs(x.origin.rpy, y.origin.rpy):
                 d["rpy_deg"] = {"old": deg(x.origin.rpy), "new": deg(y.origin.rpy)}
                 turn = max(abs(_wrap(q - p)) for p, q in zip(deg(x.origin.rpy), deg(y.origin.rpy)))
                 self.add("link", lb, f"{key} origin rpy", fmt(deg(x.origin.rpy), "deg"), fmt(deg(y.origin.rpy), "deg"),
-                         f"{fmt(turn)} deg", turn, sn.where(y, "origin.rpy"))
+                         f"{fmt(turn)} deg", turn, sn.where(y, "origin.rpy"),
+                         tuple(q for p, q in zip(x.origin.rpy, y.origin.rpy) if differs(p, q) and q))
             gx, gy = geom_summary(x.geometry, so), geom_summary(y.geometry, sn)
             mesh_changed = (gx == gy and x.geometry is not None and x.geometry.kind == "mesh"
                             and not _same_shape(x._replace(origin=y.origin), y, so, sn))
@@ -422,8 +441,12 @@ class _Builder:
                             s["extent_mm"] = e
                 if gx != gy:
                     d["geometry"] = {"old": gx, "new": gy}
+                    if x.geometry is not None and y.geometry is not None and x.geometry.kind != y.geometry.kind:
+                        where = sn.element_where(y, "geometry", "*")     # another shape: where it is written
+                    else:
+                        where = sn.where(y, _geom_field(gx, gy, y.geometry))
                     self.add("link", lb, f"{key} geometry", geom_text(gx), geom_text(gy), _geom_change(gx, gy),
-                             _geom_size(gx, gy), sn.where(y, _geom_field(gx, gy, y.geometry)))
+                             _geom_size(gx, gy), where, _geom_values(y.geometry))
             if d:
                 ch[key] = d
         for i in left_a[len(left_b):]:
@@ -442,7 +465,8 @@ class _Builder:
                 s["extent_mm"] = sn.extent(y.geometry)
             ch[f"{kind}[{k}]"] = {"added": s, "xyz_mm": mm(y.origin.xyz), "rpy_deg": deg(y.origin.rpy),
                                   "world_xyz_mm": _world(sn.frames().get(lb), y.origin.xyz)}
-            self.add("link", lb, f"{kind}[{k}]", "", geom_text(s), "added", STRUCTURAL / 2, sn.where(y, None))
+            self.add("link", lb, f"{kind}[{k}]", "", geom_text(s), "added", STRUCTURAL / 2,
+                     sn.where(y, None, hops_of=("origin.xyz", "origin.rpy") + _GEOM_FIELDS))
 
 
 def _wrap(d: float) -> float:
@@ -505,6 +529,21 @@ def _geom_field(gx, gy, g) -> str | None:
         return "geometry.scale" if gx.get("mesh") == gy.get("mesh") and gx.get("scale") != gy.get("scale") \
             else "geometry.filename"
     return None
+
+
+_GEOM_FIELDS = ("geometry.size", "geometry.radius", "geometry.length", "geometry.filename")
+
+
+def _geom_values(g) -> tuple:
+    if g is None:
+        return ()
+    if g.kind == "box":
+        return tuple(g.size)
+    if g.kind == "cylinder":
+        return (g.radius, g.length)
+    if g.kind == "sphere":
+        return (g.radius,)
+    return tuple(g.scale)
 
 
 def _limit_view(j):

@@ -22,6 +22,7 @@ import re
 from pathlib import Path
 
 from myrabot_desc.diff.compare import Where
+from myrabot_desc.model.sources import Span
 
 MAX_BYTES = 2_000_000
 YAML_SUFFIXES = (".yaml", ".yml")
@@ -216,6 +217,4 @@ def _refine_one(it, w: Where, lines: Lines, yaml_keys) -> Where | None:
 
 
 def _line_span(lines: Lines, path: Path, line: int, text: str, col: int):
-    from myrabot_desc.model.sources import Span
-
     return Span(lines.names.get(path, str(path)), path, line, col + 1, 0, 0, text.strip())

@@ -20,6 +20,7 @@ from typing import Any, NamedTuple
 
 from myrabot_desc.errors import InputError
 from myrabot_desc.model import drive as drive_model
+from myrabot_desc.model.kinematics import world_transforms
 from myrabot_desc.model.meshes import vertices
 
 REL = 1e-9
@@ -175,8 +176,6 @@ class Side:
     def frames(self, pose: str = "zero"):
         f = self._frames.get(pose)
         if f is None:
-            from myrabot_desc.model.kinematics import world_transforms
-
             q = self.robot.rest_pose() if pose == "rest" else None
             f = self._frames[pose] = world_transforms(self.robot, q)
         return f

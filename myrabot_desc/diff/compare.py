@@ -952,13 +952,16 @@ def _drive_items(bld, do, dn, jch):
                        "accel": spec.accel, "update_rate": spec.rate}.get(keys.get(k, k))
                 if key:
                     where = sn.where(d.plugin, key)
-            bld.add("drive", dn["kind"], f"plugin {k}", fmt(a), fmt(b),
-                    signed(b - a) if a is not None and b is not None else "changed",
+            label, unit = {"separation_mm": ("wheel separation", "mm"), "radius_mm": ("wheel radius", "mm"),
+                           "torque": ("torque", "N·m"), "accel": ("acceleration", d.spec.accel_unit if d.spec else ""),
+                           "update_rate": ("update rate", "Hz")}.get(k, (k, ""))
+            bld.add("drive", dn["kind"], f"plugin {label}", fmt(a, unit), fmt(b, unit),
+                    signed(b - a, unit) if a is not None and b is not None else "changed",
                     rel_size(a, b) if a is not None and b is not None else STRUCTURAL / 4, where)
     eff = drive_effect(do, dn)
     for t in effect_text(eff):
         f = max(abs(eff.get("turn_factor", 1) - 1), abs(eff.get("speed_factor", 1) - 1)) * 100
-        bld.add("drive", dn["kind"], "effect", "", t, t, f + 1.0, None)
+        bld.add("drive", dn["kind"], "effect", "", "", t, STRUCTURAL / 2 + f, None)
 
 
 def _compare_others(bld, so: Side, sn: Side, lmap):

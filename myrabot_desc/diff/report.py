@@ -23,8 +23,8 @@ def clean(text) -> str:
 
 def md(text) -> str:
     """Model text made safe inside a Markdown table cell."""
-    t = clean(text).replace("\n", " ")
-    t = re.sub(r"([\\`*_{}\[\]<>|#!~])", r"\\\1", t)
+    t = clean(text).replace("\n", " ").replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+    t = re.sub(r"([\\`*_{}\[\]|#!~])", r"\\\1", t)
     return t.replace("@", "@\u200b")
 
 

@@ -51,7 +51,11 @@ class _Tree:
     def __enter__(self):
         if self.rev is not None:
             self.dir = Path(tempfile.mkdtemp(prefix="myrabot-desc-rev-")).resolve()
-            self.commit = export(self.top, self.rev, self.dir)
+            try:
+                self.commit = export(self.top, self.rev, self.dir)
+            except BaseException:
+                shutil.rmtree(self.dir, ignore_errors=True)
+                raise
         return self
 
     def __exit__(self, *exc):
@@ -143,14 +147,13 @@ def diff_findings(old_diags, new_diags, shown_old, shown_new) -> tuple[dict, lis
         for x, y in zip(list(gone), list(came)):          # same subject, another message: changed
             data.setdefault("findings_changed", []).append(
                 {"code": y.code, "severity": y.severity, "old": x.message, "new": y.message, "where": _loc(y, shown_new)})
-            items.append(Item("finding", y.code, "changed", x.message, y.message, "changed",
-                              STRUCTURAL / 4 if y.severity == "error" else 1.0, _loc(y, shown_new)))
+            items.append(Item("finding", y.code, "changed", x.message, y.message, "changed", 0.5, _loc(y, shown_new)))
         n = min(len(gone), len(came))
         for x in gone[n:]:
             data.setdefault("findings_removed", []).append(
                 {"code": x.code, "severity": x.severity, "message": x.message, "where": _loc(x, shown_old)})
             items.append(Item("finding", x.code, "disappears", x.message, "", "disappears",
-                              STRUCTURAL / 2 if x.severity == "error" else 2.0,
+                              STRUCTURAL / 4 if x.severity == "error" else 2.0,
                               (_loc(x, shown_old) + " (old)") if _loc(x, shown_old) else None))
         for y in came[n:]:
             data.setdefault("findings_added", []).append(

@@ -1,0 +1,161 @@
+"""``myrabot-desc diff`` as a command: exit codes as ``git diff --exit-code``, one line for bad input,
+two files or two git revisions (the work tree untouched), the drive's effect, the three formats and
+what they do with hostile model text."""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import tempfile
+
+from helpers import ROOT, WANDER, invoke
+from history import git
+
+BUNDLED = ROOT / "xacro" / "myrabot.urdf.xacro"
+BOT = """<?xml version="1.0"?>
+<robot name="bot">
+  <link name="base_link">
+    <inertial><origin xyz="0 0 0.05"/><mass value="{mass}"/>
+      <inertia ixx="0.02" ixy="0" ixz="0" iyy="0.03" iyz="0" izz="0.04"/></inertial>
+    <collision><geometry><box size="0.4 0.3 0.1"/></geometry></collision>
+  </link>
+  <link name="{sensor}">
+    <inertial><mass value="0.1"/><inertia ixx="1e-4" ixy="0" ixz="0" iyy="1e-4" iyz="0" izz="1e-4"/></inertial>
+  </link>
+  <joint name="sensor_joint" type="fixed">
+    <parent link="base_link"/><child link="{sensor}"/><origin xyz="{x} 0 0.2" rpy="0 0 {yaw}"/>
+  </joint>
+</robot>
+"""
+
+
+def bot(path, mass=2.0, x=0.1, yaw=0.0, sensor="laser"):
+    path.write_text(BOT.format(mass=mass, x=x, yaw=yaw, sensor=sensor))
+    return path
+
+
+def test_a_model_against_itself_prints_nothing_and_exits_0():
+    r = invoke("diff", BUNDLED, BUNDLED)
+    assert r.exit_code == 0 and r.output == ""
+    r = invoke("diff", BUNDLED, BUNDLED, "--format", "json")
+    assert r.exit_code == 0 and json.loads(r.output)["changes"] == {}
+
+
+def test_the_same_model_in_two_folders_is_no_change(tmp_path):
+    """Each side's own folders (package roots, $(find) paths) are not a change."""
+    for side in ("a", "b"):
+        shutil.copytree(WANDER, tmp_path / side)
+    r = invoke("diff", tmp_path / "a" / "urdf" / "robot.xacro", tmp_path / "b" / "urdf" / "robot.xacro")
+    assert r.exit_code == 0 and r.output == ""
+
+
+def test_numbers_and_where(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    bot(tmp_path / "old.urdf")
+    bot(tmp_path / "new.urdf", mass=2.5, x=0.125, yaw=0.5)
+    r = invoke("diff", "old.urdf", "new.urdf", "--format", "json", "--no-check")
+    assert r.exit_code == 1
+    ch = json.loads(r.output)["changes"]
+    assert ch["links_changed"]["base_link"]["mass_kg"] == {"old": 2.0, "new": 2.5, "delta": 0.5}
+    assert ch["joints_changed"]["sensor_joint"]["xyz_mm"]["delta"] == [25.0, 0.0, 0.0]
+    assert ch["joints_changed"]["sensor_joint"]["rpy_deg"]["new"] == [0.0, 0.0, 28.6479]
+    moved = ch["frames_moved_zero_pose"]["laser"]
+    assert moved["distance_mm"] == 25.0 and moved["rotated_deg"] == 28.6479
+    assert ch["total_mass_kg"] == {"old": 2.1, "new": 2.6, "delta": 0.5}
+    # centre of mass: (2*0.05 + 0.1*0.2)/2.1 z, (0.1*0.1)/2.1 x -> (2.5*0.05 + 0.1*0.2)/2.6, 0.0125/2.6
+    assert ch["centre_of_mass_mm"]["old"] == [4.7619, 0.0, 57.1429]
+    assert ch["centre_of_mass_mm"]["new"] == [4.8077, 0.0, 55.7692]
+    items = {(i["subject"], i["what"]): i for i in json.loads(r.output)["items"]}
+    assert items[("base_link", "mass")]["where"] == "new.urdf:4:52"
+    assert items[("sensor_joint", "origin xyz")]["where"] == "new.urdf:12:65"
+    # renamed by structure: the same fixed joint, the child link renamed
+    bot(tmp_path / "renamed.urdf", sensor="laser_link")
+    ch = json.loads(invoke("diff", "old.urdf", "renamed.urdf", "--format", "json").output)["changes"]
+    assert ch["links_renamed"][0]["old"] == "laser" and ch["links_renamed"][0]["new"] == "laser_link"
+    assert set(ch) == {"links_renamed"}
+
+
+def test_the_drive_and_what_it_does(tmp_path):
+    """wander_bot's plugin wheelSeparation 0.4 -> 0.424: the wheels are 0.3 m apart, so the same
+    cmd_vel turns it 1.06× faster; check's G001 says 1.33× -> 1.41×."""
+    for side in ("a", "b"):
+        shutil.copytree(WANDER, tmp_path / side)
+    gz = tmp_path / "b" / "urdf" / "robot.gazebo"
+    gz.write_text(gz.read_text().replace("<wheelSeparation>0.4<", "<wheelSeparation>0.424<"))
+    r = invoke("diff", tmp_path / "a" / "urdf" / "robot.xacro", tmp_path / "b" / "urdf" / "robot.xacro",
+               "--format", "json")
+    assert r.exit_code == 1
+    doc = json.loads(r.output)
+    drive = doc["changes"]["drive"]
+    assert drive["old"]["plugin"]["separation_mm"] == 400.0 and drive["new"]["plugin"]["separation_mm"] == 424.0
+    assert drive["effect"] == {"turn_factor": 1.06}
+    assert drive["effect_text"] == ["turns 1.06× faster for the same command"]
+    assert doc["items"][0]["change"] == "turns 1.06× faster for the same command"     # the largest first
+    assert [f["code"] for f in doc["changes"]["findings_changed"]] == ["G001"]
+    assert "1.41×" in doc["changes"]["findings_changed"][0]["new"]
+    text = invoke("diff", tmp_path / "a" / "urdf" / "robot.xacro", tmp_path / "b" / "urdf" / "robot.xacro").output
+    assert "plugin wheel separation: 400 mm -> 424 mm (+24 mm)" in text and "robot.gazebo:12:24" in text
+
+
+def test_bad_input_is_one_line_exit_2(tmp_path):
+    bot(tmp_path / "ok.urdf")
+    (tmp_path / "broken.urdf.xacro").write_text('<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="x">\n'
+                                                '  <link name="${undefined_thing}"/>\n</robot>\n')
+    for args in ([tmp_path / "ok.urdf", tmp_path / "missing.urdf"], [tmp_path / "ok.urdf", tmp_path / "broken.urdf.xacro"]):
+        r = invoke("diff", *args)
+        assert r.exit_code == 2
+        assert len(r.output.strip().splitlines()) == 1 and "error" in r.output, r.output
+    assert "broken.urdf.xacro:2" in invoke("diff", tmp_path / "ok.urdf", tmp_path / "broken.urdf.xacro").output
+    assert invoke("diff", tmp_path / "ok.urdf").exit_code == 2               # OLD NEW or FILE --rev
+    assert invoke("diff", tmp_path / "ok.urdf", "--rev", "A...B").exit_code == 2
+
+
+def test_revisions_are_read_through_git_not_checked_out(tmp_path, monkeypatch):
+    repo = tmp_path / "repo"
+    (repo / "urdf").mkdir(parents=True)
+    git(repo, "init", "-q", "-b", "main")
+    bot(repo / "urdf" / "bot.urdf")
+    git(repo, "add", "-A")
+    git(repo, "commit", "-q", "-m", "one")
+    bot(repo / "urdf" / "bot.urdf", mass=3.0)
+    git(repo, "commit", "-q", "-am", "two")
+    bot(repo / "urdf" / "bot.urdf", mass=3.0, x=0.2)          # uncommitted
+    before = (repo / "urdf" / "bot.urdf").read_bytes()
+    status = git(repo, "status", "--porcelain")
+    temp_before = set(os.listdir(tempfile.gettempdir()))
+    monkeypatch.chdir(repo)
+    r = invoke("diff", "urdf/bot.urdf", "--rev", "HEAD~1..HEAD", "--format", "json", "--no-check")
+    assert r.exit_code == 1
+    ch = json.loads(r.output)["changes"]
+    assert set(ch["links_changed"]) == {"base_link"} and "joints_changed" not in ch
+    items = json.loads(r.output)["items"]
+    assert next(i for i in items if i["what"] == "mass")["where"] == "urdf/bot.urdf:4:52"
+    ch = json.loads(invoke("diff", "urdf/bot.urdf", "--rev", "HEAD", "--format", "json").output)["changes"]
+    assert set(ch["joints_changed"]) == {"sensor_joint"} and "links_changed" not in ch     # HEAD vs the work tree
+    assert invoke("diff", "urdf/bot.urdf", "--rev", "HEAD~1..HEAD~1").exit_code == 0
+    r = invoke("diff", "urdf/bot.urdf", "--rev", "nope..HEAD")
+    assert r.exit_code == 2 and "unknown revision 'nope'" in r.output
+    # the work tree, the index and the temporary folder are as they were
+    assert (repo / "urdf" / "bot.urdf").read_bytes() == before
+    assert git(repo, "status", "--porcelain") == status
+    assert not {n for n in set(os.listdir(tempfile.gettempdir())) - temp_before if n.startswith("myrabot-desc-rev-")}
+
+
+def test_markdown_comment_and_hostile_names(tmp_path):
+    bot(tmp_path / "old.urdf")
+    bot(tmp_path / "new.urdf", sensor="x|y&lt;img src=a onerror=b&gt;&#x202e;", mass=4.0)
+    r = invoke("diff", tmp_path / "old.urdf", tmp_path / "new.urdf", "--format", "markdown", "--image",
+               "https://example.org/before-after.png")
+    assert r.exit_code == 1
+    md = r.output
+    assert md.startswith("<!-- myrabot-desc diff -->\n### Robot model diff")
+    assert "| | what | before | after | change | where |" in md
+    assert "<img" not in md and "x\\|y&lt;img" in md and "\u202e" not in md
+    assert "![before / after](https://example.org/before-after.png)" in md
+    rows = [line for line in md.splitlines() if line.startswith("| link") or line.startswith("| joint")]
+    assert rows and "renamed" in rows[0]                  # a rename is larger than a mass change
+    text = invoke("diff", tmp_path / "old.urdf", tmp_path / "new.urdf").output
+    assert "\u202e" not in text
+    assert invoke("diff", tmp_path / "old.urdf", tmp_path / "old.urdf", "--format", "markdown").output.endswith(
+        "No change to the built robot.\n")

@@ -14,8 +14,10 @@ those that appear, disappear, or keep their subject with another message.
 from __future__ import annotations
 
 import os
+import pickle
 import shutil
 import tempfile
+import threading
 from pathlib import Path
 from typing import NamedTuple
 
@@ -24,7 +26,8 @@ from myrabot_desc.checks.baseline import finding_key
 from myrabot_desc.diff.attribution import changed_lines, refine
 from myrabot_desc.diff.compare import STRUCTURAL, Item, compare, fmt
 from myrabot_desc.errors import InputError, UsageProblem
-from myrabot_desc.model.loader import load_robot
+from myrabot_desc.expand.driver import build_file
+from myrabot_desc.model.loader import is_xacro, load_robot, read_urdf_text
 from myrabot_desc.safety import display
 from myrabot_desc.vcs import export, repo_top
 
@@ -46,17 +49,16 @@ class _Tree:
     def __init__(self, top: Path, rev: str | None):
         self.top, self.rev = top, rev
         self.dir: Path | None = None
-        self.commit = None
 
     def __enter__(self):
         if self.rev is not None:
             self.dir = Path(tempfile.mkdtemp(prefix="myrabot-desc-rev-")).resolve()
-            try:
-                self.commit = export(self.top, self.rev, self.dir)
-            except BaseException:
-                shutil.rmtree(self.dir, ignore_errors=True)
-                raise
         return self
+
+    def export(self) -> None:
+        """The revision's files into the folder (InputError for an unknown revision)."""
+        if self.rev is not None:
+            export(self.top, self.rev, self.dir)
 
     def __exit__(self, *exc):
         if self.dir is not None:
@@ -107,8 +109,69 @@ def _build_options(build: dict, tree: _Tree | None) -> dict:
     return out
 
 
-def _load(path: str, build: dict):
-    return load_robot(path, **build)
+def _load(path: str, build: dict, built=None):
+    """The Robot of ``path``; ``built``: its BuildResult, made in the other process (see _Side)."""
+    if built is None:
+        return load_robot(path, **build)
+    return read_urdf_text(built.text, Path(path), locations=built.locations, package_roots=built.package_roots,
+                          root=built.root, source_map=built.source_map, build_warnings=built.diagnostics,
+                          from_xacro=True, packages=build.get("packages"),
+                          package_paths=build.get("package_paths", ()))
+
+
+def _prebuild(tree, path: str, build: dict):
+    """Export the revision (when ``tree`` has one) and expand a xacro ``path``: the BuildResult, None
+    for a plain URDF (read by the loader), or the InputError."""
+    try:
+        if tree is not None:
+            tree.export()
+        src = Path(path)
+        if not src.is_file() or not is_xacro(src, src.read_bytes() if not src.name.endswith(".xacro") else None):
+            return None
+        b = dict(build)
+        return build_file(src, b.pop("mappings", None), **b)
+    except InputError as exc:
+        return exc
+
+
+class _Side:
+    """One side's export and build, in a forked process while this one does the other side (two
+    cores: the two builds overlap). Serial where fork is missing or threads run (a fork would copy
+    their locks)."""
+
+    def __init__(self, fn):
+        self.pid = None
+        self.result = None
+        if hasattr(os, "fork") and threading.active_count() == 1:
+            r, w = os.pipe()
+            pid = os.fork()
+            if pid == 0:                        # the child: build, send, leave without cleanup
+                code = 0
+                try:
+                    os.close(r)
+                    data = pickle.dumps(fn(), protocol=pickle.HIGHEST_PROTOCOL)
+                    with os.fdopen(w, "wb") as f:
+                        f.write(data)
+                except BaseException:
+                    code = 1
+                os._exit(code)
+            os.close(w)
+            self.pid, self.fd = pid, r
+        else:
+            self.result = fn()
+            self.fn = None
+        self._fn = fn
+
+    def get(self):
+        if self.pid is not None:
+            with os.fdopen(self.fd, "rb") as f:
+                data = f.read()
+            _pid, status = os.waitpid(self.pid, 0)
+            self.pid = None
+            self.result = pickle.loads(data) if data and os.waitstatus_to_exitcode(status) == 0 else self._fn()
+        if isinstance(self.result, InputError):
+            raise self.result
+        return self.result
 
 
 def _placeholders(robot, tree: _Tree | None) -> dict:
@@ -190,9 +253,16 @@ def _shower(tree: _Tree | None):
 
 def diff_models(old_path, new_path, build: dict, old_tree=None, new_tree=None, checks: bool = True,
                 select=(), ignore=(), labels=("old", "new")) -> DiffResult:
-    """Build both models and compare them (InputError when one cannot be built)."""
-    old = _load(old_path, _build_options(build, old_tree))
-    new = _load(new_path, _build_options(build, new_tree))
+    """Build both models and compare them (InputError when one cannot be built). The trees' revisions
+    are exported here (the old side's export and build run beside the new side's)."""
+    ob, nb = _build_options(build, old_tree), _build_options(build, new_tree)
+    other = _Side(lambda: _prebuild(old_tree, old_path, ob))
+    new_built = _prebuild(new_tree, new_path, nb)
+    old_built = other.get()
+    if isinstance(new_built, InputError):
+        raise new_built
+    old = _load(old_path, ob, old_built)
+    new = _load(new_path, nb, new_built)
     cmp = compare(old, new, _placeholders(old, old_tree), _placeholders(new, new_tree))
     data = dict(cmp.data)
     roots = [(Path(new_path).resolve().parent, Path(old_path).resolve().parent)]
@@ -226,16 +296,28 @@ def diff_revisions(path: str, rev_spec: str, build: dict, **kw) -> DiffResult:
     rel = p.resolve().relative_to(top) if p.is_absolute() or p.exists() else (Path.cwd() / p).resolve().relative_to(top)
     with _Tree(top, a) as ta, _Tree(top, b) as tb:
         old_file, new_file = ta.root / rel, tb.root / rel
-        if not old_file.is_file():
-            raise InputError(f"{path}: no such file at revision {a}")
-        if not new_file.is_file():
-            raise InputError(f"{path}: no such file at revision {b}" if b else f"no such file: {path}")
-        res = diff_models(str(old_file), str(new_file), build, ta, tb,
+        res = diff_models(str(old_file), str(new_file), build, _Missing(ta, path, a), _Missing(tb, path, b),
                           labels=(f"{display(path)}@{a}", f"{display(path)}@{b}" if b else display(path)), **kw)
         # resolve every lazily-read span and shown name while the exported files still exist
         items = [it._replace(where=where_text(it.where, res.shown, res.shown_old)) for it in res.items]
         same = lambda f: f        # noqa: E731
         return res._replace(items=items, shown=same, shown_old=same)
+
+
+class _Missing:
+    """A tree whose model file must exist once exported (else: no such file at that revision)."""
+
+    def __init__(self, tree: _Tree, path: str, rev: str | None):
+        self.tree, self.path, self.rev = tree, path, rev
+
+    def __getattr__(self, name):
+        return getattr(self.tree, name)
+
+    def export(self) -> None:
+        self.tree.export()
+        rel = Path(self.path).resolve().relative_to(self.tree.top) if self.tree.dir is not None else None
+        if rel is not None and not (self.tree.dir / rel).is_file():
+            raise InputError(f"{self.path}: no such file at revision {self.rev}")
 
 
 def where_text(w, shown, shown_old=None) -> str | None:

@@ -3,9 +3,9 @@
     .venv/bin/python bench/bench_diff.py [--repeat N]
 
 Two corpus robots' real revisions (tests/fixtures/model_history: Husky's track narrowed, the
-UR10e's dynamics update) are committed into a git repository each, and the PR2 (tests/corpus,
-the largest corpus robot) with one property changed (caster_offset_x 0.2246 -> 0.23) as a
-second commit. Timed, interleaved, best of N, as fresh processes: `diff --rev HEAD~1..HEAD` (git
+UR10e's dynamics update) are committed into a git repository each, and the PR2 (tests/corpus'
+pr2_description, the largest corpus robot, 83 files) with one property changed (caster_offset_x
+0.2246 -> 0.23) as a second commit. Timed, interleaved, best of N, as fresh processes: `diff --rev HEAD~1..HEAD` (git
 archive of both revisions, two builds, two loads, the comparison, `check` on both sides),
 `diff --no-check`, and the two revisions built one after the other by `build` (two processes).
 Target: diff <= 2x the two builds. CPU time (user + sys of the process and its children) is the
@@ -49,10 +49,9 @@ def repo_of(case: str, dest: Path) -> Path:
 
 
 def pr2_repo(dest: Path) -> tuple[Path, Path, Path]:
-    """The corpus in a repository, then PR2's caster_offset_x changed; (repo, old tree, new tree)."""
-    corpus = ROOT / "tests" / "corpus"
+    """pr2_description in a repository, then its caster_offset_x changed; (repo, old tree, new tree)."""
     repo = dest / "pr2"
-    shutil.copytree(corpus, repo)
+    shutil.copytree(ROOT / "tests" / "corpus" / "pr2_description", repo / "pr2_description")
 
     def git(*a):
         subprocess.run(["git", *a], cwd=repo, check=True, capture_output=True)

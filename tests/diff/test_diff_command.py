@@ -9,6 +9,8 @@ import os
 import shutil
 import tempfile
 
+from pathlib import Path
+
 from helpers import ROOT, WANDER, invoke
 from history import git
 
@@ -159,3 +161,48 @@ def test_markdown_comment_and_hostile_names(tmp_path):
     assert "\u202e" not in text
     assert invoke("diff", tmp_path / "old.urdf", tmp_path / "old.urdf", "--format", "markdown").output.endswith(
         "No change to the built robot.\n")
+
+
+def test_action_diff_step_posts_then_updates_one_comment(tmp_path):
+    """The Action's pull-request step, run by bash as written: a fake `gh` records the API calls; the
+    first run posts a comment (the Markdown diff of each file), the second finds it by its marker and
+    updates it."""
+    import subprocess
+    import sys
+
+    import yaml
+
+    step = next(s for s in yaml.safe_load((ROOT / "action.yml").read_text())["runs"]["steps"]
+                if s.get("name") == "Robot diff comment")
+    assert "pull_request" in step["if"] and "inputs.diff" in step["if"]
+    repo = tmp_path / "repo"
+    repo.mkdir()
+    git(repo, "init", "-q", "-b", "main")
+    bot(repo / "bot.urdf")
+    git(repo, "add", "-A")
+    git(repo, "commit", "-q", "-m", "base")
+    base = git(repo, "rev-parse", "HEAD").strip()
+    bot(repo / "bot.urdf", mass=2.4)
+    git(repo, "commit", "-q", "-am", "heavier")
+    head = git(repo, "rev-parse", "HEAD").strip()
+    fake = tmp_path / "bin"
+    fake.mkdir()
+    calls = tmp_path / "calls"
+    (fake / "gh").write_text(
+        "#!/bin/bash\n"
+        f'echo "$*" >> {calls}\n'
+        'for a in "$@"; do case "$a" in body=@*) cp "${a#body=@}" ' + str(tmp_path / "posted.md") + ";; esac; done\n"
+        f'if [ "$2" != "-X" ] && [ -f {tmp_path / "posted.md"} ] && [[ "$*" == *--jq* ]]; then echo 4242; fi\n')
+    (fake / "gh").chmod(0o755)
+    env = {**os.environ, "MD_DIFF": "bot.urdf", "MD_DIFF_ARGS": "--no-check", "MD_BASE": base, "MD_HEAD": head,
+           "MD_PR": "7", "MD_REPO": "o/r", "GH_TOKEN": "x", "RUNNER_TEMP": str(tmp_path),
+           "PATH": f"{fake}{os.pathsep}{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}"}
+    for _ in range(2):
+        p = subprocess.run(["bash", "-e", "-c", step["run"]], cwd=repo, env=env, capture_output=True, text=True)
+        assert p.returncode == 0, p.stderr
+    posted = (tmp_path / "posted.md").read_text()
+    assert posted.startswith("<!-- myrabot-desc diff -->") and "| link | **base\\_link** mass | 2 kg | 2.4 kg |" in posted
+    lines = calls.read_text().splitlines()
+    assert [line.split()[0:3] for line in lines if "comments" in line and "--jq" not in line] == [
+        ["api", "repos/o/r/issues/7/comments", "-F"], ["api", "-X", "PATCH"]]
+    assert "repos/o/r/issues/comments/4242" in lines[-1]

@@ -14,6 +14,8 @@ from myrabot_desc.diff.report import markdown, text, to_json
 from myrabot_desc.diff.run import diff_paths, diff_revisions
 from myrabot_desc.errors import UsageProblem
 from myrabot_desc.output import write_output
+from myrabot_desc.render import Layers, choose_gl, png_bytes, render_image
+from myrabot_desc.view.scene import build_scene
 
 
 @click.command("diff")
@@ -26,13 +28,15 @@ from myrabot_desc.output import write_output
 @click.option("--no-check", is_flag=True, help="Do not compare the findings of `check` (faster).")
 @click.option("--select", "select", multiple=True, metavar="CODES", help="Only these check codes or prefixes.")
 @click.option("--ignore", "ignore", multiple=True, metavar="CODES", help="Skip these check codes or prefixes.")
-@click.option("--image", metavar="URL", help="Markdown: show this before/after picture (from `render`).")
+@click.option("--image", metavar="URL", help="Markdown: show this before/after picture (e.g. --picture's, uploaded).")
+@click.option("--picture", metavar="PNG", help="Render the robot before and after, side by side, into this PNG "
+              "(MuJoCo offscreen, as `render`).")
 @click.option("--limit", type=click.IntRange(min=1), default=25, show_default=True,
               help="Markdown: rows in the table (the largest changes).")
 @click.option("-o", "--output", type=click.Path(dir_okay=False), default="-", show_default=True,
               help="Write the report to a file instead of stdout.")
 @click.option("--exit-zero", is_flag=True, help="Exit 0 when there are changes too (a report, not a gate).")
-def diff_cmd(inputs, rev, fmt, no_check, select, ignore, image, limit, output, exit_zero):
+def diff_cmd(inputs, rev, fmt, no_check, select, ignore, image, picture, limit, output, exit_zero):
     """Show what changed in the built robot between two models, or one model at two git revisions.
 
     Links, joints and sensors added, removed or renamed; frames moved (mm, deg) at the zero and
@@ -48,6 +52,7 @@ def diff_cmd(inputs, rev, fmt, no_check, select, ignore, image, limit, output, e
       myrabot-desc diff urdf/robot.urdf.xacro --rev main          # main vs the work tree
       myrabot-desc diff urdf/robot.urdf.xacro --rev v1.0..v1.1 --format markdown
       myrabot-desc diff robot.urdf.xacro --rev HEAD~1..HEAD --format json -o diff.json
+      myrabot-desc diff robot.urdf.xacro --rev main --picture out/before_after.png
 
     \b
     Exit codes (as `git diff --exit-code`): 0 no change; 1 changes; 2 a model could not be
@@ -62,7 +67,8 @@ def diff_cmd(inputs, rev, fmt, no_check, select, ignore, image, limit, output, e
             elif len(files) != 2:
                 raise UsageProblem(f"expected OLD NEW (two files) or FILE --rev A..B, got {len(files)} file(s)")
             build = inputs.build_options()
-            kw = dict(checks=not no_check, select=_codes(select), ignore=_codes(ignore))
+            kw = dict(checks=not no_check, select=_codes(select), ignore=_codes(ignore),
+                      while_open=(lambda res: _picture(res, picture)) if picture else None)
             if rev is not None:
                 res = diff_revisions(files[0], rev, build, **kw)
             else:
@@ -72,7 +78,7 @@ def diff_cmd(inputs, rev, fmt, no_check, select, ignore, image, limit, output, e
         if fmt == "json":
             out = to_json(res, __version__)
         elif fmt == "markdown":
-            out = markdown(res, limit=limit, image=image)
+            out = markdown(res, limit=limit, image=image or picture)
         else:
             out = text(res)
         if output == "-":
@@ -87,3 +93,22 @@ def _codes(values) -> tuple:
     for v in values:
         out += [c.strip() for c in v.split(",") if c.strip()]
     return tuple(out)
+
+
+def _picture(res, path: str) -> None:
+    """The two robots at their rest pose, iso view, side by side (before | after), into ``path``."""
+    from PIL import ImageDraw
+
+    choose_gl()
+    tiles = []
+    for robot in (res.old, res.new):
+        scene = build_scene(robot)
+        tiles.append(render_image(scene, robot.rest_pose(), ("iso",), (600, 450), Layers()))
+    img = tiles[0].resize((1200, 450))
+    img.paste(tiles[0], (0, 0))
+    img.paste(tiles[1], (600, 0))
+    draw = ImageDraw.Draw(img)
+    draw.line([(600, 0), (600, 450)], fill=(160, 160, 160), width=2)
+    for x, label in ((12, "before"), (612, "after")):
+        draw.text((x, 10), label, fill=(0, 0, 0))
+    write_output(path, png_bytes(img))

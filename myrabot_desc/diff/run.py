@@ -280,12 +280,16 @@ def diff_models(old_path, new_path, build: dict, old_tree=None, new_tree=None, c
     return DiffResult(labels[0], labels[1], data, items, shown_new, old, new, shown_old)
 
 
-def diff_paths(old_path: str, new_path: str, build: dict, **kw) -> DiffResult:
-    return diff_models(old_path, new_path, build, labels=(display(old_path), display(new_path)), **kw)
+def diff_paths(old_path: str, new_path: str, build: dict, while_open=None, **kw) -> DiffResult:
+    res = diff_models(old_path, new_path, build, labels=(display(old_path), display(new_path)), **kw)
+    if while_open is not None:
+        while_open(res)
+    return res
 
 
-def diff_revisions(path: str, rev_spec: str, build: dict, **kw) -> DiffResult:
-    """``path`` at revision A and at B (or the work tree): see the module doc."""
+def diff_revisions(path: str, rev_spec: str, build: dict, while_open=None, **kw) -> DiffResult:
+    """``path`` at revision A and at B (or the work tree): see the module doc. ``while_open(result)``
+    runs before the exported revisions are removed (to render the two robots, whose meshes are there)."""
     a, b = parse_rev(rev_spec)
     p = Path(path)
     if not p.exists() and b is None:
@@ -299,6 +303,8 @@ def diff_revisions(path: str, rev_spec: str, build: dict, **kw) -> DiffResult:
         res = diff_models(str(old_file), str(new_file), build, _Missing(ta, path, a), _Missing(tb, path, b),
                           labels=(f"{display(path)}@{a}", f"{display(path)}@{b}" if b else display(path)), **kw)
         # resolve every lazily-read span and shown name while the exported files still exist
+        if while_open is not None:
+            while_open(res)
         items = [it._replace(where=where_text(it.where, res.shown, res.shown_old)) for it in res.items]
         same = lambda f: f        # noqa: E731
         return res._replace(items=items, shown=same, shown_old=same)

@@ -206,3 +206,74 @@ def test_action_diff_step_posts_then_updates_one_comment(tmp_path):
     assert [line.split()[0:3] for line in lines if "comments" in line and "--jq" not in line] == [
         ["api", "repos/o/r/issues/7/comments", "-F"], ["api", "-X", "PATCH"]]
     assert "repos/o/r/issues/comments/4242" in lines[-1]
+
+
+ARM = """<?xml version="1.0"?>
+<robot name="arm">
+  <link name="base"/>
+  <link name="upper"><inertial><origin xyz="0 0 0.25"/><mass value="1"/>
+    <inertia ixx="0.02" ixy="0" ixz="0" iyy="0.02" iyz="0" izz="0.001"/></inertial></link>
+  <link name="tool"/>
+  <joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/>
+    <axis xyz="0 1 0"/><limit lower="{lower}" upper="1.5" effort="10" velocity="1"/></joint>
+  <joint name="wrist" type="fixed"><parent link="upper"/><child link="tool"/><origin xyz="0 0 0.5"/></joint>
+  {gazebo}
+</robot>
+"""
+CAMERA = ('<gazebo reference="tool"><sensor type="camera" name="{name}"><update_rate>30</update_rate>'
+          '</sensor></gazebo>')
+
+
+def test_rest_pose_limits_and_sensors(tmp_path):
+    """The shoulder's range [0.2, 1.5] rad leaves 0 out: the rest pose holds it at 0.2 rad. Raising the
+    lower limit to 0.3 moves nothing at the zero pose and the tool by 0.5 m × 0.1 rad at rest."""
+    (tmp_path / "old.urdf").write_text(ARM.format(lower="0.2", gazebo=""))
+    (tmp_path / "new.urdf").write_text(ARM.format(lower="0.3", gazebo=CAMERA.format(name="cam")))
+    (tmp_path / "renamed.urdf").write_text(ARM.format(lower="0.3", gazebo=CAMERA.format(name="tool_camera")))
+    r = invoke("diff", tmp_path / "old.urdf", tmp_path / "new.urdf", "--format", "json", "--no-check")
+    ch = json.loads(r.output)["changes"]
+    assert ch["joints_changed"]["shoulder"]["limit"] == {"lower_deg": {"old": 11.4592, "new": 17.1887}}
+    assert "frames_moved_zero_pose" not in ch
+    rest = ch["frames_moved_rest_pose"]
+    assert set(rest) == {"upper", "tool"}
+    assert rest["upper"]["rotated_deg"] == 5.7296 and rest["upper"]["distance_mm"] == 0.0
+    assert abs(rest["tool"]["distance_mm"] - 1000 * 2 * 0.5 * __import__("math").sin(0.05)) < 1e-3   # chord
+    assert ch["sensors_added"] == [{"name": "cam", "type": "camera", "link": "tool"}]
+    ch = json.loads(invoke("diff", tmp_path / "new.urdf", tmp_path / "renamed.urdf", "--format", "json").output)["changes"]
+    assert ch["sensors_renamed"] == [{"old": "cam", "new": "tool_camera"}]
+
+
+def test_before_after_picture(tmp_path):
+    """--picture renders both robots (rest pose, iso view) side by side, as `render` does (MuJoCo
+    offscreen in a subprocess: the GL backend is fixed when mujoco is first imported)."""
+    import ctypes.util
+    import subprocess
+    import sys
+
+    import pytest
+
+    if not any(ctypes.util.find_library(n) for n in ("EGL", "OSMesa")):
+        pytest.skip("no libEGL or libOSMesa: `make install` installs them")
+    import numpy as np
+    from PIL import Image
+
+    from myrabot_desc.render import BACKGROUND
+
+    for side in ("a", "b"):
+        shutil.copytree(WANDER, tmp_path / side)
+    x = tmp_path / "b" / "urdf" / "robot.xacro"
+    x.write_text(x.read_text().replace('<origin xyz="0.1 0.15 0"', '<origin xyz="0.1 0.2 0"')
+                 .replace('<origin xyz="0.1 -0.15 0"', '<origin xyz="0.1 -0.2 0"'))
+    env = {k: v for k, v in os.environ.items() if k != "MUJOCO_GL"}
+    p = subprocess.run([sys.executable, "-m", "myrabot_desc", "diff", str(tmp_path / "a" / "urdf" / "robot.xacro"), str(x),
+                        "--picture", str(tmp_path / "ba.png"), "--format", "markdown", "--no-check"],
+                       capture_output=True, text=True, env=env, timeout=180)
+    assert p.returncode == 1, p.stderr
+    assert f"![before / after]({tmp_path / 'ba.png'})" in p.stdout
+    assert "turns 0.75× as fast for the same command" in p.stdout        # plugin 0.4 m, wheels 0.3 -> 0.4 m apart
+    with Image.open(tmp_path / "ba.png") as im:
+        img = np.asarray(im.convert("RGB")).astype(int)
+    assert img.shape == (450, 1200, 3)
+    fg = np.abs(img - np.array(BACKGROUND)).sum(axis=2) > 6
+    left, right = fg[60:, :590], fg[60:, 610:]
+    assert left.sum() > 10000 and right.sum() > 10000 and (left != right).sum() > 1000

@@ -48,7 +48,8 @@ def expand_inputs(files: list[str], recursive: bool = False) -> list[str]:
             continue
         # the walk checks every file against the folder (no symlink out, no FIFO or device) and is
         # bounded; the include scan is linear (model files are untrusted)
-        models = not_ignored(sorted(walk_models(p, recursive, MODEL_SUFFIXES, SKIP_DIRS)), p)
+        found = sorted(walk_models(p, recursive, MODEL_SUFFIXES, SKIP_DIRS))
+        models = not_ignored(found, p)
         included = set()
         for c in models:
             if c.name.endswith(".xacro"):
@@ -56,6 +57,8 @@ def expand_inputs(files: list[str], recursive: bool = False) -> list[str]:
         picked = [str(c) for c in models if c.name not in included or c.name.endswith(".urdf")]
         if not picked:
             hint = "" if recursive else " (-r looks in its subfolders too)"
+            if found and not models:
+                hint = f" ({len(found)} ignored by .gitignore)"
             raise UsageProblem(f"{f}: no .urdf or .xacro model files in this folder{hint}")
         out.extend(picked)
     return out

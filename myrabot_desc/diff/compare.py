@@ -391,12 +391,15 @@ class _Builder:
                          fmt(deg(ib.origin.rpy), "deg"), f"{fmt(turn)} deg", turn, sn.where(ib, "origin.rpy"),
                          tuple(y for x, y in zip(ia.origin.rpy, ib.origin.rpy) if differs(x, y) and y))
             comps = {}
+            # a component's change as a share of the link's largest principal-axis moment (old or new):
+            # a product of inertia going from 0 to 1e-9 is not a 100 % change of the link
+            scale = max(abs(getattr(i, k)) for i in (ia, ib) for k in ("ixx", "iyy", "izz")) or 1.0
             for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz"):
                 x, y = getattr(ia, k), getattr(ib, k)
                 if differs(x, y):
                     comps[k] = {"old": x, "new": y}
                     self.add("link", name, k, fmt(x, "kg·m²"), fmt(y, "kg·m²"),
-                             f"×{fmt(y / x)}" if x else signed(y), rel_size(x, y), sn.where(ib, k), (y,))
+                             f"×{fmt(y / x)}" if x else signed(y), 100.0 * abs(y - x) / scale, sn.where(ib, k), (y,))
             if comps:
                 ch["inertia"] = comps
         for kind in ("visual", "collision"):

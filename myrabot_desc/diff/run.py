@@ -24,7 +24,7 @@ from typing import NamedTuple
 from myrabot_desc.checks import CheckOptions, check_robot
 from myrabot_desc.checks.baseline import finding_key
 from myrabot_desc.diff.attribution import changed_lines, refine
-from myrabot_desc.diff.compare import STRUCTURAL, Item, compare, fmt
+from myrabot_desc.diff.compare import STRUCTURAL, Item, compare
 from myrabot_desc.errors import InputError, UsageProblem
 from myrabot_desc.expand.driver import build_file
 from myrabot_desc.model.loader import is_xacro, load_robot, read_urdf_text
@@ -159,7 +159,6 @@ class _Side:
             self.pid, self.fd = pid, r
         else:
             self.result = fn()
-            self.fn = None
         self._fn = fn
 
     def get(self):
@@ -297,7 +296,10 @@ def diff_revisions(path: str, rev_spec: str, build: dict, while_open=None, **kw)
     top = repo_top(p if p.exists() else p.parent if p.parent.exists() else Path.cwd())
     if top is None:
         raise InputError(f"{path}: not inside a git repository (--rev reads revisions with git)")
-    rel = p.resolve().relative_to(top) if p.is_absolute() or p.exists() else (Path.cwd() / p).resolve().relative_to(top)
+    try:
+        rel = (Path.cwd() / p).resolve().relative_to(top)
+    except ValueError:
+        raise InputError(f"{path}: not inside the repository {top}") from None
     with _Tree(top, a) as ta, _Tree(top, b) as tb:
         old_file, new_file = ta.root / rel, tb.root / rel
         res = diff_models(str(old_file), str(new_file), build, _Missing(ta, path, a), _Missing(tb, path, b),
@@ -321,7 +323,7 @@ class _Missing:
 
     def export(self) -> None:
         self.tree.export()
-        rel = Path(self.path).resolve().relative_to(self.tree.top) if self.tree.dir is not None else None
+        rel = (Path.cwd() / self.path).resolve().relative_to(self.tree.top) if self.tree.dir is not None else None
         if rel is not None and not (self.tree.dir / rel).is_file():
             raise InputError(f"{self.path}: no such file at revision {self.rev}")
 
@@ -335,4 +337,4 @@ def where_text(w, shown, shown_old=None) -> str | None:
     return w.text(shown_old if w.side == "old" and shown_old is not None else shown)
 
 
-__all__ = ["DiffResult", "diff_paths", "diff_revisions", "diff_models", "parse_rev", "where_text", "fmt"]
+__all__ = ["DiffResult", "diff_paths", "diff_revisions", "diff_models", "parse_rev", "where_text"]

@@ -99,6 +99,8 @@ def render(fmt: str, results, version: str, exit_code: int = 0, quiet: bool = Fa
         return render_github(results)
     if fmt == "sarif":
         return render_sarif(results, version, exit_code=exit_code, help_url=help_url, shard=shard)
+    if fmt == "junit":
+        return render_junit(results)
     return render_text(results, quiet=quiet)
 
 
@@ -408,3 +410,43 @@ def merge_sarif_files(files: list[str]) -> str:
         return json.dumps(merge_sarif(docs), indent=2, ensure_ascii=False) + "\n"
     except (ValueError, KeyError, TypeError, AttributeError) as exc:
         raise InputError(f"cannot merge: {exc}", Loc(files[0])) from None
+
+
+# ---------------------------------------------------------------------------------------- JUnit XML
+def _xml_text(s) -> str:
+    """Model text inside XML: escaped, and the characters XML 1.0 cannot hold replaced."""
+    from xml.sax.saxutils import escape
+
+    s = "".join(ch if ch in "\t\n\r" or (" " <= ch <= "\ud7ff") or ("\ue000" <= ch <= "\ufffd")
+                or ch >= "\U00010000" else "?" for ch in str(s))
+    return escape(s, {'"': "&quot;"})
+
+
+def render_junit(results) -> str:
+    """JUnit XML for CI systems that show test results: one test case per model, one <failure> per
+    error (per warning too for a --strict model), an <error> for a model that could not be processed;
+    warnings and info as the test's output."""
+    cases, failures, errors = [], 0, 0
+    for r in results:
+        name = rel(r.file) or _bundled_name()
+        body = []
+        if r.failure:
+            errors += 1
+            body.append(f'    <error message="{_xml_text(r.failure)}" type="input"/>')
+        else:
+            fail = [d for d in r.diagnostics if d.severity == "error" or (r.strict and d.severity == "warning")]
+            failures += len(fail)
+            for d in fail:
+                w = where(d)
+                body.append(f'    <failure message="{_xml_text(d.code + " " + d.message)}" type="{_xml_text(d.code)}">'
+                            f"{_xml_text((w + ': ' if w else '') + d.code + ' ' + d.message)}</failure>")
+            rest = [d for d in r.diagnostics if d not in fail]
+            if rest:
+                out = "\n".join(f"{where(d) + ': ' if where(d) else ''}{d.severity} {d.code} {d.message}" for d in rest)
+                body.append(f"    <system-out>{_xml_text(out)}</system-out>")
+        cases.append(f'  <testcase classname="myrabot-desc.check" name="{_xml_text(name)}"'
+                     + (">\n" + "\n".join(body) + "\n  </testcase>" if body else "/>"))
+    head = (f'<?xml version="1.0" encoding="UTF-8"?>\n<testsuites name="myrabot-desc check" tests="{len(results)}" '
+            f'failures="{failures}" errors="{errors}">\n<testsuite name="myrabot-desc check" tests="{len(results)}" '
+            f'failures="{failures}" errors="{errors}">')
+    return head + "\n" + "\n".join(cases) + "\n</testsuite>\n</testsuites>\n"

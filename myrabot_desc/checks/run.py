@@ -18,12 +18,16 @@ from typing import NamedTuple
 from myrabot_desc.checks import CheckOptions, cache, check_robot
 from myrabot_desc.checks.codes import known_codes, split_codes, unknown_code_message
 from myrabot_desc.checks.config import Finder
+from myrabot_desc.checks.gitignore import not_ignored
 from myrabot_desc.checks.registry import load_all
 from myrabot_desc.checks.report import FileResult
 from myrabot_desc.diagnostics import Loc
 from myrabot_desc.errors import InputError, UsageProblem
-from myrabot_desc.model.loader import load_robot
+from myrabot_desc.expand.driver import build_file
+from myrabot_desc.expand.packages import resolve_resource_uri
+from myrabot_desc.model.loader import is_xacro, load_robot
 from myrabot_desc.safety import LIMIT_ENV, SKIP_DIRS, included_names, walk_models
+from myrabot_desc.vcs import changed_files, repo_top
 
 MODEL_SUFFIXES = (".urdf", ".xacro")
 
@@ -33,8 +37,9 @@ MODEL_SUFFIXES = (".urdf", ".xacro")
 
 def expand_inputs(files: list[str], recursive: bool = False) -> list[str]:
     """Folders become their top-level model files: *.urdf and *.xacro directly inside (with
-    ``recursive``, anywhere below, hidden and build folders skipped), minus the xacro files
-    that another xacro file of the folder includes (parts, not robots)."""
+    ``recursive``, anywhere below, hidden and build folders skipped), minus the files git ignores
+    (.gitignore) and the xacro files that another xacro file of the folder includes (parts, not
+    robots)."""
     out: list[str] = []
     for f in files:
         p = Path(f)
@@ -43,7 +48,8 @@ def expand_inputs(files: list[str], recursive: bool = False) -> list[str]:
             continue
         # the walk checks every file against the folder (no symlink out, no FIFO or device) and is
         # bounded; the include scan is linear (model files are untrusted)
-        models = sorted(walk_models(p, recursive, MODEL_SUFFIXES, SKIP_DIRS))
+        found = sorted(walk_models(p, recursive, MODEL_SUFFIXES, SKIP_DIRS))
+        models = not_ignored(found, p)
         included = set()
         for c in models:
             if c.name.endswith(".xacro"):
@@ -51,6 +57,8 @@ def expand_inputs(files: list[str], recursive: bool = False) -> list[str]:
         picked = [str(c) for c in models if c.name not in included or c.name.endswith(".urdf")]
         if not picked:
             hint = "" if recursive else " (-r looks in its subfolders too)"
+            if found and not models:
+                hint = f" ({len(found)} ignored by .gitignore)"
             raise UsageProblem(f"{f}: no .urdf or .xacro model files in this folder{hint}")
         out.extend(picked)
     return out
@@ -272,3 +280,55 @@ def plan(inputs, inertia, suggest, meshes, select, ignore, strict, recursive, co
         tasks.append(Task(p, build, options, tuple(sel or cfg.select), tuple(cfg.ignores_for(p) + ign), limits,
                           strict or cfg.strict, use_cache, str(cfg.path) if cfg.path else None))
     return tasks, help_url
+
+
+# ---------------------------------------------------------------------------------------- --changed-since
+_MESH = re.compile(r"""<mesh\b[^>]*?\bfilename\s*=\s*["']([^"']+)["']""")
+
+
+def model_sources(task: Task) -> set[Path] | None:
+    """Every file the build of ``task`` reads (the input, its includes and YAML files, the meshes the
+    URDF names), resolved; None when the model does not build (then it is checked, and its failure
+    reported)."""
+    src = Path(task.path)
+    build = dict(task.build)
+    mappings = build.pop("mappings", None)
+    try:
+        data = src.read_bytes() if not src.name.endswith(".xacro") else None
+        if data is None or is_xacro(src, data):
+            res = build_file(src, mappings, **build)
+            files, text, roots = [Path(d) for d in res.deps], res.text, res.package_roots
+        else:
+            files, text, roots = [src], data.decode("utf-8", "replace"), {}
+    except (InputError, OSError, RecursionError, MemoryError):
+        return None
+    out = {f.resolve() for f in files}
+    for uri in set(_MESH.findall(text)):
+        p = resolve_resource_uri(uri, roots, src.parent)
+        if p is not None:
+            out.add(Path(p).resolve())
+    return out
+
+
+def changed_since(tasks: list, rev: str) -> tuple[list, int]:
+    """(the tasks whose model reads a file that changed since git revision ``rev``, how many were left
+    out). Files changed: committed since ``rev``, staged, unstaged or untracked (not ignored); a
+    model outside any repository is kept."""
+    changed: dict = {}
+    kept = []
+    for t in tasks:
+        if t.path is None:
+            kept.append(t)
+            continue
+        top = repo_top(t.path)
+        if top is None:
+            kept.append(t)
+            continue
+        if top not in changed:
+            changed[top] = changed_files(top, rev)
+        if not changed[top]:
+            continue
+        deps = model_sources(t)
+        if deps is None or deps & changed[top]:
+            kept.append(t)
+    return kept, len(tasks) - len(kept)

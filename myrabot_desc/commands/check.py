@@ -8,8 +8,9 @@ from pathlib import Path
 import click
 
 from myrabot_desc import __version__
+from myrabot_desc.checks import baseline as baselines
 from myrabot_desc.checks.report import merge_sarif_files, render, rule_table
-from myrabot_desc.checks.run import default_jobs, exit_code, plan, run_tasks
+from myrabot_desc.checks.run import changed_since, default_jobs, exit_code, plan, run_tasks
 from myrabot_desc.checks.suppress import unused_findings
 from myrabot_desc.commands.common import input_options
 from myrabot_desc.commands.console import guarded
@@ -34,7 +35,7 @@ def _progressbar(results, length):
               help="Load collision meshes and compare every inertia with the solid body of its collision geometry.")
 @click.option("--suggest", is_flag=True, help="With --inertia: print a ready <inertia .../> line per link.")
 @click.option("--meshes", is_flag=True, help="Load every mesh (visual too) to check scale, watertightness and normals.")
-@click.option("--format", "fmt", type=click.Choice(["text", "json", "github", "sarif"]), default="text",
+@click.option("--format", "fmt", type=click.Choice(["text", "json", "github", "sarif", "junit"]), default="text",
               show_default=True, help="Report format.")
 @click.option("--select", "select", multiple=True, metavar="CODES",
               help="Only these codes or prefixes (comma-separated or repeated), e.g. I,G001. Replaces the "
@@ -70,10 +71,16 @@ def _progressbar(results, length):
               "which fixes are unsafe and why).")
 @click.option("--diff", "diff_", is_flag=True,
               help="Show the fixes as a unified diff and write nothing (exit 1 when there is something to fix).")
+@click.option("--baseline", "baseline", type=click.Path(dir_okay=False), metavar="FILE",
+              help="Findings recorded in FILE are known: only new ones are reported and fail. A missing FILE is "
+                   "written with today's findings (matched by code, element and message, not by line).")
+@click.option("--update-baseline", is_flag=True, help="With --baseline: write today's findings to FILE again.")
+@click.option("--changed-since", "since", metavar="REV",
+              help="Check only the models that read a file (include, YAML, mesh) changed since git revision REV.")
 @click.option("--list-rules", is_flag=True, help="List every rule code and exit.")
 def check_cmd(inputs, inertia, suggest, meshes, fmt, select, ignore, strict, output, recursive, config_file,
               isolated, jobs, shard_spec, quiet, no_cache, cache_dir, merge_sarif, fix_, unsafe_fixes, diff_,
-              list_rules):
+              baseline, update_baseline, since, list_rules):
     """Lint robot models: tree, inertia, sensors and frames, Gazebo plugins, meshes, physics.
 
     Each finding has a stable code (X build, T tree, I inertia, S sensors/frames,
@@ -98,6 +105,8 @@ def check_cmd(inputs, inertia, suggest, meshes, fmt, select, ignore, strict, out
       myrabot-desc check robot.urdf --select I,P --strict
       myrabot-desc check --fix robot.urdf.xacro        # repair the safe findings in the sources
       myrabot-desc check --diff --unsafe-fixes -r .    # show every fix as a diff, write nothing
+      myrabot-desc check -r . --baseline .myrabot-desc-baseline.json   # fail only on new findings
+      myrabot-desc check -r . --changed-since origin/main --format junit -o check.xml
 
     \b
     Exit codes: 0 no errors (no warnings either with --strict), 1 errors found,
@@ -118,16 +127,24 @@ def check_cmd(inputs, inertia, suggest, meshes, fmt, select, ignore, strict, out
             return
         if unsafe_fixes and not (fix_ or diff_):
             raise click.UsageError("--unsafe-fixes goes with --fix or --diff")
+        if update_baseline and not baseline:
+            raise click.UsageError("--update-baseline goes with --baseline FILE")
         try:
             tasks, help_url = plan(inputs, inertia, suggest, meshes, select, ignore, strict, recursive, config_file,
                                    isolated, shard_spec, no_cache or fix_ or diff_, cache_dir)
         except UsageProblem as exc:
             raise usage_error(exc) from None
+        if since is not None:
+            tasks, skipped = changed_since(tasks, since)
+            if not quiet and fmt == "text":
+                click.echo(f"--changed-since {since}: {len(tasks)} model(s) to check, {skipped} unchanged", err=True)
         if fix_ or diff_:
             sys.exit(_fix(tasks, fmt, output, quiet, help_url, shard_spec, unsafe_fixes, write=not diff_))
         progress = not quiet and sys.stderr.isatty()
-        results = run_tasks(tasks, jobs or default_jobs(), _progressbar if progress else None)
+        results = run_tasks(tasks, jobs or default_jobs(), _progressbar if progress else None) if tasks else []
         unused_findings(results)
+        if baseline:
+            _baseline(results, baseline, update_baseline, quiet or fmt != "text")
         code = exit_code(results)
         text = render(fmt, results, __version__, exit_code=code, quiet=quiet, help_url=help_url,
                       shard=shard_spec)
@@ -139,6 +156,21 @@ def check_cmd(inputs, inertia, suggest, meshes, fmt, select, ignore, strict, out
             if r.failure and (fmt != "text" or output != "-"):
                 click.echo(clean(r.failure), err=True)
     sys.exit(code)
+
+
+def _baseline(results, path, update: bool, quiet: bool) -> None:
+    """Record the findings in the baseline ``path`` (missing, or --update-baseline), else drop the
+    ones it holds from ``results``."""
+    if update or not Path(path).exists():
+        n = baselines.record(results, path)
+        if not quiet:
+            click.echo(f"baseline {path}: {n} finding(s) recorded", err=True)
+        for r in results:
+            r.diagnostics = []
+        return
+    n = baselines.apply(results, path)
+    if not quiet:
+        click.echo(f"baseline {path}: {n} known finding(s) not reported", err=True)
 
 
 def _fix(tasks, fmt, output, quiet, help_url, shard_spec, unsafe, write: bool) -> int:

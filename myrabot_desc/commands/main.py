@@ -19,6 +19,7 @@ from myrabot_desc.safety import limits_help
 COMMANDS = {
     "build": ("myrabot_desc.commands.build", "build_cmd", "Expand a xacro file (legacy syntax too) into URDF, without ROS."),
     "check": ("myrabot_desc.commands.check", "check_cmd", "Lint a robot model: tree, inertia, sensors, plugins, meshes, physics."),
+    "diff": ("myrabot_desc.commands.diff", "diff_cmd", "Show what changed in the built robot between two models or revisions."),
     "convert": ("myrabot_desc.commands.convert", "convert_cmd", "Convert a model to SDF (gz-sim), an SDF world, or MJCF (MuJoCo)."),
     "materials": ("myrabot_desc.commands.materials", "materials_cmd", "Read an OGRE .material script; print SDF <material> blocks or JSON."),
     "sim": ("myrabot_desc.commands.sim", "sim_cmd", "Run the seed's programs in a built-in kinematic/diff-drive simulator."),
@@ -49,6 +50,7 @@ Examples:
   myrabot-desc build -o out/myrabot.urdf          # the bundled MYRAbot
   myrabot-desc build old_robot.urdf.xacro -p my_pkg=../my_pkg
   myrabot-desc check --inertia robot.urdf.xacro
+  myrabot-desc diff robot.urdf.xacro --rev main    # what the branch changed
   myrabot-desc convert --to sdf -o out/myrabot.sdf
   myrabot-desc sim vuelta --plot out/vuelta.png
   myrabot-desc info

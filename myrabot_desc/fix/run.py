@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import NamedTuple
 
 from myrabot_desc.checks import check_robot
+from myrabot_desc.checks.baseline import SUBJECT_KEYS, subject  # noqa: F401  (fix's notion of a finding's subject)
 from myrabot_desc.checks.report import FileResult
 from myrabot_desc.diagnostics import Loc
 from myrabot_desc.errors import InputError
@@ -25,7 +26,6 @@ from myrabot_desc.fix.report import change_data, not_fixed_data
 from myrabot_desc.model.loader import load_robot
 
 MAX_PASSES = 4
-SUBJECT_KEYS = ("link", "joint", "plugin", "param", "sensor", "frame", "attribute", "element", "reference")
 
 
 class FileFix(NamedTuple):
@@ -49,13 +49,6 @@ class FixResult(NamedTuple):
     before: list                      # Diagnostics of the model as it is
     after: list                       # Diagnostics of the fixed model
     applied_data: list                # change_data of each applied Change (offsets in the bytes it edited)
-
-
-def subject(d) -> tuple:
-    """What a finding is about (its code and the elements it names): the same finding after a fix
-    has the same subject even when its numbers or line change."""
-    data = d.data or {}
-    return (d.code,) + tuple((k, str(data[k])) for k in SUBJECT_KEYS if k in data)
 
 
 def _counts(diags) -> dict:

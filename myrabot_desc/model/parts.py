@@ -27,6 +27,7 @@ from myrabot_desc.diagnostics import Loc
 from myrabot_desc.expand.packages import resolve_resource_uri
 from myrabot_desc.model import values as V
 from myrabot_desc.model.nodes import Node
+from myrabot_desc.model.nodes import node as node_of
 from myrabot_desc.model.pin_model import build_model
 from myrabot_desc.model.sources import Sources
 from myrabot_desc.model.tree import maps
@@ -484,6 +485,16 @@ class Robot:
         if type(self.element_locs) is dict:
             return self.element_locs.get(id(el))
         return self.element_locs.loc(el)
+
+    def node(self, part) -> Node | None:
+        """``part``'s element as a Node (markup as written, for what no typed field holds: a joint's
+        ``<safety_controller>``), or None for a part not read from a document."""
+        ref = getattr(part, "ref", None)
+        return None if ref is None else node_of(ref, self.loc_of)
+
+    def top_nodes(self) -> list:
+        """The robot's top-level elements as Nodes, in document order."""
+        return self.derive("top_nodes", lambda: list(node_of(self.root_element, self.loc_of).elements))
 
     @property
     def sources(self):

@@ -68,9 +68,21 @@ def _key(task) -> str:
     material = {"format": ENTRY_FORMAT, "version": __version__, "cwd": os.getcwd(),
                 "file": str(Path(task.path).resolve()) if task.path else None,
                 "build": {k: (sorted(v.items()) if isinstance(v, dict) else v) for k, v in sorted(task.build.items())},
-                "options": [opts.inertia, opts.suggest, opts.meshes], "select": list(task.select),
+                "options": [opts.inertia, opts.suggest, opts.meshes, _file_key(getattr(opts, "srdf", None))],
+                "select": list(task.select),
                 "ignore": list(task.ignore), "limits": list(task.limits), "env": env}
     return hashlib.sha256(json.dumps(material, sort_keys=True, default=str).encode()).hexdigest()
+
+
+def _file_key(path) -> list | None:
+    """An extra input file (--srdf) as (path, size, mtime): its edit changes the key."""
+    if not path:
+        return None
+    try:
+        st = os.stat(path)
+    except OSError:
+        return [str(path)]
+    return [str(Path(path).resolve()), st.st_size, st.st_mtime_ns]
 
 
 def _entry_path(task) -> Path:

@@ -33,6 +33,9 @@ def _progressbar(results, length):
               help="Load collision meshes and compare every inertia with the solid body of its collision geometry.")
 @click.option("--suggest", is_flag=True, help="With --inertia: print a ready <inertia .../> line per link.")
 @click.option("--meshes", is_flag=True, help="Load every mesh (visual too) to check scale, watertightness and normals.")
+@click.option("--srdf", type=click.Path(dir_okay=False), metavar="FILE",
+              help="The robot's SRDF: the link pairs its <disable_collisions> lets touch are not self-collisions "
+                   "(P005), and an overlap it does not allow is an error.")
 @click.option("--format", "fmt", type=click.Choice(["text", "json", "github", "sarif"]), default="text",
               show_default=True, help="Report format.")
 @click.option("--select", "select", multiple=True, metavar="CODES",
@@ -67,7 +70,7 @@ def _progressbar(results, length):
 @click.option("--diff", "diff_", is_flag=True,
               help="Show the fixes as a unified diff and write nothing (exit 1 when there is something to fix).")
 @click.option("--list-rules", is_flag=True, help="List every rule code and exit.")
-def check_cmd(inputs, inertia, suggest, meshes, fmt, select, ignore, strict, output, recursive, config_file,
+def check_cmd(inputs, inertia, suggest, meshes, srdf, fmt, select, ignore, strict, output, recursive, config_file,
               isolated, jobs, shard_spec, quiet, no_cache, merge_sarif, fix_, unsafe_fixes, diff_, list_rules):
     """Lint robot models: tree, inertia, sensors and frames, Gazebo plugins, meshes, physics.
 
@@ -91,6 +94,7 @@ def check_cmd(inputs, inertia, suggest, meshes, fmt, select, ignore, strict, out
       myrabot-desc check -r . --shard 2/4 --format sarif -o part2.sarif
       myrabot-desc check --merge-sarif part*.sarif -o check.sarif
       myrabot-desc check robot.urdf --select I,P --strict
+      myrabot-desc check --inertia panda.urdf --srdf panda.srdf   # self-collision (P005) as the SRDF allows
       myrabot-desc check --fix robot.urdf.xacro        # repair the safe findings in the sources
       myrabot-desc check --diff --unsafe-fixes -r .    # show every fix as a diff, write nothing
 
@@ -115,7 +119,7 @@ def check_cmd(inputs, inertia, suggest, meshes, fmt, select, ignore, strict, out
             raise click.UsageError("--unsafe-fixes goes with --fix or --diff")
         try:
             tasks, help_url = plan(inputs, inertia, suggest, meshes, select, ignore, strict, recursive, config_file,
-                                   isolated, shard_spec, no_cache or fix_ or diff_)
+                                   isolated, shard_spec, no_cache or fix_ or diff_, srdf=srdf)
         except UsageProblem as exc:
             raise usage_error(exc) from None
         if fix_ or diff_:

@@ -58,6 +58,10 @@ LIMITS: tuple[Limit, ...] = (
           "largest OGRE material script (Gazebo's own gazebo.material is 24 kB)"),
     Limit("max_mjcf_bodies", "MYRABOT_DESC_MAX_MJCF_BODIES", 2_000, None,
           "most links `convert --to mjcf` takes (2,000 links: ~2 s, 400 MB; 5,000: 12 s, 2 GB)"),
+    Limit("max_physics_steps", "MYRABOT_DESC_MAX_PHYSICS_STEPS", 1_000_000, None,
+          "most MuJoCo steps one `sim settle`/`sweep`/`drive --engine mujoco` takes (2,000 s at 2 ms)"),
+    Limit("max_sweep_poses", "MYRABOT_DESC_MAX_SWEEP_POSES", 100_000, None,
+          "most poses one `sim sweep` visits (joints x samples)"),
 )
 LIMIT_ENV = {lim.field: lim.env for lim in LIMITS}
 

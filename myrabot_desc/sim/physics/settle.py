@@ -1,0 +1,323 @@
+"""``sim settle``: does the robot stand? N seconds in MuJoCo from its start pose, the actuators holding it.
+
+The robot starts at its start pose (sim/physics/pose.py) with a free base lowered onto the floor, or
+welded where it stands (engine.decide_base), every position actuator holding its joint there and
+every wheel at rest. Checks, over the run:
+
+* finite: no NaN and no MuJoCo instability warning;
+* free base: height drift, tilt and horizontal drift of the root within tolerance;
+* ground contacts: only the bodies that touched the ground at the start (feet, wheels, casters)
+  touch it; a welded robot's moving bodies not at all;
+* self-contacts: no two bodies of the robot that convert did not exclude penetrate each other
+  (and, with an SRDF, none overlaps at the start unless the SRDF lets the pair touch);
+* joint drift: every position-held joint stays within DRIFT of its start value;
+* energy: the mechanical energy (kinetic + potential) does not grow past ENERGY_TOL.
+
+A failure is explained in model terms at its file:line: the centre of mass outside the support
+polygon of the ground contacts (by how much), a joint that cannot hold (the torque it needs, measured
+by holding the pose with unlimited actuators, against its effort limit), a link penetrating another
+(by how much, both collisions' file:line), the lightest body when the integration blows up.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+from myrabot_desc.model.collisions import TOUCH, Scene
+from myrabot_desc.model.kinematics import center_of_mass
+from myrabot_desc.model.srdf import load_srdf
+from myrabot_desc.model.statics import effort_of
+from myrabot_desc.model.support import ground_support, signed_distance
+from myrabot_desc.sim.physics.engine import Engine
+from myrabot_desc.sim.physics.pose import start_pose
+from myrabot_desc.sim.physics.result import Cause, PhysicsResult, printable
+from myrabot_desc.sim.result import Check
+
+HEIGHT_TOL = 0.02        # m: the root may sink or rise this much (soft contacts, compliant joints)
+SHIFT_TOL = 0.02         # m: horizontal drift of the root
+TILT_TOL = 3.0           # degrees
+DRIFT = {"hinge": 0.1, "slide": 0.01}    # rad, m: a held joint's largest excursion from its start value
+SAMPLE_RATE = 100.0      # Hz: series, contacts and drift are sampled this often
+ENERGY_TOL = 0.01        # m: energy may grow by lifting the whole robot this high (m g h)
+
+
+def run(robot, *, duration: float = 3.0, base: str = "auto", pose_file=None, srdf=None, state=None,
+        progress=None) -> PhysicsResult:
+    import numpy as np
+
+    wall0 = time.perf_counter()
+    srdf_doc = load_srdf(srdf) if srdf else None
+    start = start_pose(robot, pose_file, srdf_doc, state)
+    eng = Engine(robot, base, start.q)
+    mj, m, d = eng.mujoco, eng.model, eng.data
+    res = PhysicsResult("settle", robot.name, f"MuJoCo {mj.__version__}", duration, float(m.opt.timestep))
+    res.info["start pose"] = start.source
+    res.info["base"] = f"{eng.base} ({eng.base_why})"
+    res.notes.extend(start.notes)
+    free = eng.free_adr is not None
+    qpos0 = eng.qpos_for(start.q)
+    compensated, weak = eng.hold_policy(qpos0)
+    for name, need, effort in compensated:
+        res.notes.append(f"joint {name} needs {need:.3g} to hold what it carries at the start, over its effort "
+                         f"limit {effort:g} (up to {2:g}x): a counterbalance the URDF does not describe is assumed, "
+                         "its subtree is gravity-compensated (check P006 warns)")
+    mass, com = center_of_mass(robot, start.q)
+    res.info["mass"] = f"{mass:.4g} kg"
+
+    # what touches the ground at the start, and where the centre of mass is over it
+    sup = ground_support(robot, start.q, meshes=True) if free else None
+    feet_bodies = {eng.body_of_link(n) for n in sup.links} if sup else set()
+    if sup:
+        res.info["ground contacts at the start"] = ", ".join(sup.links)
+    # overlaps at the start (the same test as check's P005), the SRDF's exclusions respected
+    overlaps = _start_overlaps(robot, start.q, srdf_doc)
+    if eng.excluded:
+        res.info["pairs convert --to mjcf excludes"] = f"{len(eng.excluded)} (touching at its home pose)"
+    passive = [n for n in eng.joint_ids if n not in eng.actuators and robot.joints[n].mimic is None]
+    if passive:
+        res.info["passive joints"] = f"{len(passive)} ({', '.join(passive[:4])}{', ...' if len(passive) > 4 else ''})"
+
+    # the run
+    d.qpos[:] = qpos0
+    d.qvel[:] = 0.0
+    eng.hold(qpos0)
+    mj.mj_forward(m, d)
+    n = eng.steps(duration)
+    every = max(1, int(round(1.0 / (SAMPLE_RATE * m.opt.timestep))))
+    held = {name: eng.joint_ids[name] for name in eng.position_actuators if name in eng.joint_ids}
+    adr = {name: int(m.jnt_qposadr[j]) for name, j in held.items()}
+    q0 = {name: float(qpos0[a]) for name, a in adr.items()}
+    root = eng.root_body
+    z0 = float(d.xpos[root][2]) if free else 0.0
+    xy0 = d.xpos[root][:2].copy() if free else None
+    zaxis0 = d.xmat[root].reshape(3, 3)[:, 2].copy() if free else None
+    e0 = float(d.energy[0] + d.energy[1])
+    ts, zs, tilts, energies, drifts = [], [], [], [], []
+    joint_series = {name: [] for name in held}
+    worst_drift: dict = {}
+    ground: dict = {}                    # body -> first time it touched the floor
+    self_hits: dict = {}                 # (geom, geom) -> (depth, time)
+    blew_up = None
+    for k in range(n + 1):
+        if k:
+            mj.mj_step(m, d)
+        if k % every and k != n:
+            continue
+        t = k * m.opt.timestep
+        if not (np.isfinite(d.qpos).all() and np.isfinite(d.qvel).all()) or \
+                d.warning[mj.mjtWarning.mjWARN_BADQACC].number:
+            blew_up = t
+            break
+        ts.append(t)
+        energies.append(float(d.energy[0] + d.energy[1]) - e0)
+        if free:
+            zs.append(float(d.xpos[root][2]) - z0)
+            zaxis = d.xmat[root].reshape(3, 3)[:, 2]
+            tilts.append(math.degrees(math.acos(max(-1.0, min(1.0, float(zaxis @ zaxis0))))))
+        worst = 0.0
+        for name, a in adr.items():
+            x = float(d.qpos[a]) - q0[name]
+            joint_series[name].append(float(d.qpos[a]))
+            if abs(x) > abs(worst_drift.get(name, 0.0)):
+                worst_drift[name] = x
+            kind = "slide" if m.jnt_type[held[name]] == mj.mjtJoint.mjJNT_SLIDE else "hinge"
+            worst = max(worst, abs(x) / DRIFT[kind])
+        drifts.append(worst)
+        if d.ncon:
+            geoms, dist = d.contact.geom, d.contact.dist
+            for (g1, g2), dd in zip(geoms, dist):
+                if g1 == eng.floor or g2 == eng.floor:
+                    b = int(m.geom_bodyid[g2 if g1 == eng.floor else g1])
+                    if b not in feet_bodies and b != 0 and b not in ground:
+                        ground[b] = t
+                elif dd < -TOUCH:
+                    key = (int(min(g1, g2)), int(max(g1, g2)))
+                    if -dd > self_hits.get(key, (0.0, 0.0))[0]:
+                        self_hits[key] = (-float(dd), t)
+        if progress:
+            progress(k / n)
+    res.steps = k
+    res.t = np.asarray(ts)
+    if free:
+        res.series["base_dz_m"] = np.asarray(zs)
+        res.series["tilt_deg"] = np.asarray(tilts)
+    res.series["energy_change_J"] = np.asarray(energies)
+    res.series["joint_drift_share"] = np.asarray(drifts)
+    for name, vals in joint_series.items():
+        res.series[f"{name}_{'m' if robot.joints[name].type == 'prismatic' else 'rad'}"] = np.asarray(vals)
+
+    # ------------------------------------------------------------ checks
+    res.add(Check("finite", blew_up is None, "yes" if blew_up is None else f"NaN at {blew_up:.3f} s", "",
+                  "no NaN, no instability warning"),
+            [] if blew_up is None else [_lightest(robot, eng)])
+    support_causes = _support_causes(robot, sup, com, start.q) if free else []
+    if free and zs:
+        dz, tilt = zs[-1], max(tilts)
+        shift = float(np.linalg.norm(d.xpos[root][:2] - xy0)) if blew_up is None else float("nan")
+        fell = abs(dz) > HEIGHT_TOL or tilt > TILT_TOL
+        res.add(Check("height drift", abs(dz) <= HEIGHT_TOL, dz, "m", f"|dz| <= {HEIGHT_TOL:g} m"),
+                support_causes if abs(dz) > HEIGHT_TOL else [])
+        res.add(Check("tilt", tilt <= TILT_TOL, tilt, "deg", f"<= {TILT_TOL:g} deg"),
+                support_causes if tilt > TILT_TOL and not abs(dz) > HEIGHT_TOL else [])
+        res.add(Check("horizontal drift", not shift > SHIFT_TOL, shift, "m", f"<= {SHIFT_TOL:g} m"),
+                support_causes if shift > SHIFT_TOL and not fell else [])
+    names = sorted(eng.body_name[b] for b in ground)
+    res.add(Check("ground contacts", not ground, ", ".join(names) if names else "only " +
+                  (", ".join(sup.links) if sup and sup.links else "the base"), "",
+                  "only the feet, wheels and casters it started on" if free else "no moving body touches the floor"),
+            [Cause(f"link {eng.body_name[b]} touches the ground at {t:.2f} s" +
+                   (": it is not one of the contacts it started on" if free else ""),
+                   robot.links[eng.body_name[b]].loc if eng.body_name[b] in robot.links else None)
+             for b, t in sorted(ground.items(), key=lambda kv: kv[1])[:4]])
+    self_causes = [Cause(f"link {o.link_b} penetrates link {o.link_a} by {o.depth * 1000:.1f} mm at the start pose "
+                         f"({o.shape_b} into {o.shape_a} at {_w(o.loc_a)}); the SRDF does not let them touch", o.loc_b)
+                   for o in overlaps]
+    hits = sorted(self_hits.items(), key=lambda kv: -kv[1][0])
+    for (g1, g2), (depth, t) in hits[:4]:
+        la, lb = eng.link_of_geom(g1), eng.link_of_geom(g2)
+        self_causes.append(Cause(f"link {lb} penetrates link {la} by {depth * 1000:.1f} mm at {t:.2f} s "
+                                 f"({la}'s collision at {_w(eng.collision_loc(g1))})", eng.collision_loc(g2)))
+    worst_self = max([o.depth for o in overlaps] + [h[1][0] for h in hits], default=0.0)
+    res.add(Check("self-contacts", not self_causes, worst_self * 1000, "mm",
+                  f"no two bodies of the robot penetrate each other by more than {TOUCH * 1000:g} mm"), self_causes)
+    drift_name = max(worst_drift, key=lambda n_: abs(worst_drift[n_]) / _tol(m, mj, held[n_]), default=None)
+    drifting = sorted((n_ for n_ in worst_drift if abs(worst_drift[n_]) > _tol(m, mj, held[n_])),
+                      key=lambda n_: -abs(worst_drift[n_]) / _tol(m, mj, held[n_]))
+    drift_causes = _hold_causes(robot, eng, qpos0, drifting, weak, duration) if drifting else []
+    res.add(Check("joint drift", not drifting, abs(worst_drift[drift_name]) if drift_name else 0.0,
+                  ("m" if robot.joints[drift_name].type == "prismatic" else "rad") if drift_name else "rad",
+                  f"every held joint within {DRIFT['hinge']:g} rad / {DRIFT['slide']:g} m of its start",
+                  f"largest: {drift_name}" if drift_name else ""), drift_causes)
+    if free and drifting:                    # a joint that gave way explains the fall better than the support
+        for c in res.checks:
+            if c.name in ("height drift", "tilt", "horizontal drift") and not c.passed and \
+                    not any(x.check == c.name for x in res.causes):
+                res.causes.append(Cause(f"joint {drifting[0]} gave way (see joint drift)",
+                                        robot.joints[drifting[0]].loc, c.name))
+    tol = ENERGY_TOL * mass * 9.81 if mass > 0 else 0.01
+    growth = max(energies) if energies else 0.0
+    res.add(Check("energy", growth <= tol and blew_up is None, growth, "J",
+                  f"grows by <= {tol:.3g} J (the robot lifted {ENERGY_TOL * 100:g} cm)"),
+            [_lightest(robot, eng)] if growth > tol else [])
+    for name, need, effort in weak:
+        if name not in drifting:
+            res.notes.append(f"joint {name} needs {need:.3g} at the start, over twice its effort limit {effort:g}")
+    res.notes.extend(eng.notes)
+    res.wall = time.perf_counter() - wall0
+    if progress:
+        progress(1.0)
+    return res
+
+
+def _w(loc) -> str:
+    return f"{loc.file}:{loc.line}" if loc is not None and loc.line else (loc.file if loc is not None else "?")
+
+
+def _tol(m, mj, jid) -> float:
+    return DRIFT["slide" if m.jnt_type[jid] == mj.mjtJoint.mjJNT_SLIDE else "hinge"]
+
+
+def _start_overlaps(robot, q, srdf_doc) -> list:
+    """With an SRDF: the overlaps at the start pose it does not allow (P005's errors), one per link
+    pair. Without one nothing says which pairs may touch (check P005 warns), and convert excludes them."""
+    if srdf_doc is None:
+        return []
+    seen, out = set(), []
+    for o in Scene(robot, True, srdf_doc).overlaps(q):
+        key = frozenset((o.link_a, o.link_b))
+        if o.allowed is None and not o.hull_only and key not in seen:
+            seen.add(key)
+            out.append(o)
+    return out
+
+
+def _support_causes(robot, sup, com, q) -> list:
+    """Why a free robot falls, from where it stands: its centre of mass against its support polygon."""
+    if sup is None:
+        return [Cause("nothing of the robot can touch the ground (no collision geometry)", robot.loc)]
+    root = robot.links[robot.root].loc if robot.root in robot.links else robot.loc
+    poly = sup.polygon
+    dist = signed_distance(poly, com[:2])
+    contacts = ", ".join(sup.links)
+    if len(poly) <= 2:
+        what = "one point" if len(poly) == 1 else "one line"
+        return [Cause(f"no static support: the ground contacts ({contacts}) touch in {what}, no area to stand on; "
+                      f"the centre of mass (x {com[0]:.4g} y {com[1]:.4g}) is {abs(dist) * 1000:.1f} mm off it", root)]
+    if dist < 0:
+        return [Cause(f"the centre of mass (x {com[0]:.4g} y {com[1]:.4g}) is {-dist * 1000:.1f} mm outside the "
+                      f"support polygon of {contacts}", root)]
+    return []
+
+
+def _hold_causes(robot, eng, qpos0, drifting, weak, duration) -> list:
+    """For each joint that drifted: the torque holding the start pose takes (unlimited actuators,
+    no gravity compensation, measured over the second half of a run) against its effort limit."""
+    need = _holding_torques(eng, qpos0, min(max(duration, 0.5), 2.0))
+    causes = []
+    for name in drifting[:4]:
+        j = robot.joints[name]
+        effort = effort_of(j)
+        unit = "N" if j.type == "prismatic" else "N·m"
+        t = need.get(name)
+        if effort is not None and t is not None and t > effort:
+            written = robot.origin(j, "limit.effort").written
+            at = f" (effort written at {written.file}:{written.line})" if written is not None and j.loc is not None \
+                and (written.file, written.line) != (j.loc.file, j.loc.line) else ""
+            causes.append(Cause(f"joint {name} cannot hold: torque needed {t:.3g} {unit} > effort {effort:g} {unit}{at}",
+                                j.loc))
+        elif name not in eng.actuators:
+            causes.append(Cause(f"joint {name} is passive (nothing commands it): it moves under the load", j.loc))
+        else:
+            a = eng.actuators[name]
+            kp = float(eng.model.actuator_gainprm[a][0])
+            load = f"the {t:.3g} {unit} it carries" if t is not None else "its load"
+            within = f" (within its effort {effort:g} {unit})" if effort is not None else ""
+            causes.append(Cause(f"joint {name} gives way under {load}{within}: its position gain kp {kp:.4g} "
+                                "is too soft to hold it", j.loc))
+    return causes
+
+
+def _holding_torques(eng, qpos0, seconds: float) -> dict:
+    """joint -> |actuator force| that holds the start pose with no force limit (mean of the run's
+    second half)."""
+    import numpy as np
+
+    mj, m, d = eng.mujoco, eng.model, eng.data
+    saved_limited = m.actuator_forcelimited.copy()
+    saved_grav = m.body_gravcomp.copy()
+    try:
+        m.actuator_forcelimited[:] = 0
+        m.body_gravcomp[:] = 0.0
+        mj.mj_resetData(m, d)
+        d.qpos[:] = qpos0
+        eng.hold(qpos0)
+        n = int(seconds / m.opt.timestep)
+        acc = np.zeros(m.nu)
+        count = 0
+        for k in range(n):
+            mj.mj_step(m, d)
+            if k >= n // 2:
+                acc += np.abs(d.actuator_force)
+                count += 1
+        mean = acc / max(count, 1)
+    finally:
+        m.actuator_forcelimited[:] = saved_limited
+        m.body_gravcomp[:] = saved_grav
+    return {name: float(mean[a]) for name, a in eng.actuators.items()}
+
+
+def _lightest(robot, eng) -> Cause:
+    """The lightest moving body: where an unstable integration usually starts."""
+    m = eng.model
+    moving = [b for b in range(1, m.nbody) if m.body_weldid[b] != 0]
+    if not moving:
+        return Cause("the integration is unstable", robot.loc)
+    b = min(moving, key=lambda x: float(m.body_mass[x]))
+    name = eng.body_name[b]
+    link = robot.links.get(name)
+    loc = (link.inertial.loc if link is not None and link.inertial is not None else None) or \
+        (link.loc if link is not None else robot.loc)
+    return Cause(printable(f"the integration is unstable: the lightest moving body, {name}, has "
+                           f"{float(m.body_mass[b]):.3g} kg and inertia {float(min(m.body_inertia[b])):.3g} kg·m² "
+                           "against the actuators and contacts that push it"), loc)

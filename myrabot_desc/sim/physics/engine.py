@@ -25,13 +25,14 @@ from myrabot_desc.errors import InputError
 from myrabot_desc.model import drive as D
 from myrabot_desc.model.legs import stance
 from myrabot_desc.model.statics import effort_of
+from myrabot_desc.model.support import CONTACT_TOL
 from myrabot_desc.safety import limit
 
 FLOOR = "floor"
 # A joint needing between 1x and this many times its effort limit to hold what it carries at the start
-# pose is taken to have a counterbalance the URDF does not describe (PR2's shoulders: 1.7x): its subtree
-# is gravity-compensated, and a note says so. Past it the joint sags and the run fails (check P006 uses
-# the same ratio between its warning and its error).
+# pose is taken to have a counterbalance the URDF does not describe (PR2's shoulders: 1.7x), or a motor
+# stronger than it says: its actuator may push up to 1.25x the need, and a note says so. Past it the
+# joint sags and the run fails (check P006 uses the same ratio between its warning and its error).
 COUNTERBALANCE_RATIO = 2.0
 _GEOM_NAME = re.compile(r"^(?P<link>.*)_collision(?:_(?P<k>\d+))?(?:_\d+)?$")
 
@@ -191,33 +192,47 @@ class Engine:
         mj.mj_forward(m, d)
         return d.qpos.copy()
 
-    def lowest_point(self) -> float:
-        """The lowest world z of the robot's collision geoms (after mj_kinematics)."""
+    def _collision_geoms(self):
+        m = self.model
+        return [g for g in range(m.ngeom) if g != self.floor and (m.geom_contype[g] or m.geom_conaffinity[g])
+                and m.geom_bodyid[g] != 0]
+
+    def geom_bottom(self, g: int) -> float:
+        """The lowest world z of geom ``g`` (after mj_kinematics): exact for primitives and mesh vertices."""
         import numpy as np
 
         mj, m, d = self.mujoco, self.model, self.data
-        low = np.inf
-        for g in range(m.ngeom):
-            if g == self.floor or not (m.geom_contype[g] or m.geom_conaffinity[g]) or m.geom_bodyid[g] == 0:
-                continue
-            t = m.geom_type[g]
-            R = d.geom_xmat[g].reshape(3, 3)
-            z = d.geom_xpos[g][2]
-            sz = m.geom_size[g]
-            if t == mj.mjtGeom.mjGEOM_MESH:
-                a, n = m.mesh_vertadr[m.geom_dataid[g]], m.mesh_vertnum[m.geom_dataid[g]]
-                low = min(low, float(z + (m.mesh_vert[a:a + n] @ R[2]).min()))
-            elif t == mj.mjtGeom.mjGEOM_SPHERE:
-                low = min(low, z - sz[0])
-            elif t == mj.mjtGeom.mjGEOM_CAPSULE:
-                low = min(low, z - abs(R[2, 2]) * sz[1] - sz[0])
-            elif t == mj.mjtGeom.mjGEOM_CYLINDER:
-                low = min(low, z - abs(R[2, 2]) * sz[1] - sz[0] * math.sqrt(max(0.0, 1 - R[2, 2] ** 2)))
-            elif t == mj.mjtGeom.mjGEOM_BOX:
-                low = min(low, z - float(np.abs(R[2]) @ sz))
-            elif t == mj.mjtGeom.mjGEOM_ELLIPSOID:
-                low = min(low, z - float(np.sqrt(((R[2] * sz) ** 2).sum())))
-        return float(low)
+        t = m.geom_type[g]
+        R = d.geom_xmat[g].reshape(3, 3)
+        z = float(d.geom_xpos[g][2])
+        sz = m.geom_size[g]
+        if t == mj.mjtGeom.mjGEOM_MESH:
+            a, n = m.mesh_vertadr[m.geom_dataid[g]], m.mesh_vertnum[m.geom_dataid[g]]
+            return float(z + (m.mesh_vert[a:a + n] @ R[2]).min())
+        if t == mj.mjtGeom.mjGEOM_SPHERE:
+            return z - sz[0]
+        if t == mj.mjtGeom.mjGEOM_CAPSULE:
+            return z - abs(R[2, 2]) * sz[1] - sz[0]
+        if t == mj.mjtGeom.mjGEOM_CYLINDER:
+            return z - abs(R[2, 2]) * sz[1] - sz[0] * math.sqrt(max(0.0, 1 - R[2, 2] ** 2))
+        if t == mj.mjtGeom.mjGEOM_BOX:
+            return z - float(np.abs(R[2]) @ sz)
+        if t == mj.mjtGeom.mjGEOM_ELLIPSOID:
+            return z - float(np.sqrt(((R[2] * sz) ** 2).sum()))
+        return math.inf
+
+    def lowest_point(self) -> float:
+        """The lowest world z of the robot's collision geoms (after mj_kinematics)."""
+        return min((self.geom_bottom(g) for g in self._collision_geoms()), default=math.inf)
+
+    def touching_floor(self, qpos, tol: float = CONTACT_TOL) -> list:
+        """(body id, link) of every collision geom within ``tol`` of the floor at ``qpos``: what the
+        robot stands on there (model/support.py's 5 mm), a welded robot's resting parts included."""
+        mj, m, d = self.mujoco, self.model, self.data
+        d.qpos[:] = qpos
+        mj.mj_kinematics(m, d)
+        return sorted({(int(m.geom_bodyid[g]), self.link_of_geom(g)) for g in self._collision_geoms()
+                       if self.geom_bottom(g) <= tol}, key=lambda x: x[1])
 
     def hold(self, qpos) -> None:
         """Controls that hold ``qpos``: position actuators at their joints' values, wheels at rest."""
@@ -232,34 +247,81 @@ class Engine:
         m, d = self.model, self.data
         return {n: abs(float(d.qfrc_bias[m.jnt_dofadr[j]])) for n, j in self.joint_ids.items()}
 
-    def hold_policy(self, qpos) -> tuple[list, list]:
-        """Gravity compensation where a counterbalance is assumed (see COUNTERBALANCE_RATIO), at
-        ``qpos``: (compensated [(joint, need, effort)], too weak [(joint, need, effort)])."""
+    def holding_torques(self, qpos, seconds: float = 0.0) -> dict:
+        """joint -> the torque (force) holding ``qpos`` takes: gravity alone (qfrc_bias) when
+        ``seconds`` is 0, else the mean |actuator force| over the second half of a run with no force
+        limits (a robot standing on its feet: the legs carry the body through the ground)."""
+        import numpy as np
+
         mj, m, d = self.mujoco, self.model, self.data
-        m.body_gravcomp[:] = 0.0
-        d.qpos[:] = qpos
-        d.qvel[:] = 0.0
-        mj.mj_forward(m, d)
-        need = self.gravity_torques()
-        compensated, weak = [], []
-        for name in self.position_actuators:
-            jid = self.joint_ids.get(name)
+        if not seconds:
+            d.qpos[:] = qpos
+            d.qvel[:] = 0.0
+            mj.mj_forward(m, d)
+            return self.gravity_torques()
+        saved = m.actuator_forcelimited.copy()
+        try:
+            m.actuator_forcelimited[:] = 0
+            mj.mj_resetData(m, d)
+            d.qpos[:] = qpos
+            self.hold(qpos)
+            n = max(2, int(seconds / m.opt.timestep))
+            acc, count = np.zeros(m.nu), 0
+            for k in range(n):
+                mj.mj_step(m, d)
+                if k >= n // 2:
+                    acc += np.abs(d.actuator_force)
+                    count += 1
+        finally:
+            m.actuator_forcelimited[:] = saved
+        mean = acc / max(count, 1)
+        return {name: float(mean[a]) for name, a in self.actuators.items()}
+
+    def hold_policy(self, needs: dict) -> tuple[list, list]:
+        """Joints whose holding torque ``needs`` exceeds the effort limit: up to COUNTERBALANCE_RATIO
+        times it, a counterbalance (or a motor stronger than the URDF says) is assumed and the
+        actuator's force limit is raised to 1.25x the need; beyond, the joint keeps its limit and sags.
+        Returns (raised [(joint, need, effort)], too weak [(joint, need, effort)])."""
+        m = self.model
+        raised, weak = [], []
+        for name in sorted(self.position_actuators):
             j = self.robot.joints.get(name)
             effort = effort_of(j) if j is not None else None
-            if jid is None or effort is None or not need.get(name, 0.0) > effort:
+            need = needs.get(name, 0.0)
+            if effort is None or not need > effort:
                 continue
-            if need[name] <= COUNTERBALANCE_RATIO * effort:
-                top = m.jnt_bodyid[jid]
-                for b in range(m.nbody):
-                    a = b
-                    while a > top:
-                        a = m.body_parentid[a]
-                    if a == top:
-                        m.body_gravcomp[b] = 1.0
-                compensated.append((name, need[name], effort))
+            if need <= COUNTERBALANCE_RATIO * effort:
+                a = self.actuators[name]
+                m.actuator_forcerange[a] = [-1.25 * need, 1.25 * need]
+                raised.append((name, need, effort))
             else:
-                weak.append((name, need[name], effort))
-        return sorted(compensated), sorted(weak)
+                weak.append((name, need, effort))
+        return raised, weak
+
+    def exclude_touching(self, qpos) -> list:
+        """Exclude from collision the body pairs of the robot in contact at ``qpos`` (the start pose,
+        where convert excluded those at its home pose): they start touching, and a contact that
+        starts inside another pushes the robot apart. Returns the (body, body) names excluded."""
+        mj, m, d = self.mujoco, self.model, self.data
+        d.qpos[:] = qpos
+        mj.mj_forward(m, d)
+        pairs = set()
+        for g1, g2 in (d.contact.geom if d.ncon else ()):
+            if self.floor in (g1, g2):
+                continue
+            b1, b2 = self.body_name[m.geom_bodyid[g1]], self.body_name[m.geom_bodyid[g2]]
+            pairs.add(tuple(sorted((b1 or "world", b2 or "world"))))
+        if not pairs:
+            return []
+        with warnings_to(mj, self.notes):
+            for b1, b2 in sorted(pairs):
+                self.spec.add_exclude(bodyname1=b1, bodyname2=b2)
+            self.model = m = self.spec.compile()
+        self.data = mj.MjData(m)
+        m.body_gravcomp[:] = 0.0
+        self.data.qpos[:] = qpos
+        mj.mj_forward(m, self.data)
+        return sorted(pairs)
 
     def steps(self, seconds: float) -> int:
         n = int(math.ceil(seconds / self.model.opt.timestep))

@@ -131,35 +131,35 @@ class PhysicsResult:
 
     # ------------------------------------------------------------ junit
     def junit_bytes(self) -> bytes:
-        """JUnit XML: a test suite per run, a test case per check; a failing one carries its numbers
-        and causes (what CI systems show next to the job)."""
-        from xml.etree import ElementTree as ET
+        return junit_bytes(self.program, self.robot, self.checks, self.causes, self.info, self.wall)
 
-        suite = ET.Element("testsuite", name=_xml(f"myrabot-desc sim {self.program} {self.robot}"),
-                           tests=str(len(self.checks)), failures=str(sum(not c.passed for c in self.checks)),
-                           errors="0", skipped="0", time=f"{self.wall:.3f}")
-        for c in self.checks:
-            case = ET.SubElement(suite, "testcase", classname=_xml(f"sim.{self.program}.{self.robot}"),
-                                 name=_xml(c.name), time="0")
-            text = f"{_fmt(c.value)}{(' ' + c.unit) if c.unit else ''}" + (f" ({c.expected})" if c.expected else "")
-            if not c.passed:
-                body = [text] + ([c.detail] if c.detail else []) + \
-                    [f"cause: {cause.line()}" for cause in self.causes if cause.check == c.name]
-                fail = ET.SubElement(case, "failure", message=_xml(body[-1] if len(body) > 1 else text), type="FAIL")
-                fail.text = _xml("\n".join(body))
-            else:
-                out = ET.SubElement(case, "system-out")
-                out.text = _xml(text)
-        root = ET.Element("testsuites", name="myrabot-desc sim", tests=suite.get("tests"),
-                          failures=suite.get("failures"))
-        root.append(suite)
-        if self.info:
-            props = ET.Element("properties")
-            for k, v in self.info.items():
-                ET.SubElement(props, "property", name=_xml(k), value=_xml(_fmt(v)))
-            suite.insert(0, props)
-        ET.indent(root, space="  ")
-        return b'<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(root, encoding="utf-8") + b"\n"
+
+def junit_bytes(program: str, robot: str, checks, causes=(), info=None, wall: float = 0.0) -> bytes:
+    """JUnit XML of a sim run (any program): a test suite per run, a test case per check; a failing one
+    carries its numbers and causes, which CI systems show next to the job."""
+    from xml.etree import ElementTree as ET
+
+    suite = ET.Element("testsuite", name=_xml(f"myrabot-desc sim {program} {robot}"), tests=str(len(checks)),
+                       failures=str(sum(not c.passed for c in checks)), errors="0", skipped="0", time=f"{wall:.3f}")
+    if info:
+        props = ET.SubElement(suite, "properties")
+        for k, v in info.items():
+            ET.SubElement(props, "property", name=_xml(k), value=_xml(_fmt(v)))
+    for c in checks:
+        case = ET.SubElement(suite, "testcase", classname=_xml(f"sim.{program}.{robot}"), name=_xml(c.name), time="0")
+        text = f"{_fmt(c.value)}{(' ' + c.unit) if c.unit else ''}" + (f" ({c.expected})" if c.expected else "")
+        if not c.passed:
+            body = [text] + ([c.detail] if c.detail else []) + \
+                [f"cause: {cause.line()}" for cause in causes if cause.check == c.name]
+            fail = ET.SubElement(case, "failure", message=_xml(body[-1] if len(body) > 1 else text), type="FAIL")
+            fail.text = _xml("\n".join(body))
+        else:
+            out = ET.SubElement(case, "system-out")
+            out.text = _xml(text)
+    root = ET.Element("testsuites", name="myrabot-desc sim", tests=suite.get("tests"), failures=suite.get("failures"))
+    root.append(suite)
+    ET.indent(root, space="  ")
+    return b'<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(root, encoding="utf-8") + b"\n"
 
 
 def _xml(text) -> str:

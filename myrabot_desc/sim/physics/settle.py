@@ -29,7 +29,7 @@ from myrabot_desc.model.kinematics import center_of_mass
 from myrabot_desc.model.srdf import load_srdf
 from myrabot_desc.model.statics import effort_of
 from myrabot_desc.model.support import ground_support, signed_distance
-from myrabot_desc.sim.physics.engine import Engine
+from myrabot_desc.sim.physics.engine import COUNTERBALANCE_RATIO, Engine
 from myrabot_desc.sim.physics.pose import start_pose
 from myrabot_desc.sim.physics.result import Cause, PhysicsResult, printable
 from myrabot_desc.sim.result import Check
@@ -39,6 +39,10 @@ SHIFT_TOL = 0.02         # m: horizontal drift of the root
 TILT_TOL = 3.0           # degrees
 DRIFT = {"hinge": 0.1, "slide": 0.01}    # rad, m: a held joint's largest excursion from its start value
 SAMPLE_RATE = 100.0      # Hz: series, contacts and drift are sampled this often
+EDGE = 0.005             # m: a centre of mass closer than this to the support polygon's edge does not stand (P001)
+HOLD_SECONDS = 0.5       # s: how long a legged robot is held with unlimited actuators to measure what it needs
+NEAR_FLOOR = 0.05        # m: see the welded robot's ground contacts
+SETTLED_SPEED = 0.05     # rad/s (m/s): a joint moving slower than this at the end has come to rest
 ENERGY_TOL = 0.01        # m: energy may grow by lifting the whole robot this high (m g h)
 
 
@@ -57,23 +61,32 @@ def run(robot, *, duration: float = 3.0, base: str = "auto", pose_file=None, srd
     res.notes.extend(start.notes)
     free = eng.free_adr is not None
     qpos0 = eng.qpos_for(start.q)
-    compensated, weak = eng.hold_policy(qpos0)
-    for name, need, effort in compensated:
-        res.notes.append(f"joint {name} needs {need:.3g} to hold what it carries at the start, over its effort "
-                         f"limit {effort:g} (up to {2:g}x): a counterbalance the URDF does not describe is assumed, "
-                         "its subtree is gravity-compensated (check P006 warns)")
+    touching = eng.exclude_touching(qpos0)
+    mj, m, d = eng.mujoco, eng.model, eng.data
+    legged = free and eng.base_why.startswith("it stands on legs")
+    needs = eng.holding_torques(qpos0, HOLD_SECONDS if legged else 0.0)
+    raised, weak = eng.hold_policy(needs)
+    for name, need, effort in raised:
+        res.notes.append(f"joint {name} needs {need:.3g} to hold the start pose, over its effort limit {effort:g} "
+                         f"(at most {COUNTERBALANCE_RATIO:g}x): a counterbalance or a stronger motor than the URDF says "
+                         "is assumed (check P006 warns)")
     mass, com = center_of_mass(robot, start.q)
     res.info["mass"] = f"{mass:.4g} kg"
 
     # what touches the ground at the start, and where the centre of mass is over it
     sup = ground_support(robot, start.q, meshes=True) if free else None
-    feet_bodies = {eng.body_of_link(n) for n in sup.links} if sup else set()
-    if sup:
-        res.info["ground contacts at the start"] = ", ".join(sup.links)
+    feet = eng.touching_floor(qpos0)
+    feet_bodies = {b for b, _ in feet}
+    if feet:
+        res.info["ground contacts at the start"] = ", ".join(sorted({link for _, link in feet}))
     # overlaps at the start (the same test as check's P005), the SRDF's exclusions respected
     overlaps = _start_overlaps(robot, start.q, srdf_doc)
     if eng.excluded:
         res.info["pairs convert --to mjcf excludes"] = f"{len(eng.excluded)} (touching at its home pose)"
+    if touching:
+        res.notes.append(f"{len(touching)} body pair(s) touch at the start pose and are left out of collision: "
+                         + ", ".join(f"{a}/{b}" for a, b in touching[:6]) + (", ..." if len(touching) > 6 else "")
+                         + ("" if srdf_doc is not None else " (check P005 reports overlaps at the rest pose)"))
     passive = [n for n in eng.joint_ids if n not in eng.actuators and robot.joints[n].mimic is None]
     if passive:
         res.info["passive joints"] = f"{len(passive)} ({', '.join(passive[:4])}{', ...' if len(passive) > 4 else ''})"
@@ -128,9 +141,10 @@ def run(robot, *, duration: float = 3.0, base: str = "auto", pose_file=None, srd
             geoms, dist = d.contact.geom, d.contact.dist
             for (g1, g2), dd in zip(geoms, dist):
                 if g1 == eng.floor or g2 == eng.floor:
-                    b = int(m.geom_bodyid[g2 if g1 == eng.floor else g1])
+                    g = g2 if g1 == eng.floor else g1
+                    b = int(m.geom_bodyid[g])
                     if b not in feet_bodies and b != 0 and b not in ground:
-                        ground[b] = t
+                        ground[b] = (t, eng.link_of_geom(g), g)
                 elif dd < -TOUCH:
                     key = (int(min(g1, g2)), int(max(g1, g2)))
                     if -dd > self_hits.get(key, (0.0, 0.0))[0]:
@@ -162,14 +176,23 @@ def run(robot, *, duration: float = 3.0, base: str = "auto", pose_file=None, srd
                 support_causes if tilt > TILT_TOL and not abs(dz) > HEIGHT_TOL else [])
         res.add(Check("horizontal drift", not shift > SHIFT_TOL, shift, "m", f"<= {SHIFT_TOL:g} m"),
                 support_causes if shift > SHIFT_TOL and not fell else [])
-    names = sorted(eng.body_name[b] for b in ground)
-    res.add(Check("ground contacts", not ground, ", ".join(names) if names else "only " +
-                  (", ".join(sup.links) if sup and sup.links else "the base"), "",
-                  "only the feet, wheels and casters it started on" if free else "no moving body touches the floor"),
-            [Cause(f"link {eng.body_name[b]} touches the ground at {t:.2f} s" +
-                   (": it is not one of the contacts it started on" if free else ""),
-                   robot.links[eng.body_name[b]].loc if eng.body_name[b] in robot.links else None)
-             for b, t in sorted(ground.items(), key=lambda kv: kv[1])[:4]])
+    if not free:
+        # a welded robot stands on its mount: a moving link that started within NEAR_FLOOR of the floor and
+        # touches it while every joint holds has been let down by the actuators' compliance (a note)
+        bottoms = _start_bottoms(eng, qpos0)
+        for b, (t, link, g) in list(ground.items()):
+            if bottoms.get(g, math.inf) <= NEAR_FLOOR:
+                res.notes.append(f"link {link} touches the floor at {t:.2f} s; it started {bottoms[g] * 1000:.0f} mm above "
+                                 "it and the compliant position actuators let it down")
+                del ground[b]
+    names = sorted(link for _, link, _ in ground.values())
+    started = sorted({link for _, link in feet})
+    res.add(Check("ground contacts", not ground, ", ".join(names) if names else
+                  ("only " + ", ".join(started) if started else "none"), "",
+                  "only what it stood on at the start (feet, wheels, casters)"),
+            [Cause(f"link {link} touches the ground at {t:.2f} s: it is not one of the contacts it started on",
+                   eng.collision_loc(g) or (robot.links[link].loc if link in robot.links else None))
+             for t, link, g in sorted(ground.values())[:4]])
     self_causes = [Cause(f"link {o.link_b} penetrates link {o.link_a} by {o.depth * 1000:.1f} mm at the start pose "
                          f"({o.shape_b} into {o.shape_a} at {_w(o.loc_a)}); the SRDF does not let them touch", o.loc_b)
                    for o in overlaps]
@@ -182,13 +205,32 @@ def run(robot, *, duration: float = 3.0, base: str = "auto", pose_file=None, srd
     res.add(Check("self-contacts", not self_causes, worst_self * 1000, "mm",
                   f"no two bodies of the robot penetrate each other by more than {TOUCH * 1000:g} mm"), self_causes)
     drift_name = max(worst_drift, key=lambda n_: abs(worst_drift[n_]) / _tol(m, mj, held[n_]), default=None)
-    drifting = sorted((n_ for n_ in worst_drift if abs(worst_drift[n_]) > _tol(m, mj, held[n_])),
+    over = [n_ for n_ in worst_drift if abs(worst_drift[n_]) > _tol(m, mj, held[n_])]
+    # a joint that went past its tolerance fails when it cannot hold (its actuator at its force limit)
+    # or has not come to rest; one that settled there within its effort is compliant: a note
+    saturated = _saturated(eng)
+    moving = {n_ for n_ in over if abs(float(d.qvel[m.jnt_dofadr[held[n_]]])) > SETTLED_SPEED}
+    drifting = sorted((n_ for n_ in over if n_ in saturated or n_ in moving or blew_up is not None),
                       key=lambda n_: -abs(worst_drift[n_]) / _tol(m, mj, held[n_]))
-    drift_causes = _hold_causes(robot, eng, qpos0, drifting, weak, duration) if drifting else []
+    for n_ in sorted(set(over) - set(drifting)):
+        a = eng.actuators[n_]
+        res.notes.append(f"joint {n_} settles {abs(worst_drift[n_]):.3g} "
+                         f"{'m' if robot.joints[n_].type == 'prismatic' else 'rad'} from its start within its effort: "
+                         f"the MJCF's position actuator is compliant there (kp {float(m.actuator_gainprm[a][0]):.4g})")
+    drift_causes = _hold_causes(robot, eng, qpos0, drifting, needs, legged) if drifting else []
     res.add(Check("joint drift", not drifting, abs(worst_drift[drift_name]) if drift_name else 0.0,
                   ("m" if robot.joints[drift_name].type == "prismatic" else "rad") if drift_name else "rad",
-                  f"every held joint within {DRIFT['hinge']:g} rad / {DRIFT['slide']:g} m of its start",
-                  f"largest: {drift_name}" if drift_name else ""), drift_causes)
+                  f"every held joint within {DRIFT['hinge']:g} rad / {DRIFT['slide']:g} m of its start, "
+                  "or at rest within its effort", f"largest: {drift_name}" if drift_name else ""), drift_causes)
+    gave = _passive_moved(robot, eng, qpos0) if free and not all(
+        c.passed for c in res.checks if c.name in ("height drift", "tilt")) else []
+    if gave:
+        commanded = sorted(eng.actuators)
+        res.causes.append(Cause(f"joints {', '.join(gave[:6])}{', ...' if len(gave) > 6 else ''} are passive in the MJCF "
+                                f"and give way under the load: the model says what it commands (transmissions, "
+                                f"ros2_control, drives) and names only {', '.join(commanded[:4])}"
+                                f"{', ...' if len(commanded) > 4 else ''}", robot.joints[gave[0]].loc,
+                                "height drift" if not res.checks[1].passed else "tilt"))
     if free and drifting:                    # a joint that gave way explains the fall better than the support
         for c in res.checks:
             if c.name in ("height drift", "tilt", "horizontal drift") and not c.passed and \
@@ -247,27 +289,67 @@ def _support_causes(robot, sup, com, q) -> list:
     if dist < 0:
         return [Cause(f"the centre of mass (x {com[0]:.4g} y {com[1]:.4g}) is {-dist * 1000:.1f} mm outside the "
                       f"support polygon of {contacts}", root)]
+    if dist < EDGE:
+        xs, ys = [p[0] for p in poly], [p[1] for p in poly]
+        return [Cause(f"the centre of mass (x {com[0]:.4g} y {com[1]:.4g}) is only {dist * 1000:.1f} mm inside the "
+                      f"edge of the support polygon of {contacts} (x {min(xs):.3g} to {max(xs):.3g}, "
+                      f"y {min(ys):.3g} to {max(ys):.3g}): the slightest sway tips it", root)]
     return []
 
 
-def _hold_causes(robot, eng, qpos0, drifting, weak, duration) -> list:
-    """For each joint that drifted: the torque holding the start pose takes (unlimited actuators,
-    no gravity compensation, measured over the second half of a run) against its effort limit."""
-    need = _holding_torques(eng, qpos0, min(max(duration, 0.5), 2.0))
+def _passive_moved(robot, eng, qpos0) -> list:
+    """Joints with no actuator (not mimic) that moved past DRIFT from the start."""
+    m, mj, d = eng.model, eng.mujoco, eng.data
+    out = []
+    for name, jid in eng.joint_ids.items():
+        if name in eng.actuators or robot.joints[name].mimic is not None:
+            continue
+        a = m.jnt_qposadr[jid]
+        if abs(float(d.qpos[a] - qpos0[a])) > _tol(m, mj, jid):
+            out.append(name)
+    return out
+
+
+def _start_bottoms(eng, qpos0) -> dict:
+    """geom -> its lowest point above the floor at the start pose (the current state is kept)."""
+    mj, m, d = eng.mujoco, eng.model, eng.data
+    saved = d.qpos.copy()
+    d.qpos[:] = qpos0
+    mj.mj_kinematics(m, d)
+    out = {g: eng.geom_bottom(g) for g in eng._collision_geoms()}
+    d.qpos[:] = saved
+    mj.mj_kinematics(m, d)
+    return out
+
+
+def _saturated(eng) -> set:
+    """Joints whose actuator pushes at its force limit now."""
+    m, d = eng.model, eng.data
+    out = set()
+    for name, a in eng.actuators.items():
+        if m.actuator_forcelimited[a] and abs(float(d.actuator_force[a])) >= 0.99 * max(abs(m.actuator_forcerange[a][0]),
+                                                                                        abs(m.actuator_forcerange[a][1])):
+            out.add(name)
+    return out
+
+
+def _hold_causes(robot, eng, qpos0, drifting, needs, measured: bool) -> list:
+    """For each joint that drifted: the torque holding the start pose takes (gravity on what it
+    carries; for a robot on legs, measured with unlimited actuators) against its effort limit."""
+    if not measured:                         # a fixed or wheeled base: measure it too, the way legs are
+        needs = dict(needs, **{k: v for k, v in eng.holding_torques(qpos0, HOLD_SECONDS).items() if k in drifting})
     causes = []
     for name in drifting[:4]:
         j = robot.joints[name]
         effort = effort_of(j)
         unit = "N" if j.type == "prismatic" else "N·m"
-        t = need.get(name)
+        t = needs.get(name)
         if effort is not None and t is not None and t > effort:
             written = robot.origin(j, "limit.effort").written
             at = f" (effort written at {written.file}:{written.line})" if written is not None and j.loc is not None \
                 and (written.file, written.line) != (j.loc.file, j.loc.line) else ""
             causes.append(Cause(f"joint {name} cannot hold: torque needed {t:.3g} {unit} > effort {effort:g} {unit}{at}",
                                 j.loc))
-        elif name not in eng.actuators:
-            causes.append(Cause(f"joint {name} is passive (nothing commands it): it moves under the load", j.loc))
         else:
             a = eng.actuators[name]
             kp = float(eng.model.actuator_gainprm[a][0])
@@ -276,35 +358,6 @@ def _hold_causes(robot, eng, qpos0, drifting, weak, duration) -> list:
             causes.append(Cause(f"joint {name} gives way under {load}{within}: its position gain kp {kp:.4g} "
                                 "is too soft to hold it", j.loc))
     return causes
-
-
-def _holding_torques(eng, qpos0, seconds: float) -> dict:
-    """joint -> |actuator force| that holds the start pose with no force limit (mean of the run's
-    second half)."""
-    import numpy as np
-
-    mj, m, d = eng.mujoco, eng.model, eng.data
-    saved_limited = m.actuator_forcelimited.copy()
-    saved_grav = m.body_gravcomp.copy()
-    try:
-        m.actuator_forcelimited[:] = 0
-        m.body_gravcomp[:] = 0.0
-        mj.mj_resetData(m, d)
-        d.qpos[:] = qpos0
-        eng.hold(qpos0)
-        n = int(seconds / m.opt.timestep)
-        acc = np.zeros(m.nu)
-        count = 0
-        for k in range(n):
-            mj.mj_step(m, d)
-            if k >= n // 2:
-                acc += np.abs(d.actuator_force)
-                count += 1
-        mean = acc / max(count, 1)
-    finally:
-        m.actuator_forcelimited[:] = saved_limited
-        m.body_gravcomp[:] = saved_grav
-    return {name: float(mean[a]) for name, a in eng.actuators.items()}
 
 
 def _lightest(robot, eng) -> Cause:

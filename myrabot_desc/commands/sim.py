@@ -14,7 +14,10 @@ from myrabot_desc.expand.packages import data_root
 from myrabot_desc.model.kinematics import require_tree
 from myrabot_desc.output import write_outputs
 from myrabot_desc.sim import drive, plot, pointing, vuelta
-from myrabot_desc.sim.physics.result import junit_bytes
+from myrabot_desc.physics import drive as physics_drive
+from myrabot_desc.physics import plot as physics_plot
+from myrabot_desc.physics import settle, sweep
+from myrabot_desc.physics.result import junit_bytes
 from myrabot_desc.sim.scene import load_layout
 
 
@@ -92,8 +95,6 @@ def _finish(res, as_json, csv_path, plot_path, junit_path=None):
     physics = hasattr(res, "causes")
     if plot_path:
         if physics:
-            from myrabot_desc.sim.physics import plot as physics_plot
-
             outputs.append((plot_path, physics_plot.render(res)))
         else:
             outputs.append((plot_path, plot.render(res)))
@@ -252,8 +253,6 @@ def drive_cmd(inputs, duration, rate, as_json, csv_path, plot_path, junit_path, 
         prog, close = _runner(duration or sum(s for *_, s in script), progress)
         try:
             if engine == "mujoco":
-                from myrabot_desc.sim.physics import drive as physics_drive
-
                 res = physics_drive.run(robot, script=script, wheels=wheels, left=left, right=right,
                                         tolerance=physics_drive.TOLERANCE if tolerance is None else tolerance,
                                         progress=prog)
@@ -438,8 +437,6 @@ def settle_cmd(inputs, as_json, csv_path, plot_path, junit_path, srdf, progress,
     if state and pose_file:
         raise click.UsageError("give the start pose either with --pose or with --srdf --state, not both")
     with guarded():
-        from myrabot_desc.sim.physics import settle
-
         robot = _load(inputs)
         prog, close = _runner(60.0 if progress else 0.0, progress)
         try:
@@ -475,8 +472,6 @@ def sweep_cmd(inputs, as_json, csv_path, plot_path, junit_path, srdf, progress, 
     Exit codes: 0 PASS, 1 FAIL, 2 the input could not be processed.
     """
     with guarded():
-        from myrabot_desc.sim.physics import sweep
-
         robot = _load(inputs)
         prog, close = _runner(60.0 if progress else 0.0, progress)
         try:

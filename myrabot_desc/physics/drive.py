@@ -26,8 +26,8 @@ from myrabot_desc.model import drive as D
 from myrabot_desc.model.statics import effort_of
 from myrabot_desc.sim import drive as kinematic
 from myrabot_desc.sim.diffdrive import find_drive
-from myrabot_desc.sim.physics.engine import Engine
-from myrabot_desc.sim.physics.result import Cause, PhysicsResult
+from myrabot_desc.physics.engine import Engine
+from myrabot_desc.physics.result import Cause, PhysicsResult
 from myrabot_desc.sim.result import Check
 
 SETTLE = 0.5             # s on the floor before the first command

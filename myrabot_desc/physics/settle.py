@@ -1,6 +1,6 @@
 """``sim settle``: does the robot stand? N seconds in MuJoCo from its start pose, the actuators holding it.
 
-The robot starts at its start pose (sim/physics/pose.py) with a free base lowered onto the floor, or
+The robot starts at its start pose (physics/pose.py) with a free base lowered onto the floor, or
 welded where it stands (engine.decide_base), every position actuator holding its joint there and
 every wheel at rest. Checks, over the run:
 
@@ -11,7 +11,11 @@ every wheel at rest. Checks, over the run:
 * self-contacts: no two bodies of the robot that convert did not exclude penetrate each other
   (and, with an SRDF, none overlaps at the start unless the SRDF lets the pair touch);
 * joint drift: every position-held joint stays within DRIFT of its start value;
-* energy: the mechanical energy (kinetic + potential) does not grow past ENERGY_TOL.
+* holding torque: every held joint needs at most twice its effort limit to hold the start pose (gravity
+  on what it carries; for a robot on legs, measured holding it with unlimited actuators); between 1x
+  and 2x a counterbalance is assumed (engine.COUNTERBALANCE_RATIO), as check P006 warns;
+* energy: the kinetic energy never exceeds the potential energy of the centre of mass above the floor
+  (all gravity could give it): more comes from an unstable integration.
 
 A failure is explained in model terms at its file:line: the centre of mass outside the support
 polygon of the ground contacts (by how much), a joint that cannot hold (the torque it needs, measured
@@ -29,9 +33,9 @@ from myrabot_desc.model.kinematics import center_of_mass
 from myrabot_desc.model.srdf import load_srdf
 from myrabot_desc.model.statics import effort_of
 from myrabot_desc.model.support import ground_support, signed_distance
-from myrabot_desc.sim.physics.engine import COUNTERBALANCE_RATIO, Engine
-from myrabot_desc.sim.physics.pose import start_pose
-from myrabot_desc.sim.physics.result import Cause, PhysicsResult, printable
+from myrabot_desc.physics.engine import COUNTERBALANCE_RATIO, Engine
+from myrabot_desc.physics.pose import start_pose
+from myrabot_desc.physics.result import Cause, PhysicsResult, printable
 from myrabot_desc.sim.result import Check
 
 HEIGHT_TOL = 0.02        # m: the root may sink or rise this much (soft contacts, compliant joints)
@@ -43,7 +47,6 @@ EDGE = 0.005             # m: a centre of mass closer than this to the support p
 HOLD_SECONDS = 0.5       # s: how long a legged robot is held with unlimited actuators to measure what it needs
 NEAR_FLOOR = 0.05        # m: see the welded robot's ground contacts
 SETTLED_SPEED = 0.05     # rad/s (m/s): a joint moving slower than this at the end has come to rest
-ENERGY_TOL = 0.01        # m: energy may grow by lifting the whole robot this high (m g h)
 
 
 def run(robot, *, duration: float = 3.0, base: str = "auto", pose_file=None, srdf=None, state=None,
@@ -65,11 +68,12 @@ def run(robot, *, duration: float = 3.0, base: str = "auto", pose_file=None, srd
     mj, m, d = eng.mujoco, eng.model, eng.data
     legged = free and eng.base_why.startswith("it stands on legs")
     needs = eng.holding_torques(qpos0, HOLD_SECONDS if legged else 0.0)
-    raised, weak = eng.hold_policy(needs)
+    raised, weak = eng.hold_policy(needs, contact_loads=legged)
     for name, need, effort in raised:
         res.notes.append(f"joint {name} needs {need:.3g} to hold the start pose, over its effort limit {effort:g} "
                          f"(at most {COUNTERBALANCE_RATIO:g}x): a counterbalance or a stronger motor than the URDF says "
-                         "is assumed (check P006 warns)")
+                         "is assumed, " + ("its force limit raised to what it needs" if legged else
+                                          "the bodies it moves gravity-compensated") + " (check P006 warns)")
     mass, com = center_of_mass(robot, start.q)
     res.info["mass"] = f"{mass:.4g} kg"
 
@@ -106,9 +110,12 @@ def run(robot, *, duration: float = 3.0, base: str = "auto", pose_file=None, srd
     xy0 = d.xpos[root][:2].copy() if free else None
     zaxis0 = d.xmat[root].reshape(3, 3)[:, 2].copy() if free else None
     e0 = float(d.energy[0] + d.energy[1])
-    ts, zs, tilts, energies, drifts = [], [], [], [], []
+    ts, zs, tilts, energies, drifts, kinetic = [], [], [], [], [], []
+    height0 = float(d.subtree_com[0][2]) if m.nbody else 0.0       # the centre of mass above the floor
     joint_series = {name: [] for name in held}
     worst_drift: dict = {}
+    first_over: dict = {}                # joint -> first time past its tolerance
+    fall_t = None                        # first time the base tilted or sank past its tolerance
     ground: dict = {}                    # body -> first time it touched the floor
     self_hits: dict = {}                 # (geom, geom) -> (depth, time)
     blew_up = None
@@ -124,10 +131,13 @@ def run(robot, *, duration: float = 3.0, base: str = "auto", pose_file=None, srd
             break
         ts.append(t)
         energies.append(float(d.energy[0] + d.energy[1]) - e0)
+        kinetic.append(float(d.energy[1]))
         if free:
             zs.append(float(d.xpos[root][2]) - z0)
             zaxis = d.xmat[root].reshape(3, 3)[:, 2]
             tilts.append(math.degrees(math.acos(max(-1.0, min(1.0, float(zaxis @ zaxis0))))))
+            if fall_t is None and (tilts[-1] > TILT_TOL or abs(zs[-1]) > HEIGHT_TOL):
+                fall_t = t
         worst = 0.0
         for name, a in adr.items():
             x = float(d.qpos[a]) - q0[name]
@@ -136,6 +146,8 @@ def run(robot, *, duration: float = 3.0, base: str = "auto", pose_file=None, srd
                 worst_drift[name] = x
             kind = "slide" if m.jnt_type[held[name]] == mj.mjtJoint.mjJNT_SLIDE else "hinge"
             worst = max(worst, abs(x) / DRIFT[kind])
+            if abs(x) > DRIFT[kind] and name not in first_over:
+                first_over[name] = t
         drifts.append(worst)
         if d.ncon:
             geoms, dist = d.contact.geom, d.contact.dist
@@ -165,6 +177,13 @@ def run(robot, *, duration: float = 3.0, base: str = "auto", pose_file=None, srd
     res.add(Check("finite", blew_up is None, "yes" if blew_up is None else f"NaN at {blew_up:.3f} s", "",
                   "no NaN, no instability warning"),
             [] if blew_up is None else [_lightest(robot, eng)])
+    ratios = {n_: needs[n_] / effort_of(robot.joints[n_]) for n_ in held
+              if effort_of(robot.joints[n_]) and n_ in needs}
+    top = max(ratios, key=ratios.get, default=None)
+    res.add(Check("holding torque", not weak, ratios[top] if top else 0.0, "x effort",
+                  f"every held joint needs <= {COUNTERBALANCE_RATIO:g}x its effort limit at the start pose",
+                  f"worst: {top}" if top else ""),
+            [_cannot_hold(robot, name, need, "at the start pose") for name, need, _ in weak[:4]])
     support_causes = _support_causes(robot, sup, com, start.q) if free else []
     if free and zs:
         dz, tilt = zs[-1], max(tilts)
@@ -190,16 +209,25 @@ def run(robot, *, duration: float = 3.0, base: str = "auto", pose_file=None, srd
     res.add(Check("ground contacts", not ground, ", ".join(names) if names else
                   ("only " + ", ".join(started) if started else "none"), "",
                   "only what it stood on at the start (feet, wheels, casters)"),
-            [Cause(f"link {link} touches the ground at {t:.2f} s: it is not one of the contacts it started on",
+            [Cause(f"link {link} touches the ground at {t:.2f} s: it is not one of the contacts it started on"
+                   + (" (falling)" if fall_t is not None and t >= fall_t else ""),
                    eng.collision_loc(g) or (robot.links[link].loc if link in robot.links else None))
              for t, link, g in sorted(ground.values())[:4]])
     self_causes = [Cause(f"link {o.link_b} penetrates link {o.link_a} by {o.depth * 1000:.1f} mm at the start pose "
                          f"({o.shape_b} into {o.shape_a} at {_w(o.loc_a)}); the SRDF does not let them touch", o.loc_b)
-                   for o in overlaps]
+                   for o in overlaps] if srdf_doc is not None else []
+    if overlaps and srdf_doc is None:
+        res.notes.append(f"{len(overlaps)} link pair(s) overlap at the start pose and do not collide here (nothing says "
+                         "they may touch: give the robot's SRDF with --srdf to make that an error; check P005): "
+                         + "; ".join(f"{o.link_b} into {o.link_a} {o.depth * 1000:.1f} mm ({_w(o.loc_b)})"
+                                     for o in overlaps[:4]) + ("; ..." if len(overlaps) > 4 else ""))
+    if len(self_causes) > 6:
+        self_causes = self_causes[:6] + [Cause(f"and {len(self_causes) - 6} more pairs at the start pose")]
     hits = sorted(self_hits.items(), key=lambda kv: -kv[1][0])
     for (g1, g2), (depth, t) in hits[:4]:
         la, lb = eng.link_of_geom(g1), eng.link_of_geom(g2)
-        self_causes.append(Cause(f"link {lb} penetrates link {la} by {depth * 1000:.1f} mm at {t:.2f} s "
+        during = " (while falling)" if fall_t is not None and t >= fall_t else ""
+        self_causes.append(Cause(f"link {lb} penetrates link {la} by {depth * 1000:.1f} mm at {t:.2f} s{during} "
                                  f"({la}'s collision at {_w(eng.collision_loc(g1))})", eng.collision_loc(g2)))
     worst_self = max([o.depth for o in overlaps] + [h[1][0] for h in hits], default=0.0)
     res.add(Check("self-contacts", not self_causes, worst_self * 1000, "mm",
@@ -217,7 +245,12 @@ def run(robot, *, duration: float = 3.0, base: str = "auto", pose_file=None, srd
         res.notes.append(f"joint {n_} settles {abs(worst_drift[n_]):.3g} "
                          f"{'m' if robot.joints[n_].type == 'prismatic' else 'rad'} from its start within its effort: "
                          f"the MJCF's position actuator is compliant there (kp {float(m.actuator_gainprm[a][0]):.4g})")
-    drift_causes = _hold_causes(robot, eng, qpos0, drifting, needs, legged) if drifting else []
+    before = [n_ for n_ in drifting if fall_t is None or first_over.get(n_, 0.0) <= fall_t]
+    drift_causes = _hold_causes(robot, eng, qpos0, before, needs, legged) if before else []
+    after = [n_ for n_ in drifting if n_ not in before]
+    if after:
+        drift_causes.append(Cause(f"{', '.join(after[:5])}{', ...' if len(after) > 5 else ''} moved after the robot "
+                                  f"fell at {fall_t:.2f} s (see the tilt)", robot.joints[after[0]].loc))
     res.add(Check("joint drift", not drifting, abs(worst_drift[drift_name]) if drift_name else 0.0,
                   ("m" if robot.joints[drift_name].type == "prismatic" else "rad") if drift_name else "rad",
                   f"every held joint within {DRIFT['hinge']:g} rad / {DRIFT['slide']:g} m of its start, "
@@ -231,20 +264,17 @@ def run(robot, *, duration: float = 3.0, base: str = "auto", pose_file=None, srd
                                 f"ros2_control, drives) and names only {', '.join(commanded[:4])}"
                                 f"{', ...' if len(commanded) > 4 else ''}", robot.joints[gave[0]].loc,
                                 "height drift" if not res.checks[1].passed else "tilt"))
-    if free and drifting:                    # a joint that gave way explains the fall better than the support
+    if free and before:                      # a joint that gave way before the fall explains it
         for c in res.checks:
             if c.name in ("height drift", "tilt", "horizontal drift") and not c.passed and \
                     not any(x.check == c.name for x in res.causes):
-                res.causes.append(Cause(f"joint {drifting[0]} gave way (see joint drift)",
-                                        robot.joints[drifting[0]].loc, c.name))
-    tol = ENERGY_TOL * mass * 9.81 if mass > 0 else 0.01
-    growth = max(energies) if energies else 0.0
-    res.add(Check("energy", growth <= tol and blew_up is None, growth, "J",
-                  f"grows by <= {tol:.3g} J (the robot lifted {ENERGY_TOL * 100:g} cm)"),
-            [_lightest(robot, eng)] if growth > tol else [])
-    for name, need, effort in weak:
-        if name not in drifting:
-            res.notes.append(f"joint {name} needs {need:.3g} at the start, over twice its effort limit {effort:g}")
+                res.causes.append(Cause(f"joint {before[0]} gave way (see joint drift)",
+                                        robot.joints[before[0]].loc, c.name))
+    bound = max(mass * 9.81 * max(height0, 0.01), 1e-3)
+    peak = max(kinetic) if kinetic else 0.0
+    res.add(Check("energy", peak <= bound and blew_up is None, peak, "J",
+                  f"kinetic energy <= {bound:.3g} J, all the potential energy of its centre of mass above the floor"),
+            [_lightest(robot, eng)] if peak > bound or blew_up is not None else [])
     res.notes.extend(eng.notes)
     res.wall = time.perf_counter() - wall0
     if progress:
@@ -261,10 +291,8 @@ def _tol(m, mj, jid) -> float:
 
 
 def _start_overlaps(robot, q, srdf_doc) -> list:
-    """With an SRDF: the overlaps at the start pose it does not allow (P005's errors), one per link
-    pair. Without one nothing says which pairs may touch (check P005 warns), and convert excludes them."""
-    if srdf_doc is None:
-        return []
+    """The overlaps at the start pose that nothing allows (an SRDF's, when given), one per link pair,
+    hull-only ones left out: check P005's test."""
     seen, out = set(), []
     for o in Scene(robot, True, srdf_doc).overlaps(q):
         key = frozenset((o.link_a, o.link_b))
@@ -333,6 +361,18 @@ def _saturated(eng) -> set:
     return out
 
 
+def _cannot_hold(robot, name, need, when: str = "") -> Cause:
+    """"joint J cannot hold: torque needed T > effort E" at the joint, with where the effort is written."""
+    j = robot.joints[name]
+    effort = effort_of(j)
+    unit = "N" if j.type == "prismatic" else "N·m"
+    written = robot.origin(j, "limit.effort").written
+    at = f" (effort written at {written.file}:{written.line})" if written is not None and j.loc is not None \
+        and (written.file, written.line) != (j.loc.file, j.loc.line) else ""
+    return Cause(f"joint {name} cannot hold: torque needed {need:.3g} {unit} > effort {effort:g} {unit}"
+                 f"{' ' + when if when else ''}{at}", j.loc)
+
+
 def _hold_causes(robot, eng, qpos0, drifting, needs, measured: bool) -> list:
     """For each joint that drifted: the torque holding the start pose takes (gravity on what it
     carries; for a robot on legs, measured with unlimited actuators) against its effort limit."""
@@ -345,11 +385,7 @@ def _hold_causes(robot, eng, qpos0, drifting, needs, measured: bool) -> list:
         unit = "N" if j.type == "prismatic" else "N·m"
         t = needs.get(name)
         if effort is not None and t is not None and t > effort:
-            written = robot.origin(j, "limit.effort").written
-            at = f" (effort written at {written.file}:{written.line})" if written is not None and j.loc is not None \
-                and (written.file, written.line) != (j.loc.file, j.loc.line) else ""
-            causes.append(Cause(f"joint {name} cannot hold: torque needed {t:.3g} {unit} > effort {effort:g} {unit}{at}",
-                                j.loc))
+            causes.append(_cannot_hold(robot, name, t))
         else:
             a = eng.actuators[name]
             kp = float(eng.model.actuator_gainprm[a][0])

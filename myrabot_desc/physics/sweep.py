@@ -23,8 +23,8 @@ from myrabot_desc.model.collisions import TOUCH
 from myrabot_desc.model.srdf import load_srdf
 from myrabot_desc.model.statics import effort_of, sample_values
 from myrabot_desc.safety import limit
-from myrabot_desc.sim.physics.engine import COUNTERBALANCE_RATIO, Engine
-from myrabot_desc.sim.physics.result import Cause, PhysicsResult
+from myrabot_desc.physics.engine import COUNTERBALANCE_RATIO, Engine
+from myrabot_desc.physics.result import Cause, PhysicsResult
 from myrabot_desc.sim.result import Check
 
 DEFAULT_SAMPLES = 25

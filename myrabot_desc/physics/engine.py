@@ -259,9 +259,10 @@ class Engine:
             d.qvel[:] = 0.0
             mj.mj_forward(m, d)
             return self.gravity_torques()
-        saved = m.actuator_forcelimited.copy()
+        saved, grav = m.actuator_forcelimited.copy(), m.body_gravcomp.copy()
         try:
             m.actuator_forcelimited[:] = 0
+            m.body_gravcomp[:] = 0.0
             mj.mj_resetData(m, d)
             d.qpos[:] = qpos
             self.hold(qpos)
@@ -274,14 +275,18 @@ class Engine:
                     count += 1
         finally:
             m.actuator_forcelimited[:] = saved
+            m.body_gravcomp[:] = grav
         mean = acc / max(count, 1)
         return {name: float(mean[a]) for name, a in self.actuators.items()}
 
-    def hold_policy(self, needs: dict) -> tuple[list, list]:
+    def hold_policy(self, needs: dict, contact_loads: bool = False) -> tuple[list, list]:
         """Joints whose holding torque ``needs`` exceeds the effort limit: up to COUNTERBALANCE_RATIO
-        times it, a counterbalance (or a motor stronger than the URDF says) is assumed and the
-        actuator's force limit is raised to 1.25x the need; beyond, the joint keeps its limit and sags.
-        Returns (raised [(joint, need, effort)], too weak [(joint, need, effort)])."""
+        times it, a counterbalance (or a motor stronger than the URDF says) is assumed: the bodies the
+        joint moves are gravity-compensated, as a counterbalance spring does (as ``convert --to mjcf``
+        does past 80% of the limit); a joint that carries the robot through the ground
+        (``contact_loads``: a leg) gets its actuator's force limit raised to 1.25x the need instead,
+        which compensation cannot give. Beyond the ratio the joint keeps its limit and sags.
+        Returns (helped [(joint, need, effort)], too weak [(joint, need, effort)])."""
         m = self.model
         raised, weak = [], []
         for name in sorted(self.position_actuators):
@@ -291,8 +296,17 @@ class Engine:
             if effort is None or not need > effort:
                 continue
             if need <= COUNTERBALANCE_RATIO * effort:
-                a = self.actuators[name]
-                m.actuator_forcerange[a] = [-1.25 * need, 1.25 * need]
+                if contact_loads:
+                    a = self.actuators[name]
+                    m.actuator_forcerange[a] = [-1.25 * need, 1.25 * need]
+                else:
+                    top = m.jnt_bodyid[self.joint_ids[name]]
+                    for b in range(m.nbody):
+                        up = b
+                        while up > top:
+                            up = m.body_parentid[up]
+                        if up == top:
+                            m.body_gravcomp[b] = 1.0
                 raised.append((name, need, effort))
             else:
                 weak.append((name, need, effort))

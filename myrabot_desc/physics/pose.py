@@ -93,15 +93,16 @@ def start_pose(robot, pose_file=None, srdf=None, state=None) -> Start:
             raise InputError("--state NAME names a group_state of the SRDF given with --srdf FILE")
         doc = srdf if hasattr(srdf, "states") else load_srdf(srdf)
         st = doc.state(state)
+        foreign = []
         for name, value in st.joints.items():
             j = robot.joints.get(name)
-            if j is None or j.type not in MOVING:
-                notes.append(f"SRDF state '{state}' sets '{name}', not a moving joint of the model: left out")
-                continue
-            if isinstance(value, tuple):
-                notes.append(f"SRDF state '{state}' gives {len(value)} values for joint '{name}': left out")
+            if j is None or j.type not in MOVING or isinstance(value, tuple):
+                foreign.append(name)
                 continue
             given[name] = value
+        if foreign:
+            notes.append(f"SRDF state '{state}' also sets {', '.join(foreign[:6])}{', ...' if len(foreign) > 6 else ''}: "
+                         "not a moving joint of this model (a floating root_joint, joints of another variant), left out")
         source, kind = f"SRDF state '{state}' ({st.loc.file}:{st.loc.line})", "srdf"
     else:
         init = initial_positions(robot)

@@ -24,6 +24,15 @@ SEED = FIXTURES / "seed_myrabot"
 WANDER = FIXTURES / "wander_bot"
 
 
+def _erd() -> Path:
+    import sysconfig
+
+    return Path(sysconfig.get_paths()["purelib"]) / "cmeel.prefix" / "share" / "example-robot-data" / "robots"
+
+
+ERD = _erd()                                    # example-robot-data's robots (URDF, SRDF, meshes)
+
+
 def invoke(*args, **kwargs):
     """``myrabot-desc ARGS`` in this process (click's CliRunner); the Result."""
     return CliRunner().invoke(main, [str(a) for a in args], **kwargs)

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 from typing import NamedTuple
 
+from myrabot_desc.model import drive as D
 from myrabot_desc.model.collisions import rigid_bodies
 from myrabot_desc.model.support import ground_support
 
@@ -44,6 +45,8 @@ def stance(robot, q: dict | None = None, meshes=True) -> Stance:
     """Whether the robot stands on legs at configuration ``q`` (the rest pose when None)."""
     if welded_to_world(robot):
         return Stance(False, (), {}, "its root is fixed to the 'world' link")
+    if D.is_mobile(robot):
+        return Stance(False, (), {}, "a wheeled base (model/drive.py: it declares a drive or has wheels)")
     sup = ground_support(robot, robot.rest_pose() if q is None else q, meshes=meshes)
     if sup is None:
         return Stance(False, (), {}, "it has no collision geometry to stand on")

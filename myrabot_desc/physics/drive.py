@@ -137,6 +137,7 @@ def run(robot, *, script=kinematic.DEFAULT_SCRIPT, wheels="plugin", left=(), rig
     res.series.update({"base_x_m": np.asarray(xs), "base_y_m": np.asarray(ys), "base_yaw_rad": np.asarray(yaws)})
     for name, vals in wheel_rate_series.items():
         res.series[f"{name}_rate_rad_s"] = np.asarray(vals)
+        res.joints.append(f"{name}_rate_rad_s")
 
     # per segment: achieved v, w as the kinematic program measures them, and its prediction
     kin_rows = {r["segment"]: r for r in predicted.info.get("segments", [])}

@@ -28,8 +28,8 @@ def render(res) -> bytes:
 
 
 def _lanes(fig, res) -> None:
-    names = [n for n in res.series if not n.endswith(("_rad", "_m")) or n.startswith("base_")]
-    joints = [n for n in res.series if n not in names]
+    joints = [n for n in res.series if n in res.joints]
+    names = [n for n in res.series if n not in joints]
     lanes = names + (["joints"] if joints else [])
     axes = fig.subplots(len(lanes), 1, sharex=True, squeeze=False)[:, 0] if lanes else []
     fig.subplots_adjust(left=0.08, right=0.8, top=0.92, bottom=0.08, hspace=0.35)

@@ -57,6 +57,7 @@ class PhysicsResult:
     notes: list = field(default_factory=list)
     t: object = None             # time samples of ``series`` (or sweep's pose index)
     series: dict = field(default_factory=dict)   # column name (with unit) -> values
+    joints: list = field(default_factory=list)   # the series that are joint values (drawn in one lane)
     table: list = field(default_factory=list)    # sweep's rows (dicts) for the CSV
     wall: float = 0.0
 

@@ -171,7 +171,9 @@ def run(robot, *, duration: float = 3.0, base: str = "auto", pose_file=None, srd
     res.series["energy_change_J"] = np.asarray(energies)
     res.series["joint_drift_share"] = np.asarray(drifts)
     for name, vals in joint_series.items():
-        res.series[f"{name}_{'m' if robot.joints[name].type == 'prismatic' else 'rad'}"] = np.asarray(vals)
+        col = f"{name}_{'m' if robot.joints[name].type == 'prismatic' else 'rad'}"
+        res.series[col] = np.asarray(vals)
+        res.joints.append(col)
 
     # ------------------------------------------------------------ checks
     res.add(Check("finite", blew_up is None, "yes" if blew_up is None else f"NaN at {blew_up:.3f} s", "",

@@ -9,7 +9,7 @@ import re
 
 import pytest
 
-from helpers import ERD, WANDER, corpus_args, corpus_robot, invoke
+from helpers import ERD, WANDER, corpus_args, corpus_robot, invoke, planted_panda, weak
 from myrabot_desc.checks.registry import load_all
 
 PANDA = ERD / "panda_description/urdf/panda.urdf"
@@ -25,35 +25,6 @@ def _json(*args):
 
 def _codes(diags, code):
     return [d for d in diags if d["code"] == code]
-
-
-def planted_panda(tmp_path, drop: float = 0.28):
-    """ERD's panda with panda_link5's collision moved ``drop`` m down (in the world at the rest pose) onto
-    panda_link2, a pair Franka's SRDF does not disable."""
-    np = pytest.importorskip("numpy")
-    from myrabot_desc.model.kinematics import world_transforms
-    from myrabot_desc.model.loader import load_robot
-
-    src = PANDA.read_text()
-    r = load_robot(PANDA)
-    R5 = world_transforms(r, r.rest_pose())["panda_link5"][:3, :3]
-    x, y, z = R5.T @ np.array([0.0, 0.0, -drop])
-    i = src.index('<link name="panda_link5"')
-    j = src.index("<collision>", i) + len("<collision>")
-    f = tmp_path / "panda_planted.urdf"
-    f.write_text(src[:j] + f'\n      <origin xyz="{x:.4f} {y:.4f} {z:.4f}" rpy="0 0 0"/>' + src[j:])
-    return f
-
-
-def weak(tmp_path, src, joint: str, effort: str = "0.1"):
-    """A copy of URDF ``src`` whose ``joint`` has the effort limit ``effort``."""
-    text = src.read_text()
-    i = text.index(f'name="{joint}"')
-    k = text.index('effort="', i)
-    e = text.index('"', k + 8)
-    f = tmp_path / f"{src.stem}_weak.urdf"
-    f.write_text(text[:k] + f'effort="{effort}"' + text[e + 1:])
-    return f
 
 
 # ------------------------------------------------------------------ P005

@@ -101,7 +101,8 @@ def self_collision(ctx):
     pairs "in collision at the default pose" this way), so: **without** ``--srdf`` an overlap
     is a warning (nothing in the URDF tells a designed overlap from a mistake); **with**
     ``--srdf FILE`` the pairs it disables are not reported and an overlap it does not allow is
-    an error. A pair whose convex hulls overlap while the meshes' triangles do not touch (the
+    an error (an SRDF with no ``<disable_collisions>`` at all, only group states, says nothing
+    about collisions and changes nothing). A pair whose convex hulls overlap while the meshes' triangles do not touch (the
     hull of a concave part reaching into another: PR2's shoulder in its base) is information:
     the parts do not collide, but hull-based simulators see them touching.
     Fix: move or shrink the shape that is wrong, or, where the overlap is by design, disable
@@ -110,6 +111,8 @@ def self_collision(ctx):
     if not ctx.tree_ok:
         return
     srdf = srdf_of(ctx)
+    if srdf is not None and not srdf.describes_collisions:
+        srdf = None                              # group states only: it says nothing of which pairs may touch
     scene = Scene(ctx.robot, (lambda g: ctx.mesh(g)) if ctx.opts.load_meshes else False, srdf)
     worst: dict = {}
     for o in scene.overlaps(ctx.robot.rest_pose()):

@@ -44,6 +44,11 @@ class Srdf(NamedTuple):
     enabled: frozenset        # frozenset({link1, link2}) pairs <enable_collisions> turns back on
     states: dict              # name -> State (the first of a name wins, as MoveIt reads them)
 
+    @property
+    def describes_collisions(self) -> bool:
+        """It says which pairs may touch (an SRDF holding only group states says nothing about it)."""
+        return bool(self.disabled or self.never or self.enabled)
+
     def allows(self, a: str, b: str) -> Disabled | None:
         """The statement that lets links ``a`` and ``b`` touch, or None."""
         pair = frozenset((a, b))

@@ -56,6 +56,8 @@ def run(robot, *, duration: float = 3.0, base: str = "auto", pose_file=None, srd
     wall0 = time.perf_counter()
     srdf_doc = load_srdf(srdf) if srdf else None
     start = start_pose(robot, pose_file, srdf_doc, state)
+    if srdf_doc is not None and not srdf_doc.describes_collisions:
+        srdf_doc = None                          # group states only: it says nothing of which pairs may touch
     eng = Engine(robot, base, start.q)
     mj, m, d = eng.mujoco, eng.model, eng.data
     res = PhysicsResult("settle", robot.name, f"MuJoCo {mj.__version__}", duration, float(m.opt.timestep))
@@ -192,9 +194,9 @@ def run(robot, *, duration: float = 3.0, base: str = "auto", pose_file=None, srd
         shift = float(np.linalg.norm(d.xpos[root][:2] - xy0)) if blew_up is None else float("nan")
         fell = abs(dz) > HEIGHT_TOL or tilt > TILT_TOL
         res.add(Check("height drift", abs(dz) <= HEIGHT_TOL, dz, "m", f"|dz| <= {HEIGHT_TOL:g} m"),
-                support_causes if abs(dz) > HEIGHT_TOL else [])
+                support_causes if abs(dz) > HEIGHT_TOL and not tilt > TILT_TOL else [])
         res.add(Check("tilt", tilt <= TILT_TOL, tilt, "deg", f"<= {TILT_TOL:g} deg"),
-                support_causes if tilt > TILT_TOL and not abs(dz) > HEIGHT_TOL else [])
+                support_causes if tilt > TILT_TOL else [])
         res.add(Check("horizontal drift", not shift > SHIFT_TOL, shift, "m", f"<= {SHIFT_TOL:g} m"),
                 support_causes if shift > SHIFT_TOL and not fell else [])
     if not free:
@@ -220,7 +222,8 @@ def run(robot, *, duration: float = 3.0, base: str = "auto", pose_file=None, srd
                    for o in overlaps] if srdf_doc is not None else []
     if overlaps and srdf_doc is None:
         res.notes.append(f"{len(overlaps)} link pair(s) overlap at the start pose and do not collide here (nothing says "
-                         "they may touch: give the robot's SRDF with --srdf to make that an error; check P005): "
+                         "they may touch; an SRDF that disables the pairs it allows, given with --srdf, makes that an error; check "
+                         "P005): "
                          + "; ".join(f"{o.link_b} into {o.link_a} {o.depth * 1000:.1f} mm ({_w(o.loc_b)})"
                                      for o in overlaps[:4]) + ("; ..." if len(overlaps) > 4 else ""))
     if len(self_causes) > 6:
@@ -265,7 +268,20 @@ def run(robot, *, duration: float = 3.0, base: str = "auto", pose_file=None, srd
                                 f"and give way under the load: the model says what it commands (transmissions, "
                                 f"ros2_control, drives) and names only {', '.join(commanded[:4])}"
                                 f"{', ...' if len(commanded) > 4 else ''}", robot.joints[gave[0]].loc,
-                                "height drift" if not res.checks[1].passed else "tilt"))
+                                next(c.name for c in res.checks if c.name in ("height drift", "tilt") and not c.passed)))
+    if free and fall_t is not None and not before and not support_causes and not gave and joint_series:
+        k = min(range(len(ts)), key=lambda i: abs(ts[i] - fall_t))
+        moved = sorted(((abs(vals[k] - q0[n_]) / _tol(m, mj, held[n_]), n_) for n_, vals in joint_series.items()),
+                       reverse=True)[:2]
+        if moved and moved[0][0] > 0.2:
+            what = ", ".join(f"{n_} {abs(joint_series[n_][k] - q0[n_]):.3g} "
+                             f"{'m' if robot.joints[n_].type == 'prismatic' else 'rad'} (kp "
+                             f"{float(m.actuator_gainprm[eng.actuators[n_]][0]):.4g})" for _, n_ in moved)
+            first = next(c for c in res.checks if c.name in ("tilt", "height drift", "horizontal drift")
+                         and not c.passed)
+            res.causes.append(Cause(f"when it tipped at {fall_t:.2f} s the joints that had given most were {what}: "
+                                    "their position actuators are too compliant to hold the stance",
+                                    robot.joints[moved[0][1]].loc, first.name))
     if free and before:                      # a joint that gave way before the fall explains it
         for c in res.checks:
             if c.name in ("height drift", "tilt", "horizontal drift") and not c.passed and \

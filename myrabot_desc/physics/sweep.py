@@ -33,6 +33,8 @@ DEFAULT_SAMPLES = 25
 def run(robot, *, samples: int = DEFAULT_SAMPLES, srdf=None, progress=None) -> PhysicsResult:
     wall0 = time.perf_counter()
     srdf_doc = load_srdf(srdf) if srdf else None
+    if srdf_doc is not None and not srdf_doc.describes_collisions:
+        srdf_doc = None
     rest = robot.rest_pose()
     eng = Engine(robot, "fixed", rest, floor=False, keep_excludes=False)
     mj, m, d = eng.mujoco, eng.model, eng.data

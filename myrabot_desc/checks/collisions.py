@@ -102,9 +102,10 @@ def self_collision(ctx):
     is a warning (nothing in the URDF tells a designed overlap from a mistake); **with**
     ``--srdf FILE`` the pairs it disables are not reported and an overlap it does not allow is
     an error (an SRDF with no ``<disable_collisions>`` at all, only group states, says nothing
-    about collisions and changes nothing). A pair whose convex hulls overlap while the meshes' triangles do not touch (the
-    hull of a concave part reaching into another: PR2's shoulder in its base) is information:
-    the parts do not collide, but hull-based simulators see them touching.
+    about collisions and changes nothing). A pair whose convex hulls overlap while the meshes'
+    triangles do not touch (the hull of a concave part reaching into another: PR2's shoulder in
+    its base) is information: the parts do not collide, but hull-based simulators see them
+    touching.
     Fix: move or shrink the shape that is wrong, or, where the overlap is by design, disable
     the pair in the robot's SRDF.
     """

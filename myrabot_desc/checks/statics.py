@@ -85,9 +85,11 @@ def effort_below_gravity(ctx):
             continue
         if not n.torque > n.effort or not math.isfinite(n.torque):
             continue
-        where = "at the rest pose" if n.pose_joint is None else \
-            f"with {n.pose_joint} at {n.pose_value:.3g} {'m' if ctx.robot.joints[n.pose_joint].type == 'prismatic' else 'rad'}" \
-            f", the others at rest"
+        if n.pose_joint is None:
+            where = "at the rest pose"
+        else:
+            unit = "m" if ctx.robot.joints[n.pose_joint].type == "prismatic" else "rad"
+            where = f"with {n.pose_joint} at {n.pose_value:.3g} {unit}, the others at rest"
         ratio = n.torque / n.effort
         data = {"joint": n.joint, "torque": round(n.torque, 6), "at_rest": round(n.at_rest, 6), "effort": n.effort,
                 "ratio": round(ratio, 4), "pose": {n.pose_joint: round(n.pose_value, 6)} if n.pose_joint else {},

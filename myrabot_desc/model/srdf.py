@@ -91,7 +91,8 @@ def load_srdf(path) -> Srdf:
     data = read_checked(path, None, limit("max_input_bytes"), what="SRDF file")
     root = parse_xml_bytes(data, name)
     if _local(root.tag) != "robot":
-        raise InputError(f"not an SRDF: the root element is <{_local(root.tag)}>, not <robot>", Loc(name, root.sourceline))
+        raise InputError(f"not an SRDF: the root element is <{_local(root.tag)}>, not <robot>",
+                         Loc(name, root.sourceline))
     disabled, never, enabled, states = {}, {}, set(), {}
     for el in root:
         tag = _local(el.tag)

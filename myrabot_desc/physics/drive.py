@@ -275,7 +275,8 @@ def _causes(robot, eng, drv, declared, seg, kind, per_wheel) -> list:
                          "turn, which the equivalent diff drive of the kinematic prediction does not (friction)",
                          declared.loc or root))
     if share is not None and share < 0.6:
-        out.append(Cause(f"mass on casters: the wheels carry {share:.0%} of the weight, the casters and the body the rest, "
+        out.append(Cause(f"mass on casters: the wheels carry {share:.0%} of the weight, the casters and the body "
+                         "the rest, "
                          "so the wheels slip", root))
     if drag is not None and abs(drag) > 1e-3:
         out.append(Cause(f"friction: the contacts that are not wheels drag the base with {drag:.3g} N against its "

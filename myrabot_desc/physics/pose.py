@@ -87,7 +87,8 @@ def start_pose(robot, pose_file=None, srdf=None, state=None) -> Start:
         given, source, kind = _from_yaml(pose_file), f"--pose {display(pose_file)}", "pose-file"
         unknown = sorted(n for n in given if n not in robot.joints)
         if unknown:
-            raise InputError(f"joint(s) {', '.join(unknown[:5])} of the pose are not in the model", Loc(display(pose_file)))
+            raise InputError(f"joint(s) {', '.join(unknown[:5])} of the pose are not in the model",
+                             Loc(display(pose_file)))
     elif state:
         if not srdf:
             raise InputError("--state NAME names a group_state of the SRDF given with --srdf FILE")
@@ -101,8 +102,9 @@ def start_pose(robot, pose_file=None, srdf=None, state=None) -> Start:
                 continue
             given[name] = value
         if foreign:
-            notes.append(f"SRDF state '{state}' also sets {', '.join(foreign[:6])}{', ...' if len(foreign) > 6 else ''}: "
-                         "not a moving joint of this model (a floating root_joint, joints of another variant), left out")
+            more = ", ..." if len(foreign) > 6 else ""
+            notes.append(f"SRDF state '{state}' also sets {', '.join(foreign[:6])}{more}: not a moving joint of "
+                         "this model (a floating root_joint, joints of another variant), left out")
         source, kind = f"SRDF state '{state}' ({st.loc.file}:{st.loc.line})", "srdf"
     else:
         init = initial_positions(robot)

@@ -73,8 +73,8 @@ def run(robot, *, duration: float = 3.0, base: str = "auto", pose_file=None, srd
     raised, weak = eng.hold_policy(needs, contact_loads=legged)
     for name, need, effort in raised:
         res.notes.append(f"joint {name} needs {need:.3g} to hold the start pose, over its effort limit {effort:g} "
-                         f"(at most {COUNTERBALANCE_RATIO:g}x): a counterbalance or a stronger motor than the URDF says "
-                         "is assumed, " + ("its force limit raised to what it needs" if legged else
+                         f"(at most {COUNTERBALANCE_RATIO:g}x): a counterbalance or a stronger motor than the URDF "
+                         "says is assumed, " + ("its force limit raised to what it needs" if legged else
                                           "the bodies it moves gravity-compensated") + " (check P006 warns)")
     mass, com = center_of_mass(robot, start.q)
     res.info["mass"] = f"{mass:.4g} kg"
@@ -205,8 +205,9 @@ def run(robot, *, duration: float = 3.0, base: str = "auto", pose_file=None, srd
         bottoms = _start_bottoms(eng, qpos0)
         for b, (t, link, g) in list(ground.items()):
             if bottoms.get(g, math.inf) <= NEAR_FLOOR:
-                res.notes.append(f"link {link} touches the floor at {t:.2f} s; it started {bottoms[g] * 1000:.0f} mm above "
-                                 "it and the compliant position actuators let it down")
+                res.notes.append(f"link {link} touches the floor at {t:.2f} s; it started "
+                                 f"{bottoms[g] * 1000:.0f} mm above it and the compliant position actuators "
+                                 "let it down")
                 del ground[b]
     names = sorted(link for _, link, _ in ground.values())
     started = sorted({link for _, link in feet})
@@ -221,9 +222,9 @@ def run(robot, *, duration: float = 3.0, base: str = "auto", pose_file=None, srd
                          f"({o.shape_b} into {o.shape_a} at {_w(o.loc_a)}); the SRDF does not let them touch", o.loc_b)
                    for o in overlaps] if srdf_doc is not None else []
     if overlaps and srdf_doc is None:
-        res.notes.append(f"{len(overlaps)} link pair(s) overlap at the start pose and do not collide here (nothing says "
-                         "they may touch; an SRDF that disables the pairs it allows, given with --srdf, makes that an error; check "
-                         "P005): "
+        res.notes.append(f"{len(overlaps)} link pair(s) overlap at the start pose and do not collide here "
+                         "(nothing says they may touch; an SRDF that disables the pairs it allows, given with "
+                         "--srdf, makes that an error; check P005): "
                          + "; ".join(f"{o.link_b} into {o.link_a} {o.depth * 1000:.1f} mm ({_w(o.loc_b)})"
                                      for o in overlaps[:4]) + ("; ..." if len(overlaps) > 4 else ""))
     if len(self_causes) > 6:
@@ -264,11 +265,13 @@ def run(robot, *, duration: float = 3.0, base: str = "auto", pose_file=None, srd
         c.passed for c in res.checks if c.name in ("height drift", "tilt")) else []
     if gave:
         commanded = sorted(eng.actuators)
-        res.causes.append(Cause(f"joints {', '.join(gave[:6])}{', ...' if len(gave) > 6 else ''} are passive in the MJCF "
+        more = ", ..." if len(gave) > 6 else ""
+        res.causes.append(Cause(f"joints {', '.join(gave[:6])}{more} are passive in the MJCF "
                                 f"and give way under the load: the model says what it commands (transmissions, "
                                 f"ros2_control, drives) and names only {', '.join(commanded[:4])}"
                                 f"{', ...' if len(commanded) > 4 else ''}", robot.joints[gave[0]].loc,
-                                next(c.name for c in res.checks if c.name in ("height drift", "tilt") and not c.passed)))
+                                next(c.name for c in res.checks
+                                     if c.name in ("height drift", "tilt") and not c.passed)))
     if free and fall_t is not None and not before and not support_causes and not gave and joint_series:
         k = min(range(len(ts)), key=lambda i: abs(ts[i] - fall_t))
         moved = sorted(((abs(vals[k] - q0[n_]) / _tol(m, mj, held[n_]), n_) for n_, vals in joint_series.items()),
@@ -373,8 +376,8 @@ def _saturated(eng) -> set:
     m, d = eng.model, eng.data
     out = set()
     for name, a in eng.actuators.items():
-        if m.actuator_forcelimited[a] and abs(float(d.actuator_force[a])) >= 0.99 * max(abs(m.actuator_forcerange[a][0]),
-                                                                                        abs(m.actuator_forcerange[a][1])):
+        top = max(abs(m.actuator_forcerange[a][0]), abs(m.actuator_forcerange[a][1]))
+        if m.actuator_forcelimited[a] and abs(float(d.actuator_force[a])) >= 0.99 * top:
             out.add(name)
     return out
 

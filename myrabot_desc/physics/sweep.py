@@ -115,7 +115,8 @@ def run(robot, *, samples: int = DEFAULT_SAMPLES, srdf=None, progress=None) -> P
         if jn in fail:
             torque_causes.append(Cause(text, j.loc))
         else:
-            res.notes.append(text + f"; up to {COUNTERBALANCE_RATIO:g}x a counterbalance can make it up (check P006 warns)")
+            res.notes.append(text + f"; up to {COUNTERBALANCE_RATIO:g}x a counterbalance can make it up "
+                             "(check P006 warns)")
     top = max(ratios, key=ratios.get, default=None)
     res.add(Check("gravity torque within effort", not fail, ratios[top] if top else 0.0, "x effort",
                   f"<= {COUNTERBALANCE_RATIO:g}x the effort limit on every joint", f"worst: {top}" if top else ""),

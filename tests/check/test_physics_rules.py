@@ -7,7 +7,6 @@ from __future__ import annotations
 import json
 import re
 
-import pytest
 
 from helpers import ERD, WANDER, corpus_args, corpus_robot, invoke, planted_panda, weak
 from myrabot_desc.checks.registry import load_all

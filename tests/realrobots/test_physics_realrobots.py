@@ -26,7 +26,7 @@ import json
 import pytest
 import yaml
 
-from helpers import CORPUS, ERD, corpus_args, corpus_env, corpus_model, corpus_robots, invoke
+from helpers import CORPUS, ERD, corpus_args, corpus_env, corpus_robots, invoke
 
 mujoco = pytest.importorskip("mujoco")
 

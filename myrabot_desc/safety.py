@@ -74,6 +74,10 @@ LIMITS: tuple[Limit, ...] = (
           "largest `render --size` (pixels: 2048x2048)"),
     Limit("max_render_frames", "MYRABOT_DESC_MAX_RENDER_FRAMES", 500, None,
           "most link frames `render --frames` draws"),
+    Limit("max_physics_steps", "MYRABOT_DESC_MAX_PHYSICS_STEPS", 1_000_000, None,
+          "most MuJoCo steps one `sim settle`/`sweep`/`drive --engine mujoco` takes (2,000 s at 2 ms)"),
+    Limit("max_sweep_poses", "MYRABOT_DESC_MAX_SWEEP_POSES", 100_000, None,
+          "most poses one `sim sweep` visits (joints x samples)"),
 )
 LIMIT_ENV = {lim.field: lim.env for lim in LIMITS}
 

@@ -24,6 +24,15 @@ SEED = FIXTURES / "seed_myrabot"
 WANDER = FIXTURES / "wander_bot"
 
 
+def _erd() -> Path:
+    import sysconfig
+
+    return Path(sysconfig.get_paths()["purelib"]) / "cmeel.prefix" / "share" / "example-robot-data" / "robots"
+
+
+ERD = _erd()                                    # example-robot-data's robots (URDF, SRDF, meshes)
+
+
 def invoke(*args, **kwargs):
     """``myrabot-desc ARGS`` in this process (click's CliRunner); the Result."""
     return CliRunner().invoke(main, [str(a) for a in args], **kwargs)
@@ -92,3 +101,34 @@ class cpu_time:
         self.seconds = (time.process_time() - self._p) + (c.ru_utime + c.ru_stime - self._c)
         return False
 
+
+# ------------------------------------------------------------------ planted defects (physics tests)
+def planted_panda(tmp_path, drop: float = 0.28):
+    """ERD's panda with panda_link5's collision moved ``drop`` m down (in the world at the rest pose) onto
+    panda_link2, a pair Franka's SRDF does not disable."""
+    import numpy as np
+
+    from myrabot_desc.model.kinematics import world_transforms
+    from myrabot_desc.model.loader import load_robot
+
+    panda = ERD / "panda_description/urdf/panda.urdf"
+    src = panda.read_text()
+    r = load_robot(panda)
+    R5 = world_transforms(r, r.rest_pose())["panda_link5"][:3, :3]
+    x, y, z = R5.T @ np.array([0.0, 0.0, -drop])
+    i = src.index('<link name="panda_link5"')
+    j = src.index("<collision>", i) + len("<collision>")
+    f = tmp_path / "panda_planted.urdf"
+    f.write_text(src[:j] + f'\n      <origin xyz="{x:.4f} {y:.4f} {z:.4f}" rpy="0 0 0"/>' + src[j:])
+    return f
+
+
+def weak(tmp_path, src, joint: str, effort: str = "0.1"):
+    """A copy of URDF ``src`` whose ``joint`` has the effort limit ``effort``."""
+    text = src.read_text()
+    i = text.index(f'name="{joint}"')
+    k = text.index('effort="', i)
+    e = text.index('"', k + 8)
+    f = tmp_path / f"{src.stem}_weak.urdf"
+    f.write_text(text[:k] + f'effort="{effort}"' + text[e + 1:])
+    return f

@@ -331,10 +331,21 @@ def task_key(task) -> str | None:
     material = {"format": ENTRY_FORMAT, "code": code_fingerprint(), "cwd": os.getcwd(), "file": src,
                 "content": content, "config": config,
                 "build": {k: (sorted(v.items()) if isinstance(v, dict) else v) for k, v in sorted(task.build.items())},
-                "options": [opts.inertia, opts.suggest, opts.meshes], "select": list(task.select),
+                "options": [opts.inertia, opts.suggest, opts.meshes, _file_key(getattr(opts, "srdf", None))],
+                "select": list(task.select),
                 "ignore": list(task.ignore), "limits": list(task.limits), "env": env}
     return hashlib.sha256(json.dumps(material, sort_keys=True, default=str).encode("utf-8", "surrogateescape")
                           ).hexdigest()
+
+
+def _file_key(path) -> list | None:
+    """An extra input file (--srdf) by its content: its edit changes the key."""
+    if not path:
+        return None
+    try:
+        return [str(Path(path).resolve()), file_hash(str(path))]
+    except OSError:
+        return [str(path)]
 
 
 def _roots(task, robot) -> list[str]:

@@ -15,6 +15,7 @@ class CheckOptions:
     inertia: bool = False        # compare inertias with geometry, meshes included (loads meshes)
     suggest: bool = False        # print ready <inertia/> lines (with inertia)
     meshes: bool = False         # load mesh files (scale, watertight, normals)
+    srdf: str | None = None      # an SRDF whose <disable_collisions> the self-collision rule respects
 
     @property
     def load_meshes(self) -> bool:

@@ -62,9 +62,12 @@ def mesh_resolves(ctx):
             p = Path(raw)
             if not p.is_absolute() and r.source is not None:
                 p = r.source.parent / p
-            # outside the roots: the same words whether or not such a file exists
+            # outside the roots: X006 from the model says so, the same words whether or not such a
+            # file exists; M001 would only repeat it
             reason = unresolved_reason(g.filename, r.package_roots, r.source.parent if r.source else Path.cwd())
-            why = f"{p} is {reason}" if reason == "outside the allowed folders" else f"no such file {p}"
+            if reason == "outside the allowed folders":
+                continue
+            why = f"{p} is {reason}" if reason else f"no such file {p}"
         n = sum(1 for _l, _k, i in _mesh_uses(ctx) if i.geometry.filename == g.filename)
         yield Finding(f"mesh {g.filename} ({kind} of {link.name}{f', used {n}×' if n > 1 else ''}) cannot be "
                       f"resolved: {why}", it.loc or link.loc,

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from myrabot_desc.checks.examples import drive_example as _drive
-from myrabot_desc.checks.rule import Finding, Fix, FixInfo, SetValue, rule
+from myrabot_desc.checks.rule import Finding, Fix, FixInfo, InsertAfter, SetValue, rule
 from myrabot_desc.errors import InputError
 from myrabot_desc.model import drive as D
 from myrabot_desc.model.inertia import eigh3, tensor
@@ -44,7 +44,11 @@ def support(ctx):
       message="no static support: the ground contacts (left_wheel, right_wheel) lie on one line (x 0.1), with no "
               "caster; the centre of mass is 50.0 mm behind that line (centre of mass x 0.05 y 0); the robot tips "
               "until another part drags",
-      good=_drive(x="0.1"))
+      good=_drive(x="0.1"),
+      fix=FixInfo("sometimes", "unsafe", "when the ground contacts are two wheels on one line and the wheels hang "
+                  "from one link: a caster (a sphere collision on a fixed joint, no mass) is added under that link, "
+                  "on the side the centre of mass lies, 80% of the way to the body's edge, touching the ground. "
+                  "Unsafe: where a caster goes (or whether the wheels should move instead) is a design choice."))
 def static_support(ctx):
     """A wheeled robot at rest must stand: its centre of mass inside the support polygon of its ground contacts.
 
@@ -81,12 +85,69 @@ def static_support(ctx):
             data["tip_angle_deg"], data["rests_on"] = tip
         msg = (f"no static support: the ground contacts ({', '.join(names)}) lie on one line{line}, with no caster"
                f"{ahead} (centre of mass x {com[0]:.4g} y {com[1]:.3g}){rest}")
-    else:
-        msg = (f"no static support: the centre of mass (x {com[0]:.4g} y {com[1]:.3g}) is {abs(d) * 1000:.1f} mm "
-               f"{'outside' if d < 0 else 'inside, but too close to the edge of'} the support polygon of "
-               f"{', '.join(names)}")
+        fix = _caster_fix(ctx, hull, com, zmin) if len(hull) == 2 else None
+        yield Finding(msg, ctx.robot.links[ctx.robot.root].loc if ctx.robot.root else ctx.robot.loc, data,
+                      severity=None if d < 0 else "warning", fix=fix)
+        return
+    msg = (f"no static support: the centre of mass (x {com[0]:.4g} y {com[1]:.3g}) is {abs(d) * 1000:.1f} mm "
+           f"{'outside' if d < 0 else 'inside, but too close to the edge of'} the support polygon of "
+           f"{', '.join(names)}")
     yield Finding(msg, ctx.robot.links[ctx.robot.root].loc if ctx.robot.root else ctx.robot.loc, data,
                   severity=None if d < 0 else "warning")
+
+
+CASTER_RADIUS = 0.02     # m: the caster P001's fix adds (smaller where the body hangs lower)
+
+
+def _caster_fix(ctx, hull, com, zmin) -> Fix | None:
+    """P001's fix for two wheels on a line: a caster under the link the wheels hang from, on the side
+    of the centre of mass, 80% of the way from the axle to that side's edge of the body, touching the
+    ground (placed in that link's frame, so a fix that raises the link keeps it on the ground)."""
+    import numpy as np
+
+    r = ctx.robot
+    wheel_joints = [r.joints[n] for n in D.wheel_joints(r) if n in r.joints]
+    parents = {j.parent for j in wheel_joints}
+    if len(parents) != 1 or len(wheel_joints) < 2:
+        return None
+    parent = parents.pop()
+    if parent not in ctx.world:
+        return None
+    p0, p1 = np.asarray(hull[0], float), np.asarray(hull[1], float)
+    u = p1 - p0
+    if np.linalg.norm(u) < 1e-6:
+        return None
+    u /= np.linalg.norm(u)
+    n = np.array([-u[1], u[0]])
+    side = np.sign((com[:2] - p0) @ n) or -1.0
+    skip = {j.child for j in wheel_joints}
+    reach, bottom = 0.0, None
+    for link, it, T, mesh in _collision_world(ctx):
+        if link.name in skip:
+            continue
+        pts = np.asarray(surface_points(it.geometry, 16, mesh))
+        w = pts @ T[:3, :3].T + T[:3, 3]
+        along = ((w[:, :2] - p0) @ n) * side
+        reach = max(reach, float(along.max()))
+        below = w[along > 0.0]
+        if len(below):
+            bottom = float(below[:, 2].min()) if bottom is None else min(bottom, float(below[:, 2].min()))
+    if reach < 0.02:                 # no body geometry on that side: as far as the track is wide
+        reach = float(np.linalg.norm(p1 - p0)) / 2
+    clearance = (bottom - zmin) if bottom is not None else 2 * CASTER_RADIUS
+    radius = CASTER_RADIUS if not 0 < clearance < 2 * CASTER_RADIUS else clearance / 2
+    at = p0 + u * float((com[:2] - p0) @ u) + n * side * 0.8 * reach
+    world = np.array([at[0], at[1], zmin + radius, 1.0])
+    local = np.linalg.inv(ctx.world[parent]) @ world
+    name, k = "caster_link", 2
+    while name in r.links:
+        name, k = f"caster_link_{k}", k + 1
+    xyz = " ".join(f"{round(float(v), 4):g}" for v in local[:3])
+    geo = f'<geometry><sphere radius="{round(radius, 4):g}"/></geometry>'
+    text = (f'<link name="{name}">\n  <visual>{geo}</visual>\n  <collision>{geo}</collision>\n</link>\n'
+            f'<joint name="{name.replace("_link", "_joint")}" type="fixed">\n  <parent link="{parent}"/>\n'
+            f'  <child link="{name}"/>\n  <origin xyz="{xyz}" rpy="0 0 0"/>\n</joint>')
+    return Fix((InsertAfter(r.links[parent], text),), "unsafe", f"caster {name} added under {parent} at {xyz}")
 
 
 def _tip(ctx, hull, com, zmin):

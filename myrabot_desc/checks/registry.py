@@ -11,12 +11,14 @@ from __future__ import annotations
 from typing import Iterable
 
 from myrabot_desc.checks import (
+    collisions,
     frames,
     inertia,
     inertia_geometry,
     meshes,
     physics,
     plugins,
+    statics,
     tree,
     urdf_syntax,
 )
@@ -24,7 +26,7 @@ from myrabot_desc.checks.external import EXTERNAL  # noqa: F401  (re-exported: c
 from myrabot_desc.checks.rule import FAMILIES, Finding, Rule  # noqa: F401  (re-exported for library users)
 from myrabot_desc.diagnostics import Diagnostic
 
-MODULES = (tree, urdf_syntax, inertia, inertia_geometry, frames, plugins, meshes, physics)
+MODULES = (tree, urdf_syntax, inertia, inertia_geometry, frames, plugins, meshes, physics, collisions, statics)
 
 
 def _collect() -> dict[str, Rule]:

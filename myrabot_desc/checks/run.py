@@ -239,7 +239,7 @@ def exit_code(results) -> int:
 
 
 def plan(inputs, inertia, suggest, meshes, select, ignore, strict, recursive, config_file, isolated, shard_spec,
-         no_cache, cache_dir=None):
+         no_cache, cache_dir=None, srdf=None):
     """The task list: inputs expanded, configuration applied per file, the shard taken
     (UsageProblem for a code, shard or folder that does not fit)."""
     cache.reset()
@@ -272,7 +272,7 @@ def plan(inputs, inertia, suggest, meshes, select, ignore, strict, recursive, co
         build["mappings"] = {**cfg.args_for(p), **build["mappings"]}
         build["no_env"] = build["no_env"] or cfg.no_env
         use_inertia = inertia or suggest or cfg.inertia
-        options = CheckOptions(inertia=use_inertia, suggest=suggest, meshes=meshes or cfg.meshes)
+        options = CheckOptions(inertia=use_inertia, suggest=suggest, meshes=meshes or cfg.meshes, srdf=srdf)
         limits = tuple((LIMIT_ENV[k], v) for k, v in sorted(cfg.limits.items()))
         use_cache = None         # a project (a configuration file) opts in, or the runner names a folder
         if not no_cache and cfg.cache and (cfg.path or cache_dir or os.environ.get("MYRABOT_DESC_CACHE_DIR")):

@@ -35,6 +35,9 @@ def _progressbar(results, length):
               help="Load collision meshes and compare every inertia with the solid body of its collision geometry.")
 @click.option("--suggest", is_flag=True, help="With --inertia: print a ready <inertia .../> line per link.")
 @click.option("--meshes", is_flag=True, help="Load every mesh (visual too) to check scale, watertightness and normals.")
+@click.option("--srdf", type=click.Path(dir_okay=False), metavar="FILE",
+              help="The robot's SRDF: the link pairs its <disable_collisions> lets touch are not self-collisions "
+                   "(P005), and an overlap it does not allow is an error.")
 @click.option("--format", "fmt", type=click.Choice(["text", "json", "github", "sarif", "junit"]), default="text",
               show_default=True, help="Report format.")
 @click.option("--select", "select", multiple=True, metavar="CODES",
@@ -78,7 +81,7 @@ def _progressbar(results, length):
 @click.option("--changed-since", "since", metavar="REV",
               help="Check only the models that read a file (include, YAML, mesh) changed since git revision REV.")
 @click.option("--list-rules", is_flag=True, help="List every rule code and exit.")
-def check_cmd(inputs, inertia, suggest, meshes, fmt, select, ignore, strict, output, recursive, config_file,
+def check_cmd(inputs, inertia, suggest, meshes, srdf, fmt, select, ignore, strict, output, recursive, config_file,
               isolated, jobs, shard_spec, quiet, no_cache, cache_dir, merge_sarif, fix_, unsafe_fixes, diff_,
               baseline, update_baseline, since, list_rules):
     """Lint robot models: tree, inertia, sensors and frames, Gazebo plugins, meshes, physics.
@@ -103,6 +106,7 @@ def check_cmd(inputs, inertia, suggest, meshes, fmt, select, ignore, strict, out
       myrabot-desc check -r . --shard 2/4 --format sarif -o part2.sarif
       myrabot-desc check --merge-sarif part*.sarif -o check.sarif
       myrabot-desc check robot.urdf --select I,P --strict
+      myrabot-desc check --inertia panda.urdf --srdf panda.srdf   # self-collision (P005) as the SRDF allows
       myrabot-desc check --fix robot.urdf.xacro        # repair the safe findings in the sources
       myrabot-desc check --diff --unsafe-fixes -r .    # show every fix as a diff, write nothing
       myrabot-desc check -r . --baseline .myrabot-desc-baseline.json   # fail only on new findings
@@ -131,7 +135,7 @@ def check_cmd(inputs, inertia, suggest, meshes, fmt, select, ignore, strict, out
             raise click.UsageError("--update-baseline goes with --baseline FILE")
         try:
             tasks, help_url = plan(inputs, inertia, suggest, meshes, select, ignore, strict, recursive, config_file,
-                                   isolated, shard_spec, no_cache or fix_ or diff_, cache_dir)
+                                   isolated, shard_spec, no_cache or fix_ or diff_, cache_dir, srdf=srdf)
         except UsageProblem as exc:
             raise usage_error(exc) from None
         if since is not None:

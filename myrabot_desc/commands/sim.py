@@ -16,6 +16,10 @@ from myrabot_desc.model.kinematics import require_tree
 from myrabot_desc.output import write_outputs
 from myrabot_desc.sanitize import clean_lines
 from myrabot_desc.sim import drive, plot, pointing, vuelta
+from myrabot_desc.physics import drive as physics_drive
+from myrabot_desc.physics import plot as physics_plot
+from myrabot_desc.physics import settle, sweep
+from myrabot_desc.physics.result import junit_bytes
 from myrabot_desc.sim.scene import load_layout
 
 
@@ -29,6 +33,8 @@ def _outputs(f):
         click.option("--csv", "csv_path", metavar="FILE",
                      help="Write the time series (base pose, arm joints, wheel angles) as CSV ('-' = stdout)."),
         click.option("--plot", "plot_path", metavar="PNG", help="Draw the top view and the time series."),
+        click.option("--junit", "junit_path", metavar="FILE",
+                     help="Write the verdict as JUnit XML for CI (one test case per check; '-' = stdout)."),
         click.option("--progress/--no-progress", default=None,
                      help="Progress bar (default: on a terminal, for runs of 60 simulated seconds or more)."),
     ]
@@ -85,14 +91,24 @@ def _wheel_names(wheels, left_wheels, right_wheels):
     return wheels, left, right
 
 
-def _finish(res, as_json, csv_path, plot_path):
+def _finish(res, as_json, csv_path, plot_path, junit_path=None):
+    """Write the outputs asked for (all or none), print the verdict, exit 0 (PASS) or 1 (FAIL)."""
     outputs = []
+    physics = hasattr(res, "causes")
     if plot_path:
-        outputs.append((plot_path, plot.render(res)))
+        if physics:
+            outputs.append((plot_path, physics_plot.render(res)))
+        else:
+            outputs.append((plot_path, plot.render(res)))
     if csv_path:
         outputs.append((csv_path, res.csv_bytes()))
-    write_outputs(outputs)          # both or neither
-    if csv_path != "-":
+    if junit_path:
+        outputs.append((junit_path, res.junit_bytes() if physics else
+                        junit_bytes(res.program, res.robot, res.checks, (), res.info, res.wall)))
+    if sum(1 for p, _ in outputs if p == "-") > 1:
+        raise click.UsageError("only one of --csv, --junit may go to stdout ('-')")
+    write_outputs(outputs)          # all or none
+    if csv_path != "-" and junit_path != "-":
         click.echo(res.as_json() if as_json else clean_lines(res.summary()), nl=False)
     sys.exit(0 if res.passed else 1)
 
@@ -127,7 +143,8 @@ def _runner(duration, progress_flag):
 
 @click.group(name="sim", context_settings={"help_option_names": ["-h", "--help"]})
 def sim_cmd():
-    """Run the seed's programs in a built-in kinematic and diff-drive simulator.
+    """Run the seed's programs in a built-in kinematic and diff-drive simulator, and physics
+    verdicts in MuJoCo (settle, sweep, drive --engine mujoco).
 
     \b
     A fixed time step (1 kHz by default), deterministic; the base moves on exact
@@ -142,6 +159,8 @@ def sim_cmd():
       myrabot-desc sim seguir --csv out/seguir.csv
       myrabot-desc sim drive tests/fixtures/wander_bot/urdf/robot.xacro -p wander_bot=tests/fixtures/wander_bot
       myrabot-desc sim drive robot.urdf --wheels urdf --twist 0.2,0,5 --twist 0,0.5,4
+      myrabot-desc sim settle robot.urdf --junit out/settle.xml      # MuJoCo: does it stand?
+      myrabot-desc sim sweep robot.urdf                               # MuJoCo: each joint through its range
 
     Exit codes: 0 the verdict passes, 1 it fails, 2 the input could not be processed.
     """
@@ -156,7 +175,7 @@ def sim_cmd():
 @click.option("--feedback-rate", type=click.FloatRange(min=0.1, max=100000), default=100.0, show_default=True,
               help="pose_arm messages per second (the node reacts to each).")
 @click.option("--no-collisions", is_flag=True, help="Skip the arm/structure collision check.")
-def vuelta_cmd(inputs, duration, rate, as_json, csv_path, plot_path, progress, wheels, wheel_speed_max,
+def vuelta_cmd(inputs, duration, rate, as_json, csv_path, plot_path, junit_path, progress, wheels, wheel_speed_max,
                wheel_accel_max, presses, feedback_rate, no_collisions):
     """The seed's "vuelta al ruedo": drive a circle, swing the arm.
 
@@ -185,7 +204,7 @@ def vuelta_cmd(inputs, duration, rate, as_json, csv_path, plot_path, progress, w
                              progress=prog)
         finally:
             close()
-        _finish(res, as_json, csv_path, plot_path)
+        _finish(res, as_json, csv_path, plot_path, junit_path)
 
 
 @sim_cmd.command("drive")
@@ -195,10 +214,16 @@ def vuelta_cmd(inputs, duration, rate, as_json, csv_path, plot_path, progress, w
 @click.option("--twist", "twists", multiple=True, metavar="V,W,SECONDS",
               help="A script segment: linear m/s, angular rad/s, seconds. Repeatable. "
                    "Default: 0.2,0,5 then 0,0.5,4 then 0.2,0.4,5.")
-@click.option("--tolerance", type=click.FloatRange(min=0), default=0.02, show_default=True,
-              help="Allowed relative error of the achieved speed and turn rate.")
-def drive_cmd(inputs, duration, rate, as_json, csv_path, plot_path, progress, wheels, wheel_speed_max,
-              wheel_accel_max, left_wheels, right_wheels, twists, tolerance):
+@click.option("--tolerance", type=click.FloatRange(min=0), default=None,
+              help="Allowed relative error of the achieved speed and turn rate: against the command (builtin, "
+                   "default 0.02) or against the kinematic prediction (mujoco, default 0.10).")
+@click.option("--engine", type=click.Choice(["builtin", "mujoco"]), default="builtin", show_default=True,
+              help="builtin: the kinematic diff drive (exact arcs from the wheel rates). mujoco: the same "
+                   "command to the velocity actuators of our MJCF, the base standing on a floor, compared "
+                   "with the kinematic prediction; a mismatch names its cause (wheel gains, slip, mass on "
+                   "casters, friction).")
+def drive_cmd(inputs, duration, rate, as_json, csv_path, plot_path, junit_path, progress, wheels, wheel_speed_max,
+              wheel_accel_max, left_wheels, right_wheels, twists, tolerance, engine):
     """Drive any wheeled robot through a scripted twist.
 
     \b
@@ -217,8 +242,12 @@ def drive_cmd(inputs, duration, rate, as_json, csv_path, plot_path, progress, wh
       myrabot-desc sim drive robot.urdf --wheels urdf
       myrabot-desc sim drive robot.urdf --wheels l_wheel_joint,r_wheel_joint
       myrabot-desc sim drive --twist 0.1,0.3,21 --plot out/circle.png     # the bundled MYRAbot
+      myrabot-desc sim drive --engine mujoco --junit out/drive.xml          # in MuJoCo, a verdict for CI
     """
     wheels, left, right = _wheel_names(wheels, left_wheels, right_wheels)
+    if engine == "mujoco" and (wheel_speed_max or wheel_accel_max or duration):
+        raise click.UsageError("--wheel-speed-max, --wheel-accel-max and --duration belong to the builtin engine: "
+                               "MuJoCo's wheels have their joints' limits, and the script sets the length")
 
     try:
         script = tuple(drive.parse_twist(t) for t in twists) or drive.DEFAULT_SCRIPT
@@ -228,12 +257,18 @@ def drive_cmd(inputs, duration, rate, as_json, csv_path, plot_path, progress, wh
         robot = _load(inputs, plot_path)
         prog, close = _runner(duration or sum(s for *_, s in script), progress)
         try:
-            res = drive.run(robot, rate=rate, duration=duration, script=script, wheels=wheels,
-                            left=left, right=right, wheel_speed_max=wheel_speed_max, wheel_accel_max=wheel_accel_max,
-                            tolerance=tolerance, progress=prog)
+            if engine == "mujoco":
+                res = physics_drive.run(robot, script=script, wheels=wheels, left=left, right=right,
+                                        tolerance=physics_drive.TOLERANCE if tolerance is None else tolerance,
+                                        progress=prog)
+            else:
+                res = drive.run(robot, rate=rate, duration=duration, script=script, wheels=wheels,
+                                left=left, right=right, wheel_speed_max=wheel_speed_max,
+                                wheel_accel_max=wheel_accel_max, tolerance=0.02 if tolerance is None else tolerance,
+                                progress=prog)
         finally:
             close()
-        _finish(res, as_json, csv_path, plot_path)
+        _finish(res, as_json, csv_path, plot_path, junit_path)
 
 
 def _pointing_options(f):
@@ -271,7 +306,7 @@ def _layout(name, path):
 @_pointing_options
 @click.option("--hold", type=click.FloatRange(min=0), default=2.0, show_default=True, metavar="SECONDS",
               help="How long the arm points before it returns home.")
-def escoja_cmd(inputs, duration, rate, as_json, csv_path, plot_path, progress, layout_path, which, select_at,
+def escoja_cmd(inputs, duration, rate, as_json, csv_path, plot_path, junit_path, progress, layout_path, which, select_at,
                speed_units, standoff, tolerance, units_mode, hold):
     """The seed's "escoja": point at the chosen can, hold, return home.
 
@@ -300,7 +335,7 @@ def escoja_cmd(inputs, duration, rate, as_json, csv_path, plot_path, progress, l
                                       progress=prog)
         finally:
             close()
-        _finish(res, as_json, csv_path, plot_path)
+        _finish(res, as_json, csv_path, plot_path, junit_path)
 
 
 @sim_cmd.command("seguir")
@@ -314,7 +349,7 @@ def escoja_cmd(inputs, duration, rate, as_json, csv_path, plot_path, progress, l
               help="When the first key press moves the can (then one step per 0.1 s).")
 @click.option("--track-rate", type=click.FloatRange(min=0.1, max=1000), default=10.0, show_default=True,
               metavar="HZ", help="How often the arm re-aims at the can.")
-def seguir_cmd(inputs, duration, rate, as_json, csv_path, plot_path, progress, layout_path, which, select_at,
+def seguir_cmd(inputs, duration, rate, as_json, csv_path, plot_path, junit_path, progress, layout_path, which, select_at,
                speed_units, standoff, tolerance, units_mode, keys, move_at, track_rate):
     """The seed's "seguir": the arm follows a can moved like mover_objetos moves it.
 
@@ -346,4 +381,106 @@ def seguir_cmd(inputs, duration, rate, as_json, csv_path, plot_path, progress, l
                                       tolerance=tolerance, units_mode=units_mode, progress=prog)
         finally:
             close()
-        _finish(res, as_json, csv_path, plot_path)
+        _finish(res, as_json, csv_path, plot_path, junit_path)
+
+
+def _physics_outputs(f):
+    opts = [
+        click.option("--json", "as_json", is_flag=True, help="Print the summary as JSON."),
+        click.option("--csv", "csv_path", metavar="FILE", help="Write the time series (or the sweep's poses) as CSV "
+                     "('-' = stdout)."),
+        click.option("--plot", "plot_path", metavar="PNG", help="Draw the series (or the sweep) as a PNG."),
+        click.option("--junit", "junit_path", metavar="FILE",
+                     help="Write the verdict as JUnit XML for CI (one test case per check; '-' = stdout)."),
+        click.option("--srdf", type=click.Path(dir_okay=False), metavar="FILE",
+                     help="The robot's SRDF: the link pairs its <disable_collisions> lets touch may touch; with "
+                          "--state, its reference configuration is the start pose."),
+        click.option("--progress/--no-progress", default=None, help="Progress bar (default: on a terminal)."),
+    ]
+    for o in reversed(opts):
+        f = o(f)
+    return f
+
+
+@sim_cmd.command("settle")
+@input_options()
+@_physics_outputs
+@click.option("--duration", type=click.FloatRange(min=0.01, max=3600), default=3.0, show_default=True,
+              help="Simulated seconds.")
+@click.option("--base", type=click.Choice(["auto", "free", "fixed"]), default="auto", show_default=True,
+              help="auto: a free base for wheeled robots and robots that stand on legs (the ground touched only by "
+                   "limbs of two or more joints, on two or more limbs), else welded where it stands.")
+@click.option("--pose", "pose_file", type=click.Path(dir_okay=False), metavar="YAML",
+              help="Start pose: joint: value pairs (top level, or under initial_positions/joints/pose).")
+@click.option("--state", metavar="NAME", help="Start pose: the SRDF's <group_state> of that name (needs --srdf).")
+def settle_cmd(inputs, as_json, csv_path, plot_path, junit_path, srdf, progress, duration, base, pose_file, state):
+    """Does it stand? N seconds in MuJoCo from its start pose, actuators holding it.
+
+    \b
+    The model is our own `convert --to mjcf`, built in memory. From the start
+    pose (--pose, --srdf --state, the package's ros2_control initial
+    positions, else the rest pose: every joint at 0 or its nearer limit) the
+    robot stands on a floor, every joint held by its position actuator.
+    Verdict: no NaN, the base's height, tilt and horizontal drift, the
+    ground touched only by what it stood on (feet, wheels, casters), no
+    self-contact, joints within 0.1 rad of their start, no energy growth.
+    A failure names its cause at its file:line: the centre of mass outside
+    the support polygon by X mm, a joint that cannot hold (torque needed T >
+    effort E), a link penetrating another by D mm.
+
+    \b
+    Examples:
+      myrabot-desc sim settle                              # the bundled MYRAbot
+      myrabot-desc sim settle robot.urdf --junit out/settle.xml
+      myrabot-desc sim settle talos.urdf --srdf talos.srdf --state half_sitting
+      myrabot-desc sim settle arm.urdf.xacro --pose config/initial_positions.yaml --plot out/settle.png
+
+    Exit codes: 0 it stands (PASS), 1 it does not (FAIL), 2 the input could not be processed.
+    """
+    if state and not srdf:
+        raise click.UsageError("--state NAME names a <group_state> of the SRDF given with --srdf FILE")
+    if state and pose_file:
+        raise click.UsageError("give the start pose either with --pose or with --srdf --state, not both")
+    with guarded():
+        robot = _load(inputs)
+        prog, close = _runner(60.0 if progress else 0.0, progress)
+        try:
+            res = settle.run(robot, duration=duration, base=base, pose_file=pose_file, srdf=srdf, state=state,
+                             progress=prog)
+        finally:
+            close()
+        _finish(res, as_json, csv_path, plot_path, junit_path)
+
+
+@sim_cmd.command("sweep")
+@input_options()
+@_physics_outputs
+@click.option("--samples", type=click.IntRange(min=2, max=10000), default=25, show_default=True,
+              help="Values per joint range.")
+def sweep_cmd(inputs, as_json, csv_path, plot_path, junit_path, srdf, progress, samples):
+    """Each movable joint through its range, the others at rest, in MuJoCo.
+
+    \b
+    The robot is welded where it stands. At every pose: self-collisions
+    between bodies that are not parent and child (the pairs touching at the
+    rest pose, which check P005 reports, and the SRDF's allowed pairs left
+    out), with the depth and both collisions' file:line; and the gravity
+    torque on every joint against its effort limit (over twice the limit
+    fails; between 1x and 2x is a note, as check P006 warns).
+
+    \b
+    Examples:
+      myrabot-desc sim sweep                               # the bundled MYRAbot's arm
+      myrabot-desc sim sweep panda.urdf --srdf panda.srdf --csv out/sweep.csv
+      myrabot-desc sim sweep robot.urdf --samples 13 --junit out/sweep.xml
+
+    Exit codes: 0 PASS, 1 FAIL, 2 the input could not be processed.
+    """
+    with guarded():
+        robot = _load(inputs)
+        prog, close = _runner(60.0 if progress else 0.0, progress)
+        try:
+            res = sweep.run(robot, samples=samples, srdf=srdf, progress=prog)
+        finally:
+            close()
+        _finish(res, as_json, csv_path, plot_path, junit_path)

@@ -45,12 +45,12 @@ def _run(*args, cwd):
 def test_wander_bot_fixed_then_drives_as_commanded(wander):
     before = json.loads(_run("check", "--inertia", "--format", "json", "urdf/robot.xacro", cwd=wander).stdout)
     fixed = _run("check", "--fix", "--unsafe-fixes", "--inertia", "urdf/robot.xacro", cwd=wander)
-    assert fixed.returncode == 1                             # P001 (no caster) remains: not fixable
-    assert "Fixed 11 findings (4 remaining)." in fixed.stderr
+    assert fixed.returncode == 0                             # P001 (no caster): a caster added (unsafe)
+    assert "Fixed 12 findings (3 remaining)." in fixed.stderr
     after = json.loads(_run("check", "--inertia", "--format", "json", "urdf/robot.xacro", cwd=wander).stdout)
-    gone = {"G001", "G002", "G007", "G012", "I005", "I006", "I007", "P002", "T006"}
+    gone = {"G001", "G002", "G007", "G012", "I005", "I006", "I007", "P001", "P002", "T006"}
     assert gone <= set(_codes(before)) and not gone & set(_codes(after))
-    assert _codes(after) == ["G014", "P001", "P004", "T007"]
+    assert _codes(after) == ["G014", "P004", "T007"]
     drive = _run("sim", "drive", "urdf/robot.xacro", "--json", cwd=wander)
     verdict = json.loads(drive.stdout)
     ratios = {c["name"]: c["value"] for c in verdict["checks"]}
@@ -71,17 +71,22 @@ def test_wander_bot_diff_touches_only_the_values(wander):
     assert added == ["<wheelSeparation>0.3</wheelSeparation>", "<wheelDiameter>0.16</wheelDiameter>",
                      '<box size="0.3 0.24 0.1"/>',
                      '<inertia ixx="0.006042" ixy="0" ixz="0" iyy="0.008333" iyz="0" izz="0.01271"/>',
+                     '<link name="caster_link">',                                      # P001: a caster behind
+                     '<visual><geometry><sphere radius="0.02"/></geometry></visual>',  # the axle, on the ground
+                     '<collision><geometry><sphere radius="0.02"/></geometry></collision>',
+                     '</link>', '<joint name="caster_joint" type="fixed">', '<parent link="base_link"/>',
+                     '<child link="caster_link"/>', '<origin xyz="-0.1 0 -0.06" rpy="0 0 0"/>', '</joint>',
                      '<origin xyz="0 0 0.08" rpy="0 0 0"/>',                          # 50 mm up: wheels on z 0
                      '<inertia ixx="0.001808" ixy="0" ixz="0" iyy="0.0032" iyz="0" izz="0.001808"/>',
                      '<inertia ixx="0.001808" ixy="0" ixz="0" iyy="0.0032" iyz="0" izz="0.001808"/>',
                      '<inertia ixx="0.0005146" ixy="0" ixz="0" iyy="0.0005146" iyz="0" izz="0.0006125"/>']
-    assert r.stderr.strip() == "Would fix 11 findings (4 remaining)."
+    assert r.stderr.strip() == "Would fix 12 findings (3 remaining)."
     assert (wander / "urdf" / "robot.xacro").read_bytes() == (WANDER / "urdf" / "robot.xacro").read_bytes()
 
 
 def test_safe_fixes_alone_and_idempotent(wander):
     first = invoke("check", "--fix", wander / "urdf" / "robot.xacro")
-    assert "Fixed 5 findings" in first.stderr and "6 more with --unsafe-fixes" in first.stderr
+    assert "Fixed 5 findings" in first.stderr and "7 more with --unsafe-fixes" in first.stderr
     snapshot = {p: p.read_bytes() for p in (wander / "urdf").iterdir()}
     again = invoke("check", "--fix", wander / "urdf" / "robot.xacro")
     assert "Fixed 0 findings" in again.stderr

@@ -36,8 +36,13 @@ EXPECTED_ERRORS = {
     "hyq_description/robots/hyq_no_sensors.urdf": {"I005": 5},
     "pr2_description/urdf/pr2.urdf": {"I005": 2},
     "romeo_description/urdf/romeo.urdf": {"I001": 24, "P003": 1},
-    "romeo_description/urdf/romeo_laas_small.urdf": {"I004": 3, "I005": 2, "M001": 20, "P003": 1},
+    # 20 meshes named file:///usr/Romeo/...: outside the model's folders (X006), never read
+    "romeo_description/urdf/romeo_laas_small.urdf": {"I004": 3, "I005": 2, "P003": 1, "X006": 20},
     "romeo_description/urdf/romeo_small.urdf": {"I005": 2},
+    # WAIST_P/WAIST_R: 30 N·m limits on the waist that carries the whole upper body, which needs 137 and
+    # 131 N·m bent to 1.27 rad (73°) within their range: over 4x the limit
+    "simple_humanoid_description/urdf/simple_humanoid.urdf": {"P006": 2},
+    "simple_humanoid_description/urdf/simple_humanoid_classical.urdf": {"P006": 2},
     "tiago_description/robots/tiago.urdf": {"I004": 2},
     "tiago_description/robots/tiago_dual.urdf": {"I004": 2},
     "tiago_description/robots/tiago_no_hand.urdf": {"I004": 2},
@@ -129,6 +134,27 @@ def test_every_dynamics_error_is_true(report):
         with np.errstate(all="ignore"):
             a = pin.aba(m, data, q, np.zeros(m.nv), np.ones(m.nv))
         assert not np.all(np.isfinite(a)), f
+
+
+def test_every_gravity_error_is_true(report):
+    """P006: Pinocchio's own URDF reader and generalized gravity at the pose the finding names (the other
+    joints at rest: 0, or the nearer limit when 0 is out of range) need over twice the effort limit."""
+    import pinocchio as pin
+
+    for f, d in _errors(report, "P006"):
+        m = pin.buildModelFromUrdf(str(ROBOTS / f))
+        data = m.createData()
+        q = pin.neutral(m)
+        for j in _xml(f).findall("joint"):
+            lim = j.find("limit")
+            if j.get("type") in ("revolute", "prismatic") and lim is not None and m.existJointName(j.get("name")):
+                lo, hi = float(lim.get("lower", 0)), float(lim.get("upper", 0))
+                q[m.joints[m.getJointId(j.get("name"))].idx_q] = min(max(0.0, lo), hi)
+        for name, value in d["data"]["pose"].items():
+            q[m.joints[m.getJointId(name)].idx_q] = value
+        tau = pin.computeGeneralizedGravity(m, data, q)[m.joints[m.getJointId(d["data"]["joint"])].idx_v]
+        effort = m.effortLimit[m.joints[m.getJointId(d["data"]["joint"])].idx_v]
+        assert abs(tau) > 2 * effort and abs(tau) == pytest.approx(d["data"]["torque"], rel=1e-5), (f, d["message"])
 
 
 def test_empty_robot_is_information_not_an_error(report):

@@ -1,0 +1,315 @@
+"""Self-collision at a configuration: collision shapes of two links that overlap although nothing
+lets them, with the depth, the pair and where each shape is written.
+
+Which pairs count. Links joined by fixed joints move as one rigid body (``rigid_bodies``); two
+bodies joined by one moving joint are parent and child, whose shapes meet at the joint by design
+(MuJoCo, PyBullet and MoveIt skip those pairs too). Every other pair of bodies may not overlap,
+unless the model's own exclusions allow it (an SRDF's ``<disable_collisions>``: model/srdf.py).
+
+How they are tested. Boxes, spheres and cylinders are exact (coal, the collision library Pinocchio
+ships). A mesh is its convex hull, as MuJoCo and PyBullet collide it; coal gives the penetration
+depth of the two convex shapes. A hull overlap that involves a mesh is then confirmed on the
+triangles themselves (coal's BVH of the mesh against the other shape): when they do not touch the
+overlap is ``hull_only``, the hull of a concave part reaching into another (PR2's shoulder sitting in
+its concave base: 256 mm of hull, no triangle). A mesh wholly inside another mesh touches no
+triangle of it and reads as hull-only as well; a mesh inside a primitive does not (the primitive is
+solid). Overlaps of ``TOUCH`` or less are parts resting against each other (CAD assemblies, a
+tessellated surface, rounding), not collisions.
+
+coal takes 0.4 s to import: it is imported inside the functions that use it.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+from myrabot_desc.model import meshes as meshio
+from myrabot_desc.model.kinematics import world_transforms
+from myrabot_desc.model.shapes import describe
+from myrabot_desc.model.support import _mesh_reader, placed_collisions
+
+TOUCH = 0.001        # m: overlaps this shallow are contact (see the module docstring)
+
+
+class Overlap(NamedTuple):
+    link_a: str                  # the links whose collision shapes overlap (a first in the file)
+    link_b: str
+    body_a: str                  # their rigid bodies, by the link that heads each
+    body_b: str
+    depth: float                 # m: penetration depth of the two (convex) shapes
+    point: tuple                 # (x, y, z) in the root frame: where they overlap
+    loc_a: object                # the <collision> elements (diagnostics.Loc or None)
+    loc_b: object
+    shape_a: str                 # "box 0.1 0.1 0.2", "mesh link5.stl"
+    shape_b: str
+    hull_only: bool = False      # the convex hulls overlap, the triangles do not touch
+    allowed: object = None       # the exclusion that lets the pair touch (srdf.Disabled), if any
+
+    @property
+    def pair(self) -> str:
+        return f"{self.link_a}/{self.link_b}"
+
+
+def rigid_bodies(robot) -> dict[str, str]:
+    """link -> the link heading its rigid body (fixed joints merged upward)."""
+    out: dict[str, str] = {}
+    for name in robot.links:
+        cur, hops = name, 0
+        while hops <= len(robot.joints):
+            pj = robot.parent_joint(cur)
+            if pj is None or pj.type != "fixed" or pj.parent not in robot.links:
+                break
+            cur, hops = pj.parent, hops + 1
+        out[name] = cur
+    return out
+
+
+def adjacent_bodies(robot, body_of: dict) -> set:
+    """frozenset({body, body}) of every two bodies one moving joint joins."""
+    return {frozenset((body_of[j.parent], body_of[j.child])) for j in robot.joints.values()
+            if j.type != "fixed" and j.parent in body_of and j.child in body_of}
+
+
+class _Item(NamedTuple):
+    link: str
+    body: str
+    collision: object
+    shape: object                # a coal geometry
+    T: object                    # 4x4 world pose
+    centre: object               # bounding sphere in the world
+    radius: float
+    mesh: object                 # vertices (mesh shapes) or None
+    half: object = None          # half extents of its bounding box (centred on ``centre``, turned as T)
+
+
+def _coal_shape(coal, np, g, vertices):
+    """A coal geometry for a URDF geometry (a mesh: the convex hull of its vertices), or None."""
+    if g.kind == "box":
+        return coal.Box(*map(float, g.size))
+    if g.kind == "sphere":
+        return coal.Sphere(float(g.radius))
+    if g.kind == "cylinder":
+        return coal.Cylinder(float(g.radius), float(g.length))
+    key = _mesh_key(g)
+    if key is not None and key in _HULLS:
+        return _HULLS[key]
+    pts = coal.StdVec_Vec3s()
+    pts.extend(np.ascontiguousarray(vertices, dtype=float))
+    try:
+        hull = coal.Convex.convexHull(pts, False, "")
+    except Exception:                    # qhull refuses what it cannot hull (a flat mesh): left out
+        hull = None
+    if key is not None:
+        if len(_HULLS) >= 512:
+            _HULLS.pop(next(iter(_HULLS)))
+        _HULLS[key] = hull
+    return hull
+
+
+_HULLS: dict = {}            # mesh key -> coal hull (or None): robots of one run share mesh files
+
+
+def _mesh_key(g):
+    """(path, mtime, scale) of a mesh geometry, None when its file cannot be stat'ed."""
+    try:
+        return (str(g.path), g.path.stat().st_mtime_ns, tuple(g.scale))
+    except (OSError, AttributeError):
+        return None
+
+
+def _local_box(np, g, vertices):
+    """(centre, half extents) of the box holding the shape in its own frame; None for a shape with
+    no volume to collide (a zero size, a flat or degenerate mesh)."""
+    if g.kind == "box":
+        h = np.asarray(g.size, dtype=float) / 2
+    elif g.kind == "sphere":
+        h = np.full(3, float(g.radius))
+    elif g.kind == "cylinder":
+        h = np.array([g.radius, g.radius, g.length / 2], dtype=float)
+    else:
+        v = np.asarray(vertices, dtype=float)
+        if len(v) < 4 or not np.isfinite(v).all():
+            return None
+        lo, hi = v.min(axis=0), v.max(axis=0)
+        if (hi - lo).min() <= 1e-9 * max((hi - lo).max(), 1e-300):
+            return None                  # flat along an axis: a decal, no volume
+        return (lo + hi) / 2, (hi - lo) / 2
+    return (np.zeros(3), h) if h.min() > 0 and np.isfinite(h).all() else None
+
+
+def _boxes_meet(np, A, B, margin: float) -> bool:
+    """Do two oriented boxes (centre, rotation, half extents) overlap by more than ``margin``: the
+    separating axis test over their 15 axes (face normals and edge cross products)."""
+    (ca, Ra, ha), (cb, Rb, hb) = A, B
+    axes = np.concatenate([Ra.T, Rb.T, np.cross(Ra.T[:, None, :], Rb.T[None, :, :]).reshape(9, 3)])
+    n = np.sqrt((axes * axes).sum(axis=1))
+    axes = axes[n > 1e-9] / n[n > 1e-9, None]
+    reach = np.abs(axes @ Ra) @ ha + np.abs(axes @ Rb) @ hb
+    return bool(np.all(np.abs(axes @ (cb - ca)) <= reach - margin))
+
+
+class Scene:
+    """The robot's collision shapes, made once (hulls are the costly part), placed at any
+    configuration by :meth:`overlaps`."""
+
+    def __init__(self, robot, meshes=True, exclusions=None):
+        """``meshes``: read mesh collisions (True), skip them (False), or a callable geometry ->
+        loaded mesh (check's per-run cache). ``exclusions``: an object with ``allows(a, b)``
+        (model/srdf.Srdf) or None."""
+        self.robot = robot
+        self.body_of = rigid_bodies(robot)
+        self.adjacent = adjacent_bodies(robot, self.body_of)
+        self.exclusions = exclusions
+        self.read = _mesh_reader(meshes)
+        self.skipped: list = []          # (link, why) of collision shapes left out
+        self._shapes: dict = {}          # id(collision) -> coal shape
+        self._local: dict = {}           # id(collision) -> bounding box in its own frame
+
+    def _placed(self, world):
+        """Every collision shape placed by ``world`` with its bounding box (no coal shape yet)."""
+        import numpy as np
+
+        items = []
+        for link, it, T, v in placed_collisions(self.robot, world, self.read):
+            key = id(it)
+            if key not in self._local:
+                self._local[key] = _local_box(np, it.geometry, v)
+            box = self._local[key]
+            if box is None:
+                continue
+            c, h = box
+            items.append(_Item(link.name, self.body_of.get(link.name, link.name), it, None, T,
+                               T[:3, :3] @ c + T[:3, 3], float(np.linalg.norm(h)), v, h))
+        return items
+
+    def _shape(self, coal, np, item):
+        key = id(item.collision)
+        if key not in self._shapes:
+            s = _coal_shape(coal, np, item.collision.geometry, item.mesh)
+            self._shapes[key] = s
+            if s is None:
+                self.skipped.append((item.link, f"{describe(item.collision.geometry)}: no volume to collide"))
+        return self._shapes[key]
+
+    def overlaps(self, q: dict | None = None, world=None, min_depth: float = TOUCH) -> list[Overlap]:
+        """Every overlap deeper than ``min_depth`` at configuration ``q`` (joints not named at 0;
+        or the link poses ``world``), deepest first; one per pair of shapes. Only shapes whose
+        bounding spheres meet are given to coal (a hull is made the first time a shape is)."""
+        import numpy as np
+
+        world = world if world is not None else world_transforms(self.robot, q)
+        items = self._placed(world)
+        if len(items) < 2:
+            return []
+        C = np.array([i.centre for i in items])
+        R = np.array([i.radius for i in items])
+        D = np.linalg.norm(C[:, None, :] - C[None, :, :], axis=2)
+        near = [(a, b) for a, b in np.argwhere(np.triu(D < R[:, None] + R[None, :] - min_depth, 1))
+                if items[a].body != items[b].body and frozenset((items[a].body, items[b].body)) not in self.adjacent
+                and _boxes_meet(np, (items[a].centre, items[a].T[:3, :3], items[a].half),
+                                (items[b].centre, items[b].T[:3, :3], items[b].half), min_depth)]
+        if not near:
+            return []
+        import coal                      # only when two bounding boxes overlap: a clean robot never pays for it
+
+        req = coal.CollisionRequest()
+        req.enable_contact = True
+        req.num_max_contacts = 1
+        out = []
+        for a, b in near:
+            ia, ib = items[a], items[b]
+            sa, sb = self._shape(coal, np, ia), self._shape(coal, np, ib)
+            if sa is None or sb is None:
+                continue
+            res = coal.CollisionResult()
+            if not coal.collide(sa, _tf(coal, ia.T), sb, _tf(coal, ib.T), req, res):
+                continue
+            c = res.getContact(0)
+            depth = abs(float(c.penetration_depth))
+            if depth <= min_depth:
+                continue
+            hull_only = False
+            if ia.mesh is not None or ib.mesh is not None:
+                hull_only = not self._triangles_touch(coal, np, ia._replace(shape=sa), ib._replace(shape=sb))
+            allowed = self.exclusions.allows(ia.link, ib.link) if self.exclusions is not None else None
+            if allowed is None and self.exclusions is not None and (ia.body, ib.body) != (ia.link, ib.link):
+                allowed = self.exclusions.allows(ia.body, ib.body)
+            out.append(Overlap(ia.link, ib.link, ia.body, ib.body, depth, tuple(float(x) for x in c.pos),
+                               ia.collision.loc, ib.collision.loc, describe(ia.collision.geometry),
+                               describe(ib.collision.geometry), hull_only, allowed))
+        out.sort(key=lambda o: (-round(o.depth, 7), o.link_a, o.link_b))
+        return out
+
+    def _triangles_touch(self, coal, np, ia, ib) -> bool:
+        """Do the shapes themselves touch: a mesh's triangles against the other (a primitive is
+        solid; two meshes: triangle against triangle). Only a mesh's triangles that reach into the
+        other shape's bounding box are tested. True when a mesh's triangles cannot be read."""
+        objs = []
+        for it, other in ((ia, ib), (ib, ia)):
+            if it.mesh is None:
+                objs.append((it.shape, _tf(coal, it.T)))
+                continue
+            tri = _triangles(it.collision.geometry)
+            if tri is None:
+                return True
+            v, f, lo_t, hi_t = tri
+            # the other's bounding box, as an axis-aligned box in this mesh's frame
+            R, p = it.T[:3, :3], it.T[:3, 3]
+            Ro = other.T[:3, :3]
+            c = R.T @ (other.centre - p)
+            h = np.abs(R.T @ Ro) @ other.half
+            keep = np.all((lo_t <= c + h) & (hi_t >= c - h), axis=1)
+            if not keep.any():
+                return False
+            sub = f[keep]
+            used, inverse = np.unique(sub, return_inverse=True)
+            bvh = coal.BVHModelOBBRSS()
+            bvh.beginModel(len(sub), len(used))
+            bvh.addVertices(np.ascontiguousarray(v[used]))
+            bvh.addTriangles(np.ascontiguousarray(inverse.reshape(-1, 3), dtype=np.int64))
+            bvh.endModel()
+            objs.append((bvh, _tf(coal, it.T)))
+        if ia.mesh is None:              # coal wants the BVH first
+            objs.reverse()
+        req = coal.CollisionRequest()
+        req.num_max_contacts = 1
+        res = coal.CollisionResult()
+        return bool(coal.collide(objs[0][0], objs[0][1], objs[1][0], objs[1][1], req, res))
+
+
+_TRIANGLES: dict = {}        # mesh key -> (vertices, faces, triangle box lows, highs): robots of a run share meshes
+_MAX_TRIANGLES = 2_000_000   # triangles kept across robots
+
+
+def _triangles(g):
+    """(vertices, faces, each triangle's box low and high corners) of a mesh file with the URDF
+    scale applied, in its own frame; None when unreadable."""
+    import numpy as np
+
+    key = _mesh_key(g)
+    if key is None:
+        return None
+    got = _TRIANGLES.get(key)
+    if got is None:
+        try:
+            v, f = meshio.triangles(g.path)
+        except Exception:        # MeshError, or a reader's own failure: the hull verdict stands
+            return None
+        v = np.asarray(v, dtype=float) * np.asarray(g.scale, dtype=float)
+        f = np.asarray(f, dtype=np.int64)
+        corners = v[f]
+        got = (v, f, corners.min(axis=1), corners.max(axis=1))
+        while _TRIANGLES and sum(len(x[1]) for x in _TRIANGLES.values()) + len(got[1]) > _MAX_TRIANGLES:
+            _TRIANGLES.pop(next(iter(_TRIANGLES)))
+        _TRIANGLES[key] = got
+    return got
+
+
+def _tf(coal, T):
+    return coal.Transform3s(T[:3, :3], T[:3, 3])
+
+
+def self_collisions(robot, q: dict | None = None, meshes=True, exclusions=None,
+                    min_depth: float = TOUCH) -> list[Overlap]:
+    """The overlaps of ``robot`` at ``q`` (``Robot.rest_pose`` when None): :class:`Scene` once."""
+    return Scene(robot, meshes, exclusions).overlaps(robot.rest_pose() if q is None else q, min_depth=min_depth)

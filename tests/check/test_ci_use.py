@@ -487,6 +487,33 @@ def test_action_check_step_runs_as_written(tmp_path):
     assert len(doc["runs"][0]["artifacts"]) >= 3
 
 
+def test_action_fix_step_writes_a_patch_that_applies(tmp_path):
+    """The Action's Suggested fixes step on a copy of wander_bot: a patch that `git apply` takes, the
+    same diff in the job summary, the work tree untouched; applied, the fixed codes are gone."""
+    import yaml
+
+    action = yaml.safe_load((ROOT / "action.yml").read_text())
+    step = next(s for s in action["runs"]["steps"] if s.get("id") == "fix")
+    shutil.copytree(ROOT / "tests/fixtures/wander_bot", tmp_path / "wander_bot")
+    before = (tmp_path / "wander_bot/urdf/robot.gazebo").read_bytes()
+    out, summary, temp = tmp_path / "gh_output", tmp_path / "summary.md", tmp_path / "runner"
+    temp.mkdir()
+    env = {**os.environ, "MD_PATHS": "wander_bot/urdf/robot.xacro", "MD_ARGS": "", "MD_FIX": "safe",
+           "GITHUB_OUTPUT": str(out), "GITHUB_STEP_SUMMARY": str(summary), "RUNNER_TEMP": str(temp),
+           "PATH": f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}"}
+    p = subprocess.run(["bash", "-e", "-c", step["run"]], cwd=tmp_path, env=env, capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    patch = temp / "myrabot-desc-fix.patch"
+    assert out.read_text().strip() == f"fix-patch={patch}"
+    assert (tmp_path / "wander_bot/urdf/robot.gazebo").read_bytes() == before
+    text = patch.read_text()
+    assert "+      <wheelSeparation>0.3</wheelSeparation>" in text and text in summary.read_text()
+    subprocess.run(["git", "apply", "-p1", str(patch)], cwd=tmp_path, check=True)
+    res = CliRunner().invoke(main, ["check", "--format", "json", str(tmp_path / "wander_bot/urdf/robot.xacro")])
+    codes = {d["code"] for f in json.loads(res.output)["files"] for d in f["diagnostics"]}
+    assert not codes & {"G001", "G002", "G007", "T006"}, codes
+
+
 def test_pre_commit_hooks_are_valid():
     import yaml
 

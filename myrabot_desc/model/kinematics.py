@@ -139,19 +139,11 @@ def world_transforms(robot: Robot, q: dict[str, float] | None = None, root_pose:
     return _world_transforms(robot, q, root_pose)
 
 
-def _world_transforms(robot: Robot, q, root_pose, frozen: bool = False) -> dict[str, np.ndarray]:
-    import numpy as np
-
-    q = dict(q or {})
-    for j in robot.joints.values():
-        if j.mimic and j.mimic.joint in q and j.name not in q:
-            q[j.name] = q[j.mimic.joint] * j.mimic.multiplier + j.mimic.offset
-    children = robot.joints_by_parent()
-    base = np.eye(4) if root_pose is None else root_pose
-    if frozen:
-        base.flags.writeable = False
+def _walk(robot: Robot, children) -> tuple[list[str], dict]:
+    """(links in walk order from the roots, link -> the joint that placed it (None: a root)); a
+    link reached twice (a cycle, a second parent) keeps its first placement."""
     order: list[str] = []
-    via: dict[str, Joint | None] = {}          # link -> the joint that placed it (None: a root)
+    via: dict[str, Joint | None] = {}
     for root in robot.roots or list(robot.links)[:1]:
         stack: list[tuple[str, Joint | None]] = [(root, None)]
         while stack:
@@ -163,6 +155,21 @@ def _world_transforms(robot: Robot, q, root_pose, frozen: bool = False) -> dict[
             for c in children.get(link, []):
                 if c.child not in via:
                     stack.append((c.child, c))
+    return order, via
+
+
+def _world_transforms(robot: Robot, q, root_pose, frozen: bool = False) -> dict[str, np.ndarray]:
+    import numpy as np
+
+    q = dict(q or {})
+    for j in robot.joints.values():
+        if j.mimic and j.mimic.joint in q and j.name not in q:
+            q[j.name] = q[j.mimic.joint] * j.mimic.multiplier + j.mimic.offset
+    children = robot.joints_by_parent()
+    base = np.eye(4) if root_pose is None else root_pose
+    if frozen:
+        base.flags.writeable = False
+    order, via = _walk(robot, children)
     out: dict[str, np.ndarray] = {}
     level = [link for link in order if via[link] is None]
     for link in level:
@@ -232,19 +239,7 @@ def centers_of_mass(robot: Robot, q: dict) -> tuple[float, np.ndarray]:
         if j.mimic and j.mimic.joint in q and j.name not in q:
             q[j.name] = q[j.mimic.joint] * j.mimic.multiplier + j.mimic.offset
     children = robot.joints_by_parent()
-    order: list[str] = []
-    via: dict[str, Joint | None] = {}
-    for root in robot.roots or list(robot.links)[:1]:
-        stack: list[tuple[str, Joint | None]] = [(root, None)]
-        while stack:
-            link, j = stack.pop()
-            if link in via:
-                continue
-            via[link] = j
-            order.append(link)
-            for c in children.get(link, []):
-                if c.child not in via:
-                    stack.append((c.child, c))
+    order, via = _walk(robot, children)
     eye = np.broadcast_to(np.eye(4), (n, 4, 4))
     out: dict[str, np.ndarray] = {link: eye for link in order if via[link] is None}
     level = list(out)

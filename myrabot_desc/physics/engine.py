@@ -17,9 +17,9 @@ from __future__ import annotations
 
 import contextlib
 import math
-import os
 import re
 
+from myrabot_desc.convert.mjcf import compile as compile_mjcf
 from myrabot_desc.convert.mjcf import convert_mjcf
 from myrabot_desc.errors import InputError
 from myrabot_desc.model import drive as D
@@ -38,13 +38,7 @@ _GEOM_NAME = re.compile(r"^(?P<link>.*)_collision(?:_(?P<k>\d+))?(?:_\d+)?$")
 
 
 def import_mujoco():
-    """mujoco, without the GLFW probe (no window is ever opened here)."""
-    os.environ.setdefault("MUJOCO_GL", "disable")
-    try:
-        import mujoco
-    except ImportError:
-        raise InputError("sim --engine mujoco, settle and sweep need the mujoco package: pip install mujoco") from None
-    return mujoco
+    return compile_mjcf.import_mujoco("sim --engine mujoco, settle and sweep")
 
 
 @contextlib.contextmanager

@@ -15,7 +15,8 @@ import re
 from myrabot_desc.errors import InputError
 
 
-def import_mujoco():
+def import_mujoco(what: str = "MJCF"):
+    """mujoco, without the GLFW probe; ``what`` needs it (for the one-line error when it is missing)."""
     import os
 
     # We never render: without this, `import mujoco` loads pyGLFW, which spawns a Python
@@ -24,7 +25,7 @@ def import_mujoco():
     try:
         import mujoco
     except ImportError:
-        raise InputError("MJCF needs the mujoco package: pip install mujoco") from None
+        raise InputError(f"{what} needs the mujoco package: pip install 'myrabot-desc[mjcf]'") from None
     return mujoco
 
 

@@ -22,7 +22,7 @@ from myrabot_desc.errors import InputError
 from myrabot_desc.output import write_output
 
 SCHEMA = "myrabot-desc/baseline/1"
-SUBJECT_KEYS = ("link", "joint", "plugin", "param", "sensor", "frame", "attribute", "element", "reference")
+SUBJECT_KEYS = ("link", "links", "joint", "plugin", "param", "sensor", "frame", "attribute", "element", "reference")
 _LINE_REF = re.compile(r"(\.(?:xacro|urdf|xml|yaml|yml|gazebo|sdf|launch|dae|stl|obj)):\d+(?::\d+)?")
 _LINE_WORD = re.compile(r"\b(line)s? \d+(?:[-–]\d+)?")
 

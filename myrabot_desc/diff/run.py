@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import os
 import pickle
+import re
 import shutil
 import tempfile
 import threading
@@ -24,6 +25,7 @@ from typing import NamedTuple
 from myrabot_desc.checks import CheckOptions, check_robot
 from myrabot_desc.checks.baseline import finding_key
 from myrabot_desc.diff.attribution import changed_lines, refine
+from myrabot_desc.diagnostics import Diagnostic
 from myrabot_desc.diff.compare import STRUCTURAL, Item, compare
 from myrabot_desc.errors import InputError, UsageProblem
 from myrabot_desc.expand.driver import build_file
@@ -187,25 +189,30 @@ def _findings(robot, select, ignore) -> list:
     return diags
 
 
-def diff_findings(old_diags, new_diags, shown_old, shown_new) -> tuple[dict, list]:
-    """Findings that appear, disappear, or keep their subject with another message."""
-    def bag(diags):
+def diff_findings(old_diags, new_diags, shown_old, shown_new, trees=(None, None)) -> tuple[dict, list]:
+    """Findings that appear, disappear, or keep their subject with another message (a file named in
+    a message is compared as the user reads it, not by the folder a revision was exported to)."""
+    def bag(diags, tree):
+        prefix = str(tree.dir) + os.sep if tree is not None and tree.dir is not None else None
         out: dict = {}
         for d in diags:
+            if prefix and prefix in d.message:
+                d = Diagnostic(d.code, d.severity, d.message.replace(prefix, _top(tree)), d.loc, d.data)
             out.setdefault(finding_key(d, with_message=False), []).append(d)
         return out
 
-    a, b = bag(old_diags), bag(new_diags)
+    a, b = bag(old_diags, trees[0]), bag(new_diags, trees[1])
     data: dict = {}
     items = []
     for k in sorted(set(a) | set(b), key=str):
         xs, ys = a.get(k, []), b.get(k, [])
-        mx = sorted(x.message for x in xs)
-        my = sorted(y.message for y in ys)
+        # a message that differs only in a file:line it names (a refactor moved that place) is the same
+        mx = sorted(_place_free(x.message) for x in xs)
+        my = sorted(_place_free(y.message) for y in ys)
         if mx == my:
             continue
-        gone = [x for x in xs if x.message not in my]
-        came = [y for y in ys if y.message not in mx]
+        gone = [x for x in xs if _place_free(x.message) not in my]
+        came = [y for y in ys if _place_free(y.message) not in mx]
         for x, y in zip(list(gone), list(came)):          # same subject, another message: changed
             data.setdefault("findings_changed", []).append(
                 {"code": y.code, "severity": y.severity, "old": x.message, "new": y.message, "where": _loc(y, shown_new)})
@@ -223,6 +230,20 @@ def diff_findings(old_diags, new_diags, shown_old, shown_new) -> tuple[dict, lis
             items.append(Item("finding", y.code, "appears", "", y.message, "appears",
                               STRUCTURAL if y.severity == "error" else 3.0, _loc(y, shown_new)))
     return data, items
+
+
+_PLACE = re.compile(r"[^\s()]+\.(?:xacro|urdf|xml|yaml|yml|gazebo|sdf|launch|dae|stl|obj):\d+(?::\d+)?")
+
+
+def _place_free(message: str) -> str:
+    """A finding's message with the file:line places it names made alike."""
+    return _PLACE.sub("FILE:N", message)
+
+
+def _top(tree) -> str:
+    """The work-tree folder a revision's files are read as ('' for the current folder)."""
+    top = display(tree.top)
+    return "" if top in ("", ".") else top.rstrip(os.sep) + os.sep
 
 
 def _loc(d, shown) -> str | None:
@@ -272,7 +293,7 @@ def diff_models(old_path, new_path, build: dict, old_tree=None, new_tree=None, c
     shown_old, shown_new = _shower(old_tree), _shower(new_tree)
     if checks:
         fdata, fitems = diff_findings(_findings(old, select, ignore), _findings(new, select, ignore),
-                                      shown_old, shown_new)
+                                      shown_old, shown_new, (old_tree, new_tree))
         data.update(fdata)
         items += fitems
         items.sort(key=lambda it: -it.size)

@@ -461,13 +461,15 @@ class Session:
                                    + ("m" if rng.type == "prismatic" else "rad"))
                 s.on_update(self._slider_cb(name))
                 self._sliders[name] = s
-            zero = gui.add_button("zero")
+            # the rest pose is the model's (every joint at 0, or at its nearer limit): the pose render,
+            # MJCF's home and convert's controllers start from
+            rest = gui.add_button("rest pose",
+                                  hint="every joint at 0, or at its nearer limit when 0 is outside its range")
             rand = gui.add_button("random")
 
-            @zero.on_click
+            @rest.on_click
             def _(_):
-                self.set_joints({n: (0.0 if rg.lower <= 0 <= rg.upper else rg.lower)
-                                 for n, rg in self.scene.joints.items()})
+                self.set_joints(self.scene.rest())
 
             @rand.on_click
             def _(_):

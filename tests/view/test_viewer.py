@@ -177,3 +177,17 @@ def test_wheels_as_the_plugin_believes_them_against_the_urdf():
         assert d.plugin.separation == pytest.approx(0.4) and d.urdf.separation == pytest.approx(0.3)
     finally:
         v.stop()
+
+
+def test_rest_pose_button_goes_to_the_model_rest_pose():
+    """A calf whose range excludes 0 (go1's, [-2.818, -0.888]) rests at its nearer limit, -0.888, as in
+    render, MJCF's home and convert's controllers, not at its lower limit."""
+    from myrabot_desc.model.loader import load_robot
+    from myrabot_desc.view.scene import build_scene
+
+    urdf = ERD / "go1_description/urdf/go1.urdf"
+    scene = build_scene(load_robot(urdf))
+    rest = scene.rest()
+    assert rest["FR_calf_joint"] == pytest.approx(-0.888, abs=1e-9)
+    assert rest["FR_hip_joint"] == 0.0
+    assert scene.pose(None) == rest

@@ -873,7 +873,7 @@ def _base(robot) -> Base | None:
     elif steering:
         front = {round(_axis_and_origin(robot, robot.joints[n], T)[1][0], 3) for n in steering}
         kind = "swerve" if len(front) > 1 else "ackermann"
-        why = "steering joints " + ", ".join(steering[:4]) + (", ..." if len(steering) > 4 else "")
+        why = "steered wheels on the URDF"
     elif declared is not None and declared.left and declared.right:
         kind, why = ("skid_steer" if declared.skid else "differential"), declared.label
     if kind is None:

@@ -108,3 +108,27 @@ def test_a_controller_yaml_outside_the_allowed_folders_is_not_read(tmp_path):
       <gazebo><plugin filename="gz_ros2_control-system" name="gz_ros2_control::GazeboSimROS2ControlPlugin">
       <parameters>{outside}</parameters></plugin></gazebo></robot>""")
     assert D.controllers(load_robot(str(f))) == []
+
+
+# check's errors on these bases, reviewed: real ones, not drive misreadings. CarlikeBot's virtual
+# (bicycle-model) links have visuals but no mass (a simulator drops or rejects them); Audibot writes
+# effort and velocity -1 on every joint (SDF's "no limit", but a URDF limit must be positive).
+ERRORS = {"carlikebot": ["I001", "I001", "P003"], "audibot": ["T011"] * 6}
+
+
+@pytest.mark.parametrize("rid", list(ROBOTS))
+def test_check_names_the_drive_and_raises_no_false_error(rid):
+    import json
+
+    from helpers import invoke
+
+    r = ROBOTS[rid]
+    res = invoke("check", *drive_args(r), "--format", "json")
+    assert res.exit_code in (0, 1), res.output[-2000:]
+    diags = json.loads(res.output)["files"][0]["diagnostics"]
+    assert sorted(d["code"] for d in diags if d["severity"] == "error") == ERRORS.get(rid, [])
+    kinds = [d["data"]["kind"] for d in diags if d["code"] == "G015"]
+    if r["drive_kind"] in ("differential", "skid_steer") and not kinds:
+        assert any(d["code"] == "G014" for d in diags)
+    else:
+        assert kinds == [r["drive_kind"]]

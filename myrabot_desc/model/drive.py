@@ -807,6 +807,12 @@ def _steering(robot, T, wheels: set, commanded_pos: set) -> list[str]:
     return out
 
 
+def joint_position(robot, name: str):
+    """Where a joint sits in the root frame at q = 0 (its origin), None when it hangs off no root."""
+    j = robot.joints.get(name)
+    return None if j is None else _axis_and_origin(robot, j, link_transforms(robot))[1]
+
+
 def _spread(values) -> float | None:
     vals = list(values)
     return max(vals) - min(vals) if len(vals) > 1 else None
@@ -823,7 +829,7 @@ def _limit(robot, names) -> float | None:
     return min(locks) if locks else None
 
 
-def _plugin_kind(p) -> str | None:
+def plugin_kind(p) -> str | None:
     lib = (p.library or "").lower() + " " + (p.name or "").lower().replace("::", "")
     if any(s in lib for s in PLANAR_LIBS):
         return "planar"
@@ -860,12 +866,12 @@ def _base(robot) -> Base | None:
         steering = []       # a declared drive whose wheels sit on the base: the vertical joints are casters
 
     ctrl = next(iter(controllers(robot)), None)
-    plugin = next((p for p in robot.plugins() if _plugin_kind(p)), None)
+    plugin = next((p for p in robot.plugins() if plugin_kind(p)), None)
     kind, why = None, None
     if ctrl is not None:
         kind, why = _controller_kind(ctrl.type), f"ros2_control {ctrl.type} ({ctrl.file.rsplit('/', 1)[-1]})"
     elif plugin is not None:
-        kind, why = _plugin_kind(plugin), f"plugin {plugin.library or plugin.name}"
+        kind, why = plugin_kind(plugin), f"plugin {plugin.library or plugin.name}"
         if kind == "planar" and len(spinning) >= 4 and not steering:
             # a body-velocity/force plugin over wheels that spin: the wheels are mecanum, the plugin
             # does what their rollers would (Ridgeback: "movement is handled by applying forces")

@@ -11,24 +11,12 @@ import math
 import shlex
 
 import pytest
-import yaml
-
-from helpers import CORPUS
+from helpers import CORPUS, drive_args, drive_robots
 from myrabot_desc.model import drive as D
 from myrabot_desc.model.loader import load_robot
 
 INDEX = CORPUS / "drives.yaml"
 pytestmark = pytest.mark.skipif(not INDEX.is_file(), reason="the real-robot corpus is not here")
-
-
-def drive_robots() -> list[dict]:
-    return yaml.safe_load(INDEX.read_text())["robots"] if INDEX.is_file() else []
-
-
-def drive_args(r: dict) -> list[str]:
-    """The CLI arguments of a drives.yaml base (its args split like a POSIX shell: one holds a space)."""
-    return [str(CORPUS / r["top"]), *shlex.split(r.get("args") or ""), "--package-path",
-            str(CORPUS / r.get("package_path", "."))]
 
 
 def load(r: dict):

@@ -182,6 +182,10 @@ def test_check_convert_and_sim_see_the_same_drive(tmp_path, robot):
            if e.get("filename") == "gz-sim-joint-position-controller-system"}
     assert not pos & (set(d.joints) | set(D.velocity_joints(model)[0]))
 
+    if base.kind not in ("differential", "skid_steer"):
+        r = invoke("sim", "drive", "--json", "--twist", "0.2,0.1,0.5,1", *args)   # the kind's own model
+        assert json.loads(r.stdout)["info"]["drive kind"] == base.kind
+        return
     # sim drive: the same wheels (each side's first wheel stands for the side) move the robot
     csv = tmp_path / "drive.csv"
     r = invoke("sim", "drive", "--json", "--wheels", "urdf", "--twist", "0.2,0.5,1", "--csv", csv, *args)

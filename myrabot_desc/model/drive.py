@@ -484,9 +484,10 @@ def wheel_joints(robot) -> list[str]:
 
 
 def is_mobile(robot) -> bool:
-    """A wheeled base: it declares a drive or has wheels (``wheel_joints``). check's P rules, the
-    MJCF writer's free base and the viewer ask this one question."""
-    return bool(wheel_joints(robot))
+    """A wheeled base: it declares a drive or has wheels (``wheel_joints``), or ``base`` knows how it
+    moves (steered modules on revolute joints, a planar plugin over fixed wheels). check's P rules,
+    the MJCF writer's free base and the viewer ask this one question."""
+    return bool(wheel_joints(robot)) or base(robot) is not None
 
 
 # ------------------------------------------------------------------ geometry (pure Python)
@@ -634,6 +635,7 @@ def turn_sign(drive: Drive) -> float:
 #     ros2_control commands in position next to velocity wheels (a bicycle model's virtual joints).
 #     Steering on one axle is Ackermann, on two or more (front and rear) swerve.
 KINDS = ("differential", "skid_steer", "mecanum", "omni", "ackermann", "swerve", "planar")
+BODY_MOVED = ("mecanum", "omni", "planar")      # simulated as a body moved in the plane (rollers not modelled)
 VERTICAL = 0.9          # |z| of a joint axis (root frame) for "steers about a vertical axis"
 FULL_TURN = 2 * math.pi - 1e-6    # a revolute range this wide is unlimited (MPO-700: ±1e16)
 
@@ -884,6 +886,10 @@ def _base(robot) -> Base | None:
         kind, why = ("skid_steer" if declared.skid else "differential"), declared.label
     if kind is None:
         g = guess_drive(robot)
+        if g is None:       # wheels recognised by shape alone (a cylinder about a level axle), sided by place
+            left, right = _sided(robot, [n for n in wheel_joints(robot) if robot.joints[n].type == "continuous"], T)
+            g = Drive("guess", "continuous joints shaped like wheels", left, right, loc=robot.loc) \
+                if left and right else None
         if g is None:
             return None
         kind, why, declared = ("skid_steer" if g.skid else "differential"), g.label, g

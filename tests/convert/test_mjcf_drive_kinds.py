@@ -91,3 +91,17 @@ def test_a_swerve_base_is_free_not_welded(tmp_path):
     out = _mjcf(drive_args(ROBOTS["mpo_700"]), tmp_path)
     m = mujoco.MjModel.from_xml_path(str(out))
     assert (m.jnt_type == mujoco.mjtJoint.mjJNT_FREE).any()
+
+
+def test_an_ackermann_car_with_effort_minus_one_converts_without_a_force_cap(tmp_path):
+    """Audibot writes effort and velocity -1 (SDF's "no limit") on every joint: MuJoCo refused the
+    actuators' reversed ranges; now no force or speed limit, and the wheels are velocity-driven."""
+    out = _mjcf(drive_args(ROBOTS["audibot"]), tmp_path)
+    m = mujoco.MjModel.from_xml_path(str(out))
+    for name in ("wheel_rl_joint", "wheel_rr_joint"):
+        a = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_ACTUATOR, name)
+        assert a >= 0 and m.actuator_biasprm[a][2] < 0 and not m.actuator_forcelimited[a]
+        assert not m.jnt_actfrclimited[mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_JOINT, name)]
+    for name in ("steer_fl_joint", "steer_fr_joint"):           # steering in position
+        a = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_ACTUATOR, name)
+        assert a >= 0 and m.actuator_biasprm[a][1] < 0

@@ -57,7 +57,7 @@ def gravity_compensate(mujoco, spec, model, data, robot, commands, notes, report
     for name, cmd in commands.items():
         jid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, name)
         j = robot.joints[name]
-        effort = j.limit.effort if j.limit is not None and j.limit.effort else None
+        effort = j.limit.effort if j.limit is not None and j.limit.effort and j.limit.effort > 0 else None
         if jid < 0 or cmd.kind != "position" or not effort:
             continue
         need = abs(float(data.qfrc_bias[model.jnt_dofadr[jid]]))
@@ -109,13 +109,14 @@ def add_actuators(mujoco, spec, model, data, robot, commands, report, qpos) -> t
             continue
         dof = model.jnt_dofadr[jid]
         inertia = max(float(diag[dof]), 1e-9)
-        effort = j.limit.effort if j.limit is not None and j.limit.effort else None
+        # a negative limit is SDF's "no limit" (Audibot writes effort and velocity -1): none, like 0
+        effort = j.limit.effort if j.limit is not None and j.limit.effort and j.limit.effort > 0 else None
         act = spec.add_actuator(name=name, target=name, trntype=mujoco.mjtTrn.mjTRN_JOINT)
         if effort:
             act.forcelimited = mujoco.mjtLimited.mjLIMITED_TRUE
             act.forcerange = [-effort, effort]
         if cmd.kind == "velocity":
-            vel = j.limit.velocity if j.limit is not None and j.limit.velocity else None
+            vel = j.limit.velocity if j.limit is not None and j.limit.velocity and j.limit.velocity > 0 else None
             rolling = _rolling_kv(robot, j, inertia, dt, wheel_share)
             kv = float(f"{max(effort / (WHEEL_CLAMP_AT * vel), ROLLING_CLAMPED * rolling) if effort and vel else rolling:.4g}")
             act.set_to_velocity(kv=kv)

@@ -226,7 +226,8 @@ class _Builder:
                     self.notes.warn(f"joint '{j.name}' has {'equal' if lim.lower == lim.upper else 'reversed'} "
                                     f"lower and upper limits ({num(lim.lower)}, {num(lim.upper)}): left unlimited",
                                     j.loc)
-            effort = abs(lim.effort) if lim.effort else 0.0
+            # a negative effort is SDF's "no limit" (Audibot's -1), not a 1 N·m cap
+            effort = lim.effort if lim.effort and lim.effort > 0 else 0.0
             if effort > 0:
                 js.actfrcrange = [-effort, effort]
         spring = self.springs.get(j.name)

@@ -78,3 +78,10 @@ def test_a_sideways_twist_for_a_differential_base_is_one_error_line():
     assert res.exit_code == 2
     lines = [x for x in res.output.splitlines() if x.strip()]
     assert len(lines) == 1 and ": error: " in lines[0] and "sideways" in lines[0]
+
+
+def test_the_mujoco_engine_refuses_a_base_it_would_drive_as_a_diff_drive():
+    res = invoke("sim", "drive", "--engine", "mujoco", *drive_args(ROBOTS["rosbot_xl_mecanum"]))
+    assert res.exit_code == 2
+    lines = [x for x in res.output.splitlines() if x.strip()]
+    assert len(lines) == 1 and ": error: " in lines[0] and "mecanum base" in lines[0]

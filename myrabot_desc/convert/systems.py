@@ -354,9 +354,22 @@ class Systems:
             if g.separation and g.radius:
                 el = self._drive_element(list(d.left), list(d.right), g.separation, g.radius, "cmd_vel", "odom",
                                          "odom", r.root or "base_link", None, None, "")
+                b = self.base
+                ctrl = ""
+                if b is not None and b.controller is not None:
+                    ctrl = (f"; the robot's {b.controller.type} ({b.controller.file.rsplit('/', 1)[-1]}) turns with "
+                            + ", ".join(f"{k} {num(v)} m" for k, v in (("wheel_separation", b.ctrl_track),
+                                                                        ("wheel_radius", b.ctrl_radius)) if v is not None)
+                            + " after its multipliers")
+                    for what, said, got in (("wheel_separation", b.ctrl_track, g.separation),
+                                            ("wheel_radius", b.ctrl_radius, g.radius)):
+                        if said is not None and abs(said - got) > 5e-4:
+                            self.notes.warn(f"{b.controller.type}: {what} {num(said)} m (its YAML, multipliers "
+                                            f"applied) but the URDF's wheels give {num(got)} m; the DiffDrive uses "
+                                            "the URDF's", b.loc)
                 self.elements.append(("comment", f"{d.label} ({', '.join(d.left)} at +y; {', '.join(d.right)} at "
                                                  f"-y): a diff drive; wheel_separation and wheel_radius measured on "
-                                                 "the URDF (the ros_control diff_drive_controller's YAML is not read)"))
+                                                 "the URDF" + (ctrl or " (no controller YAML named by the URDF)")))
                 self.elements.append(("plugin", el))
                 self.drive_joints.update(d.joints)
         rest = [n for n in names if n not in self.drive_joints]

@@ -74,3 +74,16 @@ def test_mecanum_and_ackermann_numbers_are_the_urdfs(tmp_path):
     steered = {p.findtext("joint_name") for p in root.iter("plugin")
                if p.get("filename") == "gz-sim-joint-position-controller-system"}
     assert not steered & {"steer_fl_joint", "steer_fr_joint"}
+
+
+def test_a_skid_steer_diffdrive_says_what_its_controller_yaml_turns_with(tmp_path):
+    """rosbot_xl's diff_drive_controller turns with 0.248 x 1.3 = 0.3224 m: the report says so next to
+    the URDF's 0.248 m the DiffDrive uses."""
+    out = tmp_path / "r.sdf"
+    res = invoke("convert", *drive_args(ROBOTS["rosbot_xl_diff"]), "-o", out)
+    assert res.exit_code == 0
+    eff = ROBOTS["rosbot_xl_diff"]["dialects"]["ros2_control"]["effective"]["wheel_separation"]
+    assert f"wheel_separation {eff:g} m (its YAML, multipliers applied)" in res.output
+    dd = next(p for p in etree.parse(str(out)).getroot().iter("plugin")
+              if p.get("filename") == "gz-sim-diff-drive-system")
+    assert float(dd.findtext("wheel_separation")) == pytest.approx(ROBOTS["rosbot_xl_diff"]["measured"]["wheel_separation"])

@@ -105,3 +105,55 @@ def test_an_ackermann_car_with_effort_minus_one_converts_without_a_force_cap(tmp
     for name in ("steer_fl_joint", "steer_fr_joint"):           # steering in position
         a = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_ACTUATOR, name)
         assert a >= 0 and m.actuator_biasprm[a][1] < 0
+
+
+def test_a_swerve_base_moves_as_commanded_by_its_modules(tmp_path):
+    """MPO-700 (nothing declared; four steered casters on revolute joints): each module's steering
+    position actuator points it along the velocity of its steering axis and its wheel's velocity
+    actuator rolls at that speed / r (sign by the wheel's axis): the base follows the twist."""
+    from myrabot_desc.model import drive as D
+    from myrabot_desc.model.loader import load_robot
+
+    r = ROBOTS["mpo_700"]
+    out = _mjcf(drive_args(r), tmp_path)
+    robot = load_robot(str(drive_args(r)[0]), package_paths=[drive_args(r)[-1]])
+    b = D.base(robot)
+    kids = robot.joints_by_parent()
+    mods = []
+    for s in b.steering:
+        wj = next(c.name for c in kids[robot.joints[s].child] if c.name in b.wheels)
+        w = D.wheel(robot, wj)
+        mods.append((s, wj, D.joint_position(robot, s), w.radius, w.forward_sign))
+    cx = sum(p[0] for _, _, p, _, _ in mods) / len(mods)
+    cy = sum(p[1] for _, _, p, _, _ in mods) / len(mods)
+    for twist in ((0.3, 0.0, 0.0), (0.0, 0.3, 0.0), (0.2, 0.1, 0.3)):
+        m = mujoco.MjModel.from_xml_path(str(tmp_path / "scene.xml"))
+        d = mujoco.MjData(m)
+        mujoco.mj_resetDataKeyframe(m, d, m.key("home").id)
+        vx, vy, wz = twist
+        for s, wj, p, radius, sign in mods:
+            mvx, mvy = vx - wz * (p[1] - cy), vy + wz * (p[0] - cx)
+            d.ctrl[m.actuator(s).id] = math.atan2(mvy, mvx)
+            d.ctrl[m.actuator(wj).id] = math.hypot(mvx, mvy) / radius * sign
+        root = m.body(robot.root).id
+        free = next(j for j in range(m.njnt) if m.jnt_type[j] == mujoco.mjtJoint.mjJNT_FREE)
+        qa = m.jnt_qposadr[free]
+        n = int(round(3.0 / m.opt.timestep))
+
+        def yaw():
+            R = d.xmat[root].reshape(3, 3)
+            return math.atan2(R[1, 0], R[0, 0])
+
+        for i in range(n):
+            mujoco.mj_step(m, d)
+            if i == n // 2:
+                p0, y0 = d.qpos[qa:qa + 3].copy(), yaw()
+        p1, y1 = d.qpos[qa:qa + 3].copy(), yaw()
+        t = (n - n // 2 - 1) * m.opt.timestep
+        mid = (y0 + y1) / 2
+        dx, dy = p1[0] - p0[0], p1[1] - p0[1]
+        got = ((math.cos(mid) * dx + math.sin(mid) * dy) / t, (-math.sin(mid) * dx + math.cos(mid) * dy) / t,
+               math.remainder(y1 - y0, 2 * math.pi) / t)
+        for c, a in zip(twist, got):
+            assert a == pytest.approx(c, abs=0.15 * max(abs(x) for x in twist)), (twist, got)
+        assert abs(p1[2] - p0[2]) < 0.002          # rolling on the floor, not sinking or hopping

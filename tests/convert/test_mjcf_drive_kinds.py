@@ -157,3 +157,46 @@ def test_a_swerve_base_moves_as_commanded_by_its_modules(tmp_path):
         for c, a in zip(twist, got):
             assert a == pytest.approx(c, abs=0.15 * max(abs(x) for x in twist)), (twist, got)
         assert abs(p1[2] - p0[2]) < 0.002          # rolling on the floor, not sinking or hopping
+
+
+def test_an_ackermann_car_drives_as_commanded_by_its_steering_and_wheels(tmp_path):
+    """Audibot (1820 kg): each steering hinge points along its axis's velocity about the rear axle's
+    centre (the Ackermann law), each wheel rolls at its own path speed: straight and within the
+    steering lock, the car follows the twist (the rear axle centre, base_footprint, measured)."""
+    from myrabot_desc.model import drive as D
+    from myrabot_desc.model.loader import load_robot
+
+    r = ROBOTS["audibot"]
+    _mjcf(drive_args(r), tmp_path)
+    robot = load_robot(str(drive_args(r)[0]), package_paths=[drive_args(r)[-1]])
+    b = D.base(robot)
+    steered = {robot.joints[n].child for n in b.steering}
+    rx = sum(D.joint_position(robot, n)[0] for n in b.wheels if robot.joints[n].parent not in steered) / 2
+    for v, w in ((2.0, 0.0), (2.0, 0.45), (3.0, -0.5)):         # radii 4.4 m and 6 m: over the 3.88 m minimum
+        m = mujoco.MjModel.from_xml_path(str(tmp_path / "scene.xml"))
+        d = mujoco.MjData(m)
+        mujoco.mj_resetDataKeyframe(m, d, m.key("home").id)
+        for s in b.steering:
+            p = D.joint_position(robot, s)
+            d.ctrl[m.actuator(s).id] = math.atan2(w * (p[0] - rx), v - w * p[1])
+        for n in b.wheels:
+            wh, p = D.wheel(robot, n), D.joint_position(robot, n)
+            d.ctrl[m.actuator(n).id] = math.hypot(v - w * p[1], w * (p[0] - rx)) / wh.radius * wh.forward_sign
+        root = m.body(robot.root).id
+        free = next(j for j in range(m.njnt) if m.jnt_type[j] == mujoco.mjtJoint.mjJNT_FREE)
+        qa = m.jnt_qposadr[free]
+        n_steps = int(round(4.0 / m.opt.timestep))
+
+        def yaw():
+            R = d.xmat[root].reshape(3, 3)
+            return math.atan2(R[1, 0], R[0, 0])
+
+        for i in range(n_steps):
+            mujoco.mj_step(m, d)
+            if i == n_steps // 2:
+                p0, y0 = d.qpos[qa:qa + 3].copy(), yaw()
+        p1, y1 = d.qpos[qa:qa + 3].copy(), yaw()
+        t = (n_steps - n_steps // 2 - 1) * m.opt.timestep
+        assert math.hypot(p1[0] - p0[0], p1[1] - p0[1]) / t == pytest.approx(v, rel=0.15)
+        assert math.remainder(y1 - y0, 2 * math.pi) / t == pytest.approx(w, rel=0.15, abs=0.01)
+        assert abs(p1[2] - p0[2]) < 0.002

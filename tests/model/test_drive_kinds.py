@@ -120,3 +120,27 @@ def test_check_names_the_drive_and_raises_no_false_error(rid):
         assert any(d["code"] == "G014" for d in diags)
     else:
         assert kinds == [r["drive_kind"]]
+
+
+def test_wheels_recognised_by_name_make_a_wheeled_base_for_p002(tmp_path):
+    """Continuous *_wheel_joint joints on both sides, box-shaped, no drive declared: a wheeled base
+    (drive.base guesses a differential pair), so P002 judges its spawn height (it sank 0.3 m unseen)."""
+    import json
+
+    from helpers import invoke
+
+    wheel = ('<link name="{s}_wheel"><inertial><mass value="0.5"/><inertia ixx="0.001" iyy="0.001" izz="0.001" '
+             'ixy="0" ixz="0" iyz="0"/></inertial><collision><geometry><box size="0.1 0.02 0.1"/></geometry>'
+             '</collision></link><joint name="{s}_wheel_joint" type="continuous"><parent link="base_link"/>'
+             '<child link="{s}_wheel"/><origin xyz="0 {y} 0"/><axis xyz="0 1 0"/></joint>')
+    f = tmp_path / "sunk.urdf"
+    f.write_text('<robot name="sunk"><link name="base_footprint"/><joint name="base_joint" type="fixed">'
+                 '<parent link="base_footprint"/><child link="base_link"/><origin xyz="0 0 -0.25"/></joint>'
+                 '<link name="base_link"><inertial><mass value="5"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" '
+                 'ixz="0" iyz="0"/></inertial><collision><geometry><box size="0.4 0.3 0.1"/></geometry></collision>'
+                 '</link>' + wheel.format(s="left", y=0.17) + wheel.format(s="right", y=-0.17) + "</robot>")
+    robot = load_robot(str(f))
+    assert D.base(robot).kind == "differential" and D.is_mobile(robot)
+    diags = json.loads(invoke("check", f, "--format", "json").output)["files"][0]["diagnostics"]
+    p002 = [d for d in diags if d["code"] == "P002"]
+    assert p002 and p002[0]["data"]["min_z"] == pytest.approx(-0.3)

@@ -45,6 +45,22 @@ def corpus_robots() -> list[dict]:
     return yaml.safe_load((CORPUS / "robots.yaml").read_text())["robots"]
 
 
+def drive_robots() -> list[dict]:
+    """The entries of tests/corpus/drives.yaml (real bases of every drive kind, issue 25), or []."""
+    import yaml
+
+    index = CORPUS / "drives.yaml"
+    return yaml.safe_load(index.read_text())["robots"] if index.is_file() else []
+
+
+def drive_args(robot: dict) -> list[str]:
+    """The CLI arguments of a drives.yaml base: its args split like a POSIX shell (one holds a space)."""
+    import shlex
+
+    return [str(CORPUS / robot["top"]), *shlex.split(robot.get("args") or ""), "--package-path",
+            str(corpus_package_path(robot))]
+
+
 def corpus_package_path(robot: dict) -> Path:
     return CORPUS / robot.get("package_path", ".")
 

@@ -285,6 +285,64 @@ def drive_summary(ctx):
                        "plugin_separation": d.separation, "plugin_radius": d.radius, "legacy": d.legacy})
 
 
+_PLANAR = """<gazebo>
+  <plugin name="object_controller" filename="libgazebo_ros_planar_move.so">
+    <commandTopic>cmd_vel</commandTopic>
+  </plugin>
+</gazebo>"""
+
+
+def _m(v) -> str:
+    return f"{v:.4g} m"
+
+
+@rule("G015", "drive-kind", "info",
+      bad=_PLANAR,
+      message="planar base (plugin libgazebo_ros_planar_move.so): the plugin moves the body as commanded "
+              "(an omni twist); no wheels turn",
+      good=None)
+def drive_kind(ctx):
+    """The kind of base the model declares when it is more than a left/right wheel drive (information).
+
+    model/drive.base(): mecanum or omni wheels, a planar body-velocity plugin, Ackermann or swerve
+    steering, or a drive whose ros2_control controller YAML (named by a plugin's `<parameters>`)
+    gives its numbers. One line: the kind and what says so, the joints that drive and steer it,
+    its wheelbase, track, wheel radius and steering lock on the URDF (the minimum turning radius
+    of an Ackermann base), and the controller's own numbers after its multipliers. `convert` and
+    `sim drive` move the robot as this kind.
+    """
+    r = ctx.robot
+    b = D.base(r)
+    if b is None or (b.kind in ("differential", "skid_steer") and b.controller is None):
+        return                 # G014 says it all
+    label = b.kind.replace("_", "-")
+    parts = []
+    if b.kind == "planar" and not b.steering:
+        parts.append("the plugin moves the body as commanded (an omni twist); no wheels turn")
+    else:
+        parts.append("wheels " + ", ".join(b.wheels))
+        if b.steering:
+            parts.append("steering " + ", ".join(b.steering))
+    nums = [f"{k} {_m(v)}" for k, v in (("wheelbase", b.wheelbase), ("track", b.track), ("wheel radius", b.radius))
+            if v is not None and b.kind != "planar"]
+    if b.steer_limit is not None:
+        nums.append(f"steering lock ±{b.steer_limit:.3g} rad")
+    if b.min_turn_radius is not None:
+        nums.append(f"minimum turning radius {_m(b.min_turn_radius)}")
+    if nums:
+        parts.append(", ".join(nums) + " on the URDF")
+    ctrl = [f"{k} {_m(v)}" for k, v in (("wheelbase", b.ctrl_wheelbase), ("track", b.ctrl_track),
+                                         ("wheel radius", b.ctrl_radius)) if v is not None]
+    if ctrl:
+        parts.append(f"the controller's {', '.join(ctrl)}")
+    yield Finding(f"{label} base ({b.why}): " + "; ".join(parts), b.loc,
+                  {"kind": b.kind, "why": b.why, "wheels": list(b.wheels), "steering": list(b.steering),
+                   "wheelbase": b.wheelbase, "track": b.track, "radius": b.radius, "steer_limit": b.steer_limit,
+                   "min_turn_radius": b.min_turn_radius, "controller": b.controller and b.controller.type,
+                   "controller_wheelbase": b.ctrl_wheelbase, "controller_track": b.ctrl_track,
+                   "controller_radius": b.ctrl_radius})
+
+
 @rule("G007", "plugin-unknown-parameter", "warning",
       bad=_drive(extra="<torque>5</torque>"),
       message="gazebo_ros_diff_drive (ROS 1) does not read <torque> (ROS 1 gazebo_ros_diff_drive reads wheelTorque)",

@@ -212,7 +212,8 @@ def vuelta_cmd(inputs, duration, rate, as_json, csv_path, plot_path, junit_path,
 @_outputs
 @functools.partial(_drive_options, names=True)
 @click.option("--twist", "twists", multiple=True, metavar="V,W,SECONDS",
-              help="A script segment: linear m/s, angular rad/s, seconds. Repeatable. "
+              help="A script segment: linear m/s, angular rad/s, seconds; or VX,VY,W,SECONDS with a sideways "
+                   "speed (mecanum, omni, planar and swerve bases). Repeatable. "
                    "Default: 0.2,0,5 then 0,0.5,4 then 0.2,0.4,5.")
 @click.option("--tolerance", type=click.FloatRange(min=0), default=None,
               help="Allowed relative error of the achieved speed and turn rate: against the command (builtin, "
@@ -234,7 +235,10 @@ def drive_cmd(inputs, duration, rate, as_json, csv_path, plot_path, junit_path, 
     wheelDiameter disagree with the URDF shows here: the Korean wander_bot
     (plugin 0.4/0.2, URDF 0.30/0.16) drives at 0.8x the speed and turns at
     0.8 x 0.4/0.30 = 1.067x; a ROS 1 plugin in legacy mode turns at -1x.
-    A skid-steer base drives as its equivalent diff drive.
+    A skid-steer base drives as its equivalent diff drive. A mecanum, omni,
+    planar, swerve or Ackermann base (model/drive.base) runs its kind's
+    kinematic model: an omni twist, steered modules, or a bicycle model that
+    turns no tighter than its minimum turning radius (the builtin engine).
 
     \b
     Examples:

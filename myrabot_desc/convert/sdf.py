@@ -491,11 +491,15 @@ def _report_sdf(robot, report, opts, host, world_links, frame_names, joint_names
                 "ros_control": ("translated", "gz-sim joint position controllers and the joint state publisher"),
                 "gz": ("kept", "a gz-sim system"),
             }.get(kind, ("dropped", "no gz-sim equivalent: kept as an XML comment"))
-            if kind in ("diff_drive", "skid_steer"):
+            if id(pl) in systems.replaced:
+                fate, detail = "translated", systems.replaced[id(pl)]
+            elif kind in ("diff_drive", "skid_steer"):
                 ok = bool(systems.drive_joints) and any(v in systems.drive_joints for v in pl.params.values())
                 fate, detail = (("translated", "gz-sim DiffDrive, separation and radius measured on the URDF")
                                 if ok else ("dropped", "wheel joints or geometry not found: kept as a comment"))
             report.set("plugin", pl.name or pl.library or "?", fate, detail, pl.loc)
+    if systems.drive_fate is not None:          # what the base's kind became (mecanum, planar, Ackermann, swerve)
+        report.set("drive", systems.base.kind, *systems.drive_fate, systems.base.loc)
     for sn in robot.sensors():
         fate, detail = sensor_fates.get(id(sn), ("dropped", "not converted"))
         report.set("sensor", sn.name or "?", fate, detail, sn.loc)

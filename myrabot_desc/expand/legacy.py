@@ -85,6 +85,18 @@ def include_filenames(root, els=None) -> list[str]:
     return _named(els if els is not None else elements(root), xacro_uri(root), "include", "filename")
 
 
+def _inside_macro(el, name: str, uri) -> bool:
+    """The element sits in the body of the macro ``name`` itself: as a call it would recurse
+    forever, so it is markup of the same name (rosbot_xl's macro ``imu`` writes an SDF ``<imu>``)."""
+    p = el.parentNode
+    while p is not None and getattr(p, "tagName", None) is not None:
+        if ((p.namespaceURI is None and p.tagName == "macro") or (is_xacro(p, uri) and p.localName == "macro")) \
+                and p.getAttribute("name") == name:
+            return True
+        p = p.parentNode
+    return False
+
+
 def upgrade(root, known_macros: set[str], line_of: dict, els=None):
     """Rename legacy elements in place (declaring the xacro namespace on the root when the file
     has none, as Electric-era files often do); return {kind: (count, first_line, macro names)}.
@@ -100,7 +112,7 @@ def upgrade(root, known_macros: set[str], line_of: dict, els=None):
         tag = el.tagName
         if is_legacy_tag(el):
             kind = f"<{tag}>"
-        elif tag in known_macros:
+        elif tag in known_macros and not _inside_macro(el, tag, uri):
             kind = "bare macro call"
         else:
             continue

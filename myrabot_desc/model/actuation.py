@@ -24,11 +24,19 @@ class Command(NamedTuple):
 
 def velocity_commanded(robot) -> list[str]:
     """Joints commanded in velocity, in the order they are declared: joints with a velocity
-    interface (ros_control, ros2_control) and the wheels of every declared drive."""
+    interface (ros_control, ros2_control), the wheels of every declared drive, and the base's wheels
+    that nothing else commands (model/drive.base)."""
     out, _ = D.velocity_joints(robot)
     out = [n for n in out if n in robot.joints]
     for d in D.find(robot):
         out += [j for j in d.joints if j in robot.joints and j not in out]
+    # wheels the base rolls on that nothing declares (recognised by name or shape): a wheel turns at a
+    # speed; a position servo would turn it to the commanded angle and stop it there
+    b = D.base(robot)
+    if b is not None:
+        declared = D.commanded_joints(robot)
+        out += [n for n in b.wheels if n in robot.joints and n not in out and n not in declared
+                and robot.joints[n].type in ("continuous", "revolute") and robot.joints[n].mimic is None]
     return out
 
 

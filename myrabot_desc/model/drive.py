@@ -1,7 +1,10 @@
 """How a robot drives: the one answer that check, convert, sim and the MJCF writer share.
 
 ``find(robot)`` lists every drive the model declares; ``measure(robot, drive)`` measures its
-wheels on the URDF (radius about the joint axis, separation along the axle). Both are pure
+wheels on the URDF (radius about the joint axis, separation along the axle). ``base(robot)`` says
+what kind of base it is (differential, skid_steer, mecanum, omni, ackermann, swerve, planar) with its
+wheelbase, track, wheel radius and steering lock, and the numbers its ros2_control controller
+(the YAML a plugin's ``<parameters>`` names) drives with: see "drive kinds" below. Both are pure
 Python (convert must not import numpy); a mesh wheel is read through model/meshes.
 
 Recognised declarations. Parameter names, defaults and units were read from the plugins'
@@ -44,9 +47,12 @@ import math
 from typing import NamedTuple
 
 from myrabot_desc.errors import InputError
+from myrabot_desc.expand.packages import resource_roots
+from myrabot_desc.expand.yaml_load import load_path
 from myrabot_desc.model import values as V
 from myrabot_desc.model.shapes import surface_points
 from myrabot_desc.model.transforms import IDENTITY, compose, pose_T, rotate
+from myrabot_desc.safety import display, limit
 
 ALIGNED = 0.99          # |cos| between a cylinder's axis and the joint axis for "a wheel drawn as a cylinder"
 LATERAL = 0.9           # |y| of a wheel axis (root frame) for "turns across the direction of travel"
@@ -478,9 +484,10 @@ def wheel_joints(robot) -> list[str]:
 
 
 def is_mobile(robot) -> bool:
-    """A wheeled base: it declares a drive or has wheels (``wheel_joints``). check's P rules, the
-    MJCF writer's free base and the viewer ask this one question."""
-    return bool(wheel_joints(robot))
+    """A wheeled base: it declares a drive or has wheels (``wheel_joints``), or ``base`` knows how it
+    moves (steered modules on revolute joints, a planar plugin over fixed wheels). check's P rules,
+    the MJCF writer's free base and the viewer ask this one question."""
+    return bool(wheel_joints(robot)) or base(robot) is not None
 
 
 # ------------------------------------------------------------------ geometry (pure Python)
@@ -614,3 +621,313 @@ def measure(robot, drive: Drive) -> Geometry:
 def turn_sign(drive: Drive) -> float:
     """−1 when the plugin swaps the wheels (ROS 1 legacyMode): it turns the other way."""
     return -1.0 if drive.legacy else 1.0
+
+
+# ------------------------------------------------------------------ drive kinds (issue 25)
+# What a base is, beyond "left and right wheels": each kind as real packages declare it.
+#   * ros2_control controllers named in the controller YAML a gz/gazebo ros2_control plugin's
+#     <parameters> names (the controller_manager's ``type:`` of each controller);
+#   * planar body-velocity plugins: Gazebo classic ``gazebo_ros_planar_move`` (ROS 1 and 2),
+#     gz-sim ``VelocityControl``, and body-force vendor plugins (Ridgeback's ``*force_based_move``);
+#     over wheels that spin such a plugin stands in for mecanum wheels (nothing models the rollers);
+#   * gz-sim ``MecanumDrive`` / ``AckermannSteering`` systems, classic ``gazebo_ros_ackermann_drive``;
+#   * steering by the URDF: a moving joint about a vertical axis that carries a wheel, or that
+#     ros2_control commands in position next to velocity wheels (a bicycle model's virtual joints).
+#     Steering on one axle is Ackermann, on two or more (front and rear) swerve.
+KINDS = ("differential", "skid_steer", "mecanum", "omni", "ackermann", "swerve", "planar")
+BODY_MOVED = ("mecanum", "omni", "planar")      # simulated as a body moved in the plane (rollers not modelled)
+VERTICAL = 0.9          # |z| of a joint axis (root frame) for "steers about a vertical axis"
+FULL_TURN = 2 * math.pi - 1e-6    # a revolute range this wide is unlimited (MPO-700: ±1e16)
+
+# controller type (ros2_control, lower case, as a substring) -> kind
+CONTROLLER_KINDS = (("mecanum", "mecanum"), ("omni", "omni"), ("swerve", "swerve"), ("ackermann", "ackermann"),
+                    ("bicycle", "ackermann"), ("tricycle", "ackermann"), ("diff_drive", "differential"))
+PLANAR_LIBS = ("planar_move", "force_based_move", "velocity-control", "velocity_control", "velocitycontrol")
+
+
+class Controller(NamedTuple):
+    """A drive controller read from the ros2_control YAML a plugin's ``<parameters>`` names."""
+
+    name: str
+    type: str
+    params: dict
+    file: str                         # the YAML as written in <parameters>
+
+
+class Base(NamedTuple):
+    """How the base moves: its kind, the joints that drive and steer it, its geometry on the URDF
+    (joint origins at q = 0 in the root frame; radius as ``wheel`` measures it) and the numbers the
+    declared controller drives with (after its multipliers), None where nothing gives one."""
+
+    kind: str
+    why: str                          # what says so, for messages
+    wheels: tuple[str, ...]           # driven (spinning) wheel joints
+    steering: tuple[str, ...] = ()
+    wheelbase: float | None = None    # front to rear axle (m); swerve: between the steering axes
+    track: float | None = None        # left to right (m): driven wheels; swerve: steering axes
+    radius: float | None = None
+    steer_limit: float | None = None  # rad each way; None when the steering turns freely
+    drive: Drive | None = None        # the find() drive it refines (wheels sided left/right)
+    plugin: object = None             # the plugin/system that declares the kind
+    controller: Controller | None = None
+    ctrl_wheelbase: float | None = None
+    ctrl_track: float | None = None
+    ctrl_radius: float | None = None
+    loc: object = None
+
+    @property
+    def holonomic(self) -> bool:
+        """Moves sideways as commanded (an omni twist): mecanum, omni, planar, swerve."""
+        return self.kind in ("mecanum", "omni", "planar", "swerve")
+
+    @property
+    def min_turn_radius(self) -> float | None:
+        """Ackermann: the rear axle's centre at full lock, wheelbase / tan(limit) (m)."""
+        if self.kind != "ackermann" or not self.wheelbase or not self.steer_limit:
+            return None
+        return self.wheelbase / math.tan(min(self.steer_limit, math.pi / 2 - 1e-6))
+
+
+def _controller_yaml(robot, text: str):
+    """The parsed YAML a ``<parameters>`` names, read through the one YAML loader and only from
+    the folders meshes may come from (the path gate); None when it names no such file."""
+    uri = text.strip()
+    if not uri or not uri.lower().endswith((".yaml", ".yml")):
+        return None
+    path = robot.resolve_uri(uri)
+    if path is None or not path.is_file():
+        return None
+    base = robot.source.parent if robot.source else path.parent
+    return load_path(path, limit("max_input_bytes"), resource_roots(base, robot.package_roots), display(path))
+
+
+def _ros_params(doc, name: str) -> dict | None:
+    """``name``'s ros__parameters in a ros2 parameters file (keys may carry a namespace: ``/**/name``)."""
+    if not isinstance(doc, dict):
+        return None
+    for key, val in doc.items():
+        if str(key).rsplit("/", 1)[-1] == name and isinstance(val, dict):
+            p = val.get("ros__parameters")
+            if isinstance(p, dict):
+                return p
+    return None
+
+
+def controllers(robot) -> list[Controller]:
+    """The drive controllers of every controller YAML the robot's plugins name in ``<parameters>``."""
+    def build():
+        out = []
+        for p in robot.plugins():
+            for text in p.values("parameters"):
+                doc = _controller_yaml(robot, text)
+                cm = _ros_params(doc, "controller_manager") or {}
+                for name, v in cm.items():
+                    ctype = v.get("type") if isinstance(v, dict) else None
+                    if isinstance(ctype, str) and _controller_kind(ctype):
+                        out.append(Controller(str(name), ctype, _ros_params(doc, str(name)) or {}, text.strip()))
+        return tuple(out)
+    return list(robot.derive("drive.controllers", build))
+
+
+def _controller_kind(ctype: str) -> str | None:
+    t = ctype.lower()
+    return next((k for s, k in CONTROLLER_KINDS if s in t), None)
+
+
+def _num(params: dict, *keys):
+    """The first of ``keys`` that is a finite number in a controller's parameters."""
+    for k in keys:
+        v = params.get(k)
+        if isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v):
+            return float(v)
+    return None
+
+
+def _times(v, m):
+    return None if v is None else v * (m if m is not None else 1.0)
+
+
+def controller_numbers(c: Controller) -> tuple[float | None, float | None, float | None]:
+    """(wheelbase, track, wheel radius) the controller turns with, its multipliers applied (the
+    parameter names of ros2_controllers' diff_drive / mecanum_drive / steering controllers)."""
+    p = c.params
+    kind = _controller_kind(c.type)
+    radius = _times(_num(p, "wheel_radius", "traction_wheel_radius", "front_wheel_radius", "rear_wheel_radius"),
+                    _num(p, "wheel_radius_multiplier", "left_wheel_radius_multiplier"))
+    if kind == "differential":
+        return None, _times(_num(p, "wheel_separation"), _num(p, "wheel_separation_multiplier")), radius
+    base = _times(_num(p, "wheel_separation_x", "wheelbase", "wheel_base"), _num(p, "wheel_separation_multiplier_x"))
+    track = _times(_num(p, "wheel_separation_y", "traction_track_width", "wheel_track", "track_width"),
+                   _num(p, "wheel_separation_multiplier_y"))
+    return base, track, radius
+
+
+def _axis_and_origin(robot, j, T):
+    if j.parent not in T:
+        return None, None
+    R, p = compose(T[j.parent], pose_T(j.origin))
+    return _unit(rotate(R, j.axis)), p
+
+
+def _free(j) -> bool:
+    lim = j.limit
+    return j.type == "continuous" or (lim is not None and lim.lower is not None and lim.upper is not None
+                                       and lim.upper - lim.lower >= FULL_TURN)
+
+
+def _spins(robot, j, T) -> bool:
+    """A joint that rolls a wheel: moving about a lateral axis, turning freely, and named like a
+    wheel or carrying a round shape about its axis (an arm's pitch joint is neither)."""
+    if j.type not in ("continuous", "revolute") or not _free(j):
+        return False
+    a, _ = _axis_and_origin(robot, j, T)
+    if a is None or abs(a[2]) > LEVEL:
+        return False
+    if "wheel" in j.name.lower() or "wheel" in j.child.lower():
+        return True
+    w = wheel(robot, j.name, T, read_meshes=False)
+    return w is not None and w.round
+
+
+def _steering(robot, T, wheels: set, commanded_pos: set) -> list[str]:
+    """Joints about a vertical axis that carry a wheel, or that ros2_control commands in position
+    beside velocity wheels (a virtual bicycle joint), and the joints that mimic those."""
+    children = robot.joints_by_parent()
+    out = []
+    for j in robot.joints.values():
+        if j.type not in ("continuous", "revolute") or j.mimic is not None:
+            continue
+        a, _ = _axis_and_origin(robot, j, T)
+        if a is None or abs(a[2]) < VERTICAL:
+            continue
+        carries = any(c.name in wheels for c in children.get(j.child, []))
+        if carries or (j.name in commanded_pos and wheels):
+            out.append(j.name)
+    for j in robot.joints.values():
+        if j.mimic is not None and j.mimic.joint in out and j.name not in out:
+            out.append(j.name)
+    return out
+
+
+def joint_position(robot, name: str):
+    """Where a joint sits in the root frame at q = 0 (its origin), None when it hangs off no root."""
+    j = robot.joints.get(name)
+    return None if j is None else _axis_and_origin(robot, j, link_transforms(robot))[1]
+
+
+def _spread(values) -> float | None:
+    vals = list(values)
+    return max(vals) - min(vals) if len(vals) > 1 else None
+
+
+def _limit(robot, names) -> float | None:
+    """The smallest steering lock (rad each way) of the joints; None when they turn freely."""
+    locks = []
+    for n in names:
+        j = robot.joints[n]
+        if _free(j) or j.limit is None or j.limit.lower is None or j.limit.upper is None:
+            continue
+        locks.append(min(abs(j.limit.lower), abs(j.limit.upper)))
+    return min(locks) if locks else None
+
+
+def plugin_kind(p) -> str | None:
+    lib = (p.library or "").lower() + " " + (p.name or "").lower().replace("::", "")
+    if any(s in lib for s in PLANAR_LIBS):
+        return "planar"
+    if "mecanum" in lib:
+        return "mecanum"
+    if "ackermann" in lib:
+        return "ackermann"
+    return None
+
+
+def base(robot) -> Base | None:
+    """How the robot's base moves (see the section comment), None for a robot that does not move
+    on wheels or a body-velocity plugin. Built once per robot."""
+    return robot.derive("drive.base", lambda: _base(robot))
+
+
+def _base(robot) -> Base | None:
+    T = link_transforms(robot)
+    declared = main_drive(robot)
+    pos = set(position_joints(robot))
+    vel, _ = velocity_joints(robot)
+    spinning = [j.name for j in robot.joints.values() if _spins(robot, j, T)]
+    spinning += [n for n in vel if n not in spinning and n in robot.joints and _spins(robot, robot.joints[n], T)]
+    for j in robot.joints.values():     # wheels that mimic a driven (virtual) wheel
+        if j.mimic is not None and j.mimic.joint in spinning and j.name not in spinning:
+            spinning.append(j.name)
+    steering = _steering(robot, T, set(spinning), pos)
+    on_modules = {c.name for n in steering for c in robot.joints_by_parent().get(robot.joints[n].child, [])}
+    on_base = [n for n in spinning if n not in on_modules and n not in steering]
+    if steering and on_base and \
+            any(w in n.lower() for n in steering for w in ("caster", "castor", "swivel")):
+        steering = []       # passive casters beside wheels on the base (PMB2, Pioneer 3-DX)
+    if declared is not None and declared.left and declared.right and not set(declared.joints) & on_modules:
+        steering = []       # a declared drive whose wheels sit on the base: the vertical joints are casters
+
+    ctrl = next(iter(controllers(robot)), None)
+    plugin = next((p for p in robot.plugins() if plugin_kind(p)), None)
+    kind, why = None, None
+    if ctrl is not None:
+        kind, why = _controller_kind(ctrl.type), f"ros2_control {ctrl.type} ({ctrl.file.rsplit('/', 1)[-1]})"
+    elif plugin is not None:
+        kind, why = plugin_kind(plugin), f"plugin {plugin.library or plugin.name}"
+        if kind == "planar" and len(spinning) >= 4 and not steering:
+            # a body-velocity/force plugin over wheels that spin: the wheels are mecanum, the plugin
+            # does what their rollers would (Ridgeback: "movement is handled by applying forces")
+            kind, why = "mecanum", why + " over spinning wheels"
+    elif steering:
+        front = {round(_axis_and_origin(robot, robot.joints[n], T)[1][0], 3) for n in steering}
+        kind = "swerve" if len(front) > 1 else "ackermann"
+        why = "steered wheels on the URDF"
+    elif declared is not None and declared.left and declared.right:
+        kind, why = ("skid_steer" if declared.skid else "differential"), declared.label
+    if kind is None:
+        g = guess_drive(robot)
+        if g is None:       # wheels recognised by shape alone (a cylinder about a level axle), sided by place
+            left, right = _sided(robot, [n for n in wheel_joints(robot) if robot.joints[n].type == "continuous"], T)
+            g = Drive("guess", "continuous joints shaped like wheels", left, right, loc=robot.loc) \
+                if left and right else None
+        if g is None:
+            return None
+        kind, why, declared = ("skid_steer" if g.skid else "differential"), g.label, g
+    if kind == "differential" and declared is not None and declared.skid:
+        kind = "skid_steer"
+
+    # the wheels that drive it: the declared drive's, else those that spin (planar: named like wheels)
+    if kind == "planar":
+        wheels = [j.name for j in robot.joints.values() if "wheel" in j.name.lower()
+                  and "caster" not in j.name.lower() and "castor" not in j.name.lower()]
+    elif declared is not None and declared.joints and kind in ("differential", "skid_steer", "mecanum", "omni"):
+        wheels = [n for n in declared.joints if n in robot.joints]
+    else:
+        wheels = [n for n in spinning if n not in steering]
+    wheels = tuple(wheels)
+    ws = [w for w in (wheel(robot, n, T) for n in wheels) if w is not None]
+    radii = [w.radius for w in ws if w.radius is not None and w.radius > 1e-6]
+    radius = sum(radii) / len(radii) if radii else None
+    sxy = [_axis_and_origin(robot, robot.joints[n], T)[1] for n in steering]
+    if kind == "swerve":
+        wheelbase = _spread(p[0] for p in sxy)
+        track = _spread(p[1] for p in sxy)
+    elif kind == "ackermann":
+        steered_links = {robot.joints[n].child for n in steering}
+        rear = [w for w in ws if robot.joints[w.joint].parent not in steered_links]
+        steer_x = sum(p[0] for p in sxy) / len(sxy) if sxy else None
+        rear_x = sum(w.origin[0] for w in rear) / len(rear) if rear else None
+        wheelbase = abs(steer_x - rear_x) if steer_x is not None and rear_x is not None else None
+        track = _spread(w.origin[1] for w in rear)
+    else:
+        wheelbase = _spread(w.origin[0] for w in ws)
+        sided = declared is not None and declared.left and declared.right and kind != "planar"
+        track = measure(robot, declared).separation if sided else _spread(w.origin[1] for w in ws)
+    cb, ct, cr = controller_numbers(ctrl) if ctrl is not None else (None, None, None)
+    src = plugin if plugin is not None and ctrl is None else (declared.plugin if declared is not None else None)
+    loc = (src.loc if src is not None else None) or (declared.loc if declared is not None else None) \
+        or (robot.joints[(wheels or tuple(steering))[0]].loc if (wheels or steering) else robot.loc)
+    return Base(kind, why, wheels, tuple(steering), wheelbase, track, radius,
+                _limit(robot, steering) if steering else None,
+                declared if kind in ("differential", "skid_steer", "mecanum", "omni") else None,
+                plugin, ctrl, cb, ct, cr, loc)

@@ -22,6 +22,7 @@ from __future__ import annotations
 import math
 import time
 
+from myrabot_desc.errors import InputError
 from myrabot_desc.model import drive as D
 from myrabot_desc.model.statics import effort_of
 from myrabot_desc.sim import drive as kinematic
@@ -42,6 +43,13 @@ def run(robot, *, script=kinematic.DEFAULT_SCRIPT, wheels="plugin", left=(), rig
     import numpy as np
 
     wall0 = time.perf_counter()
+    b = D.base(robot) if not left and not right else None
+    if b is not None and b.kind not in ("differential", "skid_steer"):
+        # its wheels are no differential pair: driving them as one would pass or fail for the wrong reason
+        raise InputError(f"{robot.name}: a {b.kind} base ({b.why}): `sim drive --engine mujoco` drives differential "
+                         "and skid-steer bases; the builtin engine runs its kinematic model, and `convert --to mjcf` "
+                         + ("gives it a planar base to drive in MuJoCo" if b.kind in D.BODY_MOVED
+                            else "gives its wheels and steering joints their actuators"), b.loc or robot.loc)
     drv = find_drive(robot, wheels, left, right)
     declared = D.main_drive(robot, tuple(left), tuple(right), guess=True)
     predicted = kinematic.run(robot, rate=1000.0, script=script, wheels=wheels, left=left, right=right,

@@ -13,10 +13,12 @@ from __future__ import annotations
 import math
 import time
 
+from myrabot_desc.errors import InputError
+from myrabot_desc.model import drive as D
 from myrabot_desc.model.kinematics import center_of_mass
 from myrabot_desc.model.pin_model import build_model
 from myrabot_desc.safety import sim_steps
-from myrabot_desc.sim import stability
+from myrabot_desc.sim import kinds, stability
 from myrabot_desc.sim.diffdrive import find_drive, integrate
 from myrabot_desc.sim.result import Check, Series, SimResult
 from myrabot_desc.sim.stability import footprint
@@ -24,21 +26,42 @@ from myrabot_desc.sim.stability import footprint
 DEFAULT_SCRIPT = ((0.2, 0.0, 5.0), (0.0, 0.5, 4.0), (0.2, 0.4, 5.0))
 
 
-def parse_twist(text: str) -> tuple[float, float, float]:
-    """'V,W,SECONDS' -> (v, w, seconds)."""
+def parse_twist(text: str) -> tuple:
+    """'V,W,SECONDS' -> (v, w, seconds); 'VX,VY,W,SECONDS' -> (vx, vy, w, seconds) (a sideways
+    speed, for bases that move sideways: mecanum, omni, planar, swerve)."""
     parts = [p for p in text.replace(" ", "").split(",") if p]
-    if len(parts) != 3:
-        raise ValueError(f"expected V,W,SECONDS (e.g. 0.2,0.4,5), got {text!r}")
-    v, w, s = (float(p) for p in parts)
-    if not (s > 0) or not all(math.isfinite(x) for x in (v, w, s)):
+    if len(parts) not in (3, 4):
+        raise ValueError(f"expected V,W,SECONDS or VX,VY,W,SECONDS (e.g. 0.2,0.4,5), got {text!r}")
+    nums = tuple(float(p) for p in parts)
+    if not (nums[-1] > 0) or not all(math.isfinite(x) for x in nums):
         raise ValueError(f"twist {text!r}: seconds must be > 0 and numbers finite")
-    return v, w, s
+    return nums
+
+
+def _planar_script(robot, script) -> tuple:
+    """The script as (v, w, seconds) for a base that cannot move sideways."""
+    out = []
+    for seg in script:
+        if len(seg) == 4:
+            if abs(seg[1]) > 1e-12:
+                raise InputError(f"{robot.name}: a sideways speed ({seg[1]:g} m/s) for a base that cannot move "
+                                 "sideways (a differential or skid-steer drive)", robot.loc)
+            seg = (seg[0], seg[2], seg[3])
+        out.append(seg)
+    return tuple(out)
 
 
 def run(robot, *, rate=1000.0, duration=None, script=DEFAULT_SCRIPT, wheels="plugin", left=(), right=(),
         wheel_speed_max=None, wheel_accel_max=None, tolerance=0.02, progress=None) -> SimResult:
     import numpy as np
 
+    if not left and not right:
+        b = D.base(robot)
+        if b is not None and b.kind not in ("differential", "skid_steer"):
+            # mecanum, omni, planar, swerve, Ackermann: the kind's own kinematic model (sim/kinds.py)
+            return kinds.run(robot, b, rate=rate, duration=duration, script=script, wheels=wheels,
+                             tolerance=tolerance, progress=progress)
+    script = _planar_script(robot, script)
     wall0 = time.perf_counter()
     drive = find_drive(robot, wheels, left, right)
     wheels = drive.wheels

@@ -69,6 +69,20 @@ def test_legacy_off_leaves_tags_and_reports_them_as_x002(tmp_path):
     assert '<link name="leg"/>' in on.text
 
 
+def test_a_tag_named_like_the_macro_it_sits_in_is_no_bare_call():
+    """rosbot_xl's xacro:macro ``imu`` writes an SDF ``<imu>``: as a legacy call it would recurse
+    (auto mode upgraded it and the build failed with xacro's "Unused block"); xacro copies it."""
+    from helpers import CORPUS
+
+    top = CORPUS / "rosbot_xl_description/urdf/rosbot_xl.urdf.xacro"
+    if not top.is_file():
+        pytest.skip("the real-robot corpus is not here")
+    res = build_file(top, {"use_sim": "true", "simulation_engine": "ignition-gazebo", "lidar_model": "None",
+                           "camera_model": "None"}, package_paths=[CORPUS])
+    assert not [d for d in res.diagnostics if d.code == "X001"]
+    assert "<imu>" in res.text and "<angular_velocity>" in res.text
+
+
 def test_seed_assembly_builds_and_reports_the_missing_sonars_with_lines():
     res = build_file(SEED / "myrabot_fer_modelo/urdf/myrabot.urdf.xacro", package_paths=[SEED])
     x002 = [d for d in res.errors if d.code == "X002"]

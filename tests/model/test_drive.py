@@ -167,16 +167,25 @@ def test_check_convert_and_sim_see_the_same_drive(tmp_path, robot):
     assert r.exit_code == 0, r.output
     root = etree.parse(str(out)).getroot()
     dd = root.findall("model/plugin[@filename='gz-sim-diff-drive-system']")
-    assert len(dd) == 1
-    assert tuple(e.text for e in dd[0].findall("left_joint")) == d.left
-    assert tuple(e.text for e in dd[0].findall("right_joint")) == d.right
-    assert float(dd[0].findtext("wheel_separation")) == pytest.approx(g.separation, abs=1e-8)
-    assert float(dd[0].findtext("wheel_radius")) == pytest.approx(g.radius, abs=1e-8)
+    base = D.base(model)
+    if base.kind in ("differential", "skid_steer"):
+        assert len(dd) == 1
+        assert tuple(e.text for e in dd[0].findall("left_joint")) == d.left
+        assert tuple(e.text for e in dd[0].findall("right_joint")) == d.right
+        assert float(dd[0].findtext("wheel_separation")) == pytest.approx(g.separation, abs=1e-8)
+        assert float(dd[0].findtext("wheel_radius")) == pytest.approx(g.radius, abs=1e-8)
+    else:
+        # TIAGo Pro: mecanum wheels with mu 0 under a planar-move plugin: the body is moved, no DiffDrive
+        assert dd == [] and root.findall("model/plugin[@filename='gz-sim-velocity-control-system']")
     # never a position controller on a wheel or any velocity joint
     pos = {e.findtext("joint_name") for e in root.findall("model/plugin")
            if e.get("filename") == "gz-sim-joint-position-controller-system"}
     assert not pos & (set(d.joints) | set(D.velocity_joints(model)[0]))
 
+    if base.kind not in ("differential", "skid_steer"):
+        r = invoke("sim", "drive", "--json", "--twist", "0.2,0.1,0.5,1", *args)   # the kind's own model
+        assert json.loads(r.stdout)["info"]["drive kind"] == base.kind
+        return
     # sim drive: the same wheels (each side's first wheel stands for the side) move the robot
     csv = tmp_path / "drive.csv"
     r = invoke("sim", "drive", "--json", "--wheels", "urdf", "--twist", "0.2,0.5,1", "--csv", csv, *args)

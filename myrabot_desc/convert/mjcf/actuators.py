@@ -39,6 +39,10 @@ WHEEL_SERVO_STEP = 10.0
 # carries at home gets that subtree gravity-compensated (PR2's shoulders rely on a spring
 # counterbalance the URDF does not describe).
 HOLD_SHARE = 0.8
+# A planar base's velocity actuators reach the commanded speed with this time constant: kv = the
+# mass (slides) or the yaw inertia (hinge) of the whole robot at home over it (implicitfast keeps a
+# velocity servo stable at any gain).
+BASE_TAU = 0.05
 
 
 def _append(report, name: str, detail: str) -> None:
@@ -53,7 +57,7 @@ def gravity_compensate(mujoco, spec, model, data, robot, commands, notes, report
     for name, cmd in commands.items():
         jid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, name)
         j = robot.joints[name]
-        effort = j.limit.effort if j.limit is not None and j.limit.effort else None
+        effort = j.limit.effort if j.limit is not None and j.limit.effort and j.limit.effort > 0 else None
         if jid < 0 or cmd.kind != "position" or not effort:
             continue
         need = abs(float(data.qfrc_bias[model.jnt_dofadr[jid]]))
@@ -89,20 +93,30 @@ def add_actuators(mujoco, spec, model, data, robot, commands, report, qpos) -> t
         jid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, name)
         if jid < 0:
             continue
-        j = robot.joints[name]
+        j = robot.joints.get(name)
+        if j is None:           # the planar base's slides and yaw hinge (bodies.PLANAR_BASE)
+            kv = float(f"{max(float(diag[model.jnt_dofadr[jid]]), 1e-9) / BASE_TAU:.4g}")
+            act = spec.add_actuator(name=name, target=name, trntype=mujoco.mjtTrn.mjTRN_JOINT)
+            act.set_to_velocity(kv=kv)
+            ctrl.append(0.0)
+            n_vel += 1
+            report.set("joint", name, "translated", f"planar base: velocity actuator (kv {num(kv)}, "
+                       f"{BASE_TAU:g} s to the commanded speed)")
+            continue
         if cmd.kind is None:
             old = report.get("joint", name)
             report.set("joint", name, old.fate if old else "kept", f"no actuator: {cmd.why}")
             continue
         dof = model.jnt_dofadr[jid]
         inertia = max(float(diag[dof]), 1e-9)
-        effort = j.limit.effort if j.limit is not None and j.limit.effort else None
+        # a negative limit is SDF's "no limit" (Audibot writes effort and velocity -1): none, like 0
+        effort = j.limit.effort if j.limit is not None and j.limit.effort and j.limit.effort > 0 else None
         act = spec.add_actuator(name=name, target=name, trntype=mujoco.mjtTrn.mjTRN_JOINT)
         if effort:
             act.forcelimited = mujoco.mjtLimited.mjLIMITED_TRUE
             act.forcerange = [-effort, effort]
         if cmd.kind == "velocity":
-            vel = j.limit.velocity if j.limit is not None and j.limit.velocity else None
+            vel = j.limit.velocity if j.limit is not None and j.limit.velocity and j.limit.velocity > 0 else None
             rolling = _rolling_kv(robot, j, inertia, dt, wheel_share)
             kv = float(f"{max(effort / (WHEEL_CLAMP_AT * vel), ROLLING_CLAMPED * rolling) if effort and vel else rolling:.4g}")
             act.set_to_velocity(kv=kv)

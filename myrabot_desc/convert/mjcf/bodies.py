@@ -14,7 +14,10 @@ world body.
   --allow-errors) is left out: MuJoCo's bodies form a tree.
 - the base: a free joint for a mobile base (``--base free``, or ``auto`` and model/drive.py's
   ``is_mobile``), else welded to the world (``--base fixed`` welds a root joined to ``world`` by
-  a moving joint too).
+  a moving joint too). With ``auto``, a base moved as a body (mecanum, omni, planar: model/drive's
+  ``BODY_MOVED``; the rollers are not modelled, and a planar-move plugin moves the body itself)
+  gets a planar base instead: ``base_x``, ``base_y`` (world slides) and ``base_yaw`` (a hinge about
+  z), each with a velocity actuator, at its standing height.
 - inertials: as the URDF gives them (a link without ``<inertial>`` is massless, as urdfdom, KDL
   and Pinocchio read it: ``inertiafromgeom`` is false), tensors that break A + B >= C repaired
   like the SDF path (model/inertia.py); a moving body with no mass even with its fused links gets
@@ -51,6 +54,18 @@ class Tree(NamedTuple):
 
     collision_errors: list                 # (message, loc) of collision meshes left out
     placeholders: list[str]                # moving bodies given the 1 g placeholder
+    planar_base: tuple[str, ...] = ()      # the planar base's joints (base_x, base_y, base_yaw), if any
+
+
+PLANAR_BASE = ("base_x", "base_y", "base_yaw")
+
+
+def planar_base(robot, base: str) -> bool:
+    """A base moved as a body (mecanum, omni, planar) under ``--base auto``: slides and a yaw hinge."""
+    if base != "auto" or len(robot.roots) != 1:
+        return False
+    b = D.base(robot)
+    return b is not None and b.kind in D.BODY_MOVED and not (set(PLANAR_BASE) & set(robot.joints))
 
 
 def base_is_free(robot, base: str) -> bool:
@@ -90,6 +105,7 @@ def build_tree(mujoco, spec, robot, plan, notes, report, base: str) -> Tree:
         kids.setdefault(j.parent, []).append(j)
     tops = top_links(robot, joints)
     free = base_is_free(robot, base)
+    planar = free and planar_base(robot, base)
     placeholders = _massless_moving(robot, joints, tops, free, base)
     builder = _Builder(mujoco, spec, robot, plan, notes, report, placeholders)
 
@@ -102,7 +118,12 @@ def build_tree(mujoco, spec, robot, plan, notes, report, base: str) -> Tree:
         j = from_world.get(name)
         if j is not None:
             builder.place(body, j.origin)
-        if free:
+        if free and planar:
+            # world-frame slides, then the yaw: the body twist (vx, vy) is R(yaw)·ctrl (as gz VelocityControl)
+            for jn, kind, axis in zip(PLANAR_BASE, (mujoco.mjtJoint.mjJNT_SLIDE, mujoco.mjtJoint.mjJNT_SLIDE,
+                                                    mujoco.mjtJoint.mjJNT_HINGE), ((1, 0, 0), (0, 1, 0), (0, 0, 1))):
+                body.add_joint(name=jn, type=kind, axis=list(axis))
+        elif free:
             body.add_freejoint(name=j.name if j is not None else f"{name}_free_joint")
         elif j is not None and base != "fixed":
             builder.joint(body, j)
@@ -120,7 +141,18 @@ def build_tree(mujoco, spec, robot, plan, notes, report, base: str) -> Tree:
         stack.extend(reversed(made))
     builder.mimics(joints)
     builder.finish()
-    return Tree(builder.collision_errors, placeholders)
+    if planar:
+        b = D.base(robot)
+        for n in b.wheels:        # unmodelled rollers: an isotropic wheel-floor friction would fight the sideways motion
+            j = robot.joints.get(n)
+            if j is not None and j.type != "fixed":
+                spec.add_exclude(bodyname1="world", bodyname2=j.child)
+        report.set("drive", b.kind, "approximated",
+                   f"a {b.kind} base ({b.why}) moved as a body: world slides base_x, base_y and a hinge base_yaw, "
+                   "each with a velocity actuator (a body twist is R(yaw)·(vx, vy)); "
+                   + ("its rollers are not modelled: the wheels do not touch the world (contact exclusions) and "
+                      "spin at their velocity actuators' command" if b.kind != "planar" else "its plugin moved the body"))
+    return Tree(builder.collision_errors, placeholders, PLANAR_BASE if planar else ())
 
 
 def _massless_moving(robot, joints, tops, free: bool, base: str) -> list[str]:
@@ -194,7 +226,8 @@ class _Builder:
                     self.notes.warn(f"joint '{j.name}' has {'equal' if lim.lower == lim.upper else 'reversed'} "
                                     f"lower and upper limits ({num(lim.lower)}, {num(lim.upper)}): left unlimited",
                                     j.loc)
-            effort = abs(lim.effort) if lim.effort else 0.0
+            # a negative effort is SDF's "no limit" (Audibot's -1), not a 1 N·m cap
+            effort = lim.effort if lim.effort and lim.effort > 0 else 0.0
             if effort > 0:
                 js.actfrcrange = [-effort, effort]
         spring = self.springs.get(j.name)

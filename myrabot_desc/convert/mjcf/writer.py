@@ -31,7 +31,7 @@ from myrabot_desc.convert.mjcf.scene import scene_text
 from myrabot_desc.convert.preflight import Problem, refuse_or_record
 from myrabot_desc.convert.report import Report, seed
 from myrabot_desc.errors import InputError
-from myrabot_desc.model.actuation import joint_commands
+from myrabot_desc.model.actuation import Command, joint_commands
 from myrabot_desc.output import OutputDir, write_output
 from myrabot_desc.safety import limit
 
@@ -123,14 +123,16 @@ def convert_mjcf(robot, output: str, base: str = "auto", scene: str | None = "sc
                 at_rest = qpos.copy()
                 if abs(lift) > 1e-9:
                     raise_free_joints(mujoco, model, qpos, lift)
-                    if not free:
+                    if not free or tree.planar_base:        # a planar base stands at its height: no z joint
                         raise_welded(spec, lift)
+                    if not free:
                         report_lift(robot, report, lift)
                 else:
                     lift = 0.0
                 commands = joint_commands(robot)
                 gravity_compensate(mujoco, spec, model, data, robot, commands, notes, report)
                 exclude_touching(mujoco, spec, model, data, report)
+                commands.update({n: Command("velocity") for n in tree.planar_base})
                 ctrl, n_pos, n_vel = add_actuators(mujoco, spec, model, data, robot, commands, report, qpos)
                 key = spec.add_key(name="home", qpos=[float(x) for x in qpos])
                 if ctrl:
@@ -138,7 +140,8 @@ def convert_mjcf(robot, output: str, base: str = "auto", scene: str | None = "sc
                 text = spec.to_xml()                                 # MuJoCo compiles it again to write it
         except ValueError as exc:
             raise rejected(exc, robot.loc) from None
-        made.update(model=model, qpos=qpos if free else at_rest, lift=0.0 if free else lift, nu=n_pos + n_vel)
+        rolled = free and not tree.planar_base
+        made.update(model=model, qpos=qpos if rolled else at_rest, lift=0.0 if rolled else lift, nu=n_pos + n_vel)
         return text
 
     scene_written = None

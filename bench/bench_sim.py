@@ -1,6 +1,6 @@
 """Benchmark of ``myrabot-desc sim``: simulated seconds per wall second.
 
-    .venv/bin/python bench/bench_sim.py [--seconds 60] [--repeat 5] [--json]
+    .venv/bin/python bench/bench_sim.py [--seconds 60] [--repeat 5] [--json] [--only whole]
 
 Measures, on the bundled MYRAbot at a 1 kHz fixed step:
 
@@ -16,7 +16,12 @@ Measures, on the bundled MYRAbot at a 1 kHz fixed step:
 * MuJoCo stepping the bundled model's MJCF (``myrabot-desc convert --to mjcf``)
   for the same simulated time at the same 1 ms step: full rigid-body dynamics
   with contacts, no controller, for scale (compiling the MJCF timed apart;
-  stepping median and best of --repeat, each from a fresh MjData).
+  stepping median and best of --repeat, each from a fresh MjData);
+* the whole command ``sim vuelta --duration S`` (interpreter start, imports, build,
+  run, verdict) against a plain MuJoCo script that imports MuJoCo, compiles the
+  converted MJCF (written once beforehand) and steps the same S seconds at 1 ms:
+  fresh processes, interleaved, best of --repeat CPU and wall (bench/_timing.py).
+  Target (issue 29): ours <= 0.7x the script's CPU.
 """
 
 from __future__ import annotations
@@ -31,6 +36,15 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+WHOLE_TARGET = 0.7          # whole command / plain MuJoCo script, CPU
+
+PLAIN = """
+import mujoco
+m = mujoco.MjModel.from_xml_path({xml!r})
+m.opt.timestep = 0.001
+d = mujoco.MjData(m)
+mujoco.mj_step(m, d, nstep={n})
+"""
 
 
 def timed(fn, repeat):
@@ -49,8 +63,13 @@ def main(argv=None):
     ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--json", action="store_true")
     ap.add_argument("--no-mujoco", action="store_true")
+    ap.add_argument("--only", choices=["whole"], help="only the whole command vs the plain MuJoCo script")
     a = ap.parse_args(argv)
     S = a.seconds
+    if a.only == "whole":
+        w = whole_command(S, a.repeat)
+        print(json.dumps(w, indent=2) if a.json else format_whole(w, S))
+        return 0
     res = {"simulated_s": S, "rate_hz": 1000}
 
     t0 = time.perf_counter()
@@ -98,6 +117,8 @@ def main(argv=None):
             res["ratio_mujoco_over_vuelta"] = round(res["mujoco_step_s"] / med, 1)
             res["ratio_mujoco_over_vuelta_with_preparation"] = round(res["mujoco_step_s"] / med_p, 1)
 
+    if not a.no_mujoco:
+        res.update(whole_command(S, a.repeat))
     if a.json:
         print(json.dumps(res, indent=2))
     else:
@@ -126,7 +147,43 @@ def main(argv=None):
                   f"each time)")
         elif "mujoco_error" in res:
             print(f"  MuJoCo: {res['mujoco_error']}")
+        if "whole_ours_cpu_s" in res:
+            print(format_whole(res, S))
     return 0
+
+
+def whole_command(S, repeat) -> dict:
+    """``sim vuelta --duration S`` as a user runs it vs a plain MuJoCo script stepping the same S s of
+    the converted MJCF; fresh processes, interleaved, best of ``repeat`` (CPU and wall)."""
+    sys.path.insert(0, str(ROOT / "bench"))
+    from _timing import OUT, bench_env, best_of
+
+    folder = OUT / "sim"
+    folder.mkdir(parents=True, exist_ok=True)
+    xml = folder / "myrabot.xml"
+    p = subprocess.run([sys.executable, "-m", "myrabot_desc", "convert", "--to", "mjcf", "-o", str(xml)],
+                       capture_output=True, text=True, cwd=ROOT, env=bench_env())
+    if p.returncode != 0 or not xml.is_file():
+        return {"whole_error": f"convert --to mjcf failed: {p.stderr.strip()[:200]}"}
+    n = int(round(S * 1000))
+    t = best_of({"ours": [sys.executable, "-m", "myrabot_desc", "sim", "vuelta", "--duration", f"{S:g}"],
+                 "plain": [sys.executable, "-c", PLAIN.format(xml=str(xml), n=n)]}, repeat, cwd=ROOT)
+    ours, plain = t["ours"], t["plain"]
+    return {"whole_ours_cpu_s": round(ours["cpu"], 3), "whole_ours_wall_s": round(ours["wall"], 3),
+            "whole_plain_cpu_s": round(plain["cpu"], 3), "whole_plain_wall_s": round(plain["wall"], 3),
+            "whole_ratio_cpu": round(ours["cpu"] / plain["cpu"], 2), "whole_target": WHOLE_TARGET,
+            "whole_met": ours["cpu"] / plain["cpu"] <= WHOLE_TARGET, "whole_runs": repeat}
+
+
+def format_whole(w, S) -> str:
+    if "whole_error" in w:
+        return f"  whole command: {w['whole_error']}"
+    return (f"  whole command `sim vuelta --duration {S:g}`  {w['whole_ours_cpu_s']:.3f} s CPU "
+            f"({w['whole_ours_wall_s']:.3f} s wall), best of {w['whole_runs']}\n"
+            f"  plain MuJoCo script, same {S:g} s of the MJCF  {w['whole_plain_cpu_s']:.3f} s CPU "
+            f"({w['whole_plain_wall_s']:.3f} s wall)\n"
+            f"  ratio (CPU)  {w['whole_ratio_cpu']:.2f}x  (target <= {w['whole_target']:g}x: "
+            f"{'met' if w['whole_met'] else 'NOT met'})")
 
 
 def bench_mujoco(S, repeat=1):

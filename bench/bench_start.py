@@ -54,6 +54,10 @@ def main(argv=None) -> int:
     help_over = r["myrabot-desc --help"]["wall"] - base
     print(f"--help: {help_over * 1000:.0f} ms over a bare interpreter (target: within 60 ms): "
           f"{'yes' if help_over < 0.060 else 'NO'}")
+    # issue 29: CPU time, which a shared machine disturbs less than wall time
+    help_cpu = r["myrabot-desc --help"]["cpu"] - r["python -c pass"]["cpu"]
+    print(f"--help CPU: {help_cpu * 1000:.0f} ms over `python -c pass`'s (target: within 50 ms): "
+          f"{'yes' if help_cpu <= 0.050 else 'NO'}")
 
     urdf = str(ROOT / "out" / "bench" / "myrabot.urdf")
     Path(urdf).parent.mkdir(parents=True, exist_ok=True)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import gc
 import sys
 from pathlib import Path
 
@@ -14,6 +15,7 @@ from myrabot_desc.checks.run import changed_since, default_jobs, exit_code, plan
 from myrabot_desc.checks.suppress import unused_findings
 from myrabot_desc.commands.common import input_options
 from myrabot_desc.commands.console import guarded
+from myrabot_desc.commands import options
 from myrabot_desc.commands.options import usage_error
 from myrabot_desc.errors import UsageProblem
 from myrabot_desc.fix.report import summary, unified_diff
@@ -145,6 +147,11 @@ def check_cmd(inputs, inertia, suggest, meshes, srdf, fmt, select, ignore, stric
         if fix_ or diff_:
             sys.exit(_fix(tasks, fmt, output, quiet, help_url, shard_spec, unsafe_fixes, write=not diff_))
         progress = not quiet and sys.stderr.isatty()
+        one_shot = options.ONE_SHOT and len(tasks) == 1
+        if one_shot:
+            # one file in a process that ends with it: the collector would only rescan the model's
+            # records (they make no cycles worth finding) and free them one by one at exit (~15 %)
+            gc.disable()
         results = run_tasks(tasks, jobs or default_jobs(), _progressbar if progress else None) if tasks else []
         unused_findings(results)
         if baseline:
@@ -159,6 +166,8 @@ def check_cmd(inputs, inertia, suggest, meshes, srdf, fmt, select, ignore, stric
         for r in results:
             if r.failure and (fmt != "text" or output != "-"):
                 click.echo(clean(r.failure), err=True)
+        if one_shot:
+            gc.freeze()
     sys.exit(code)
 
 

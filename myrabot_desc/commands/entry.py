@@ -18,6 +18,7 @@ from __future__ import annotations
 import os
 import sys
 
+from myrabot_desc.commands import options
 from myrabot_desc.commands.options import BUILD_OPTS, INPUT_OPTS, parse_plain
 
 
@@ -27,6 +28,7 @@ def main(argv=None) -> int:
     # sim), more in each `check -j N` worker. The user's own setting wins.
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     args = sys.argv[1:] if argv is None else list(argv)
+    options.ONE_SHOT = argv is None
     if args[:1] == ["build"] and parse_plain(args[1:], INPUT_OPTS + BUILD_OPTS) is not None:
         from myrabot_desc.commands.fastbuild import fast_build
 

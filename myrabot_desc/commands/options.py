@@ -47,6 +47,11 @@ class Opt(namedtuple("Opt", "decls dest kind help metavar choices")):
 
 
 # FILE [NAME:=VALUE ...] come first (click.argument "args"); then these, in --help order.
+# True in a process the console entry started (commands/entry.py, no argv given): a command may then
+# leave the cyclic collector off and freeze what it made instead of freeing it at exit, as a plain
+# build does. Never in a process that goes on (tests, library use).
+ONE_SHOT = False
+
 INPUT_OPTS = (
     Opt(("-p", "--package"), "packages", "multi",
         "Where package NAME lives (for $(find NAME) and package://NAME). Repeatable.", "NAME=PATH", None),

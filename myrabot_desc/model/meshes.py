@@ -339,7 +339,8 @@ def vertices(path: Path, loc=None):
     ``load_or_input_error``.
 
     A well-formed binary STL (size = 84 + 50 n) is read directly: trimesh takes ~2 ms a file for
-    the same numbers (its STL reader also reads float32). Anything else goes through ``load``.
+    the same numbers (its STL reader also reads float32). Anything else goes through the lean
+    readers (``triangles``: ``load``'s vertices), and trimesh only for what they do not read.
     """
     import numpy as np
 
@@ -356,12 +357,12 @@ def vertices(path: Path, loc=None):
                 if not np.isfinite(v).all():
                     raise MeshError(f"{path.name} has vertices that are not finite numbers (NaN or inf)")
                 return np.unique(v, axis=0)
-        m = load(path)
+        v, _f = _triangles(path, path.suffix.lower())    # the lean readers; trimesh for other formats
     except OSError as exc:
         raise InputError(f"mesh cannot read {path.name}: {exc.strerror}", loc) from None
     except MeshError as exc:
         raise InputError(f"mesh {exc}", loc) from None
-    return np.asarray(m.vertices)
+    return np.asarray(v)
 
 
 def _NoFiles():

@@ -80,7 +80,221 @@ def _subtrees(robot, names):
 
 
 def gravity_needs(robot, samples: int = SAMPLES, joints=None) -> list[Need]:
-    """One :class:`Need` per moving, non-mimic joint (``joints``: only these), in file order."""
+    """One :class:`Need` per moving, non-mimic joint (``joints``: only these), in file order.
+
+    Linear in the tree's size for a wide tree, O(joints x depth) for a deep one: the masses and
+    moments of every subtree are summed once, bottom-up; moving one joint changes only the torques
+    of the joints above it (the moment of its subtree turns) and below it (gravity turns in their
+    frames), the others keep their rest value. A model that is not a tree (a link hanging from two
+    joints) takes the dense form (``_gravity_needs_dense``)."""
+    import numpy as np
+
+    rest = robot.rest_pose()
+    W = world_transforms(robot, rest)
+    movers = [j for j in robot.joints.values() if j.type in MOVING and j.mimic is None
+              and j.parent in W and j.child in W]
+    names = [j.name for j in movers if joints is None or j.name in joints]
+    if not names:
+        return []
+    tree = _preorder(robot, W)
+    if tree is None:
+        return _gravity_needs_dense(robot, samples, joints)
+    order, pos, parent, levels, end = tree
+    links = [link for link in robot.links.values() if link.name in W and link.inertial is not None
+             and link.inertial.mass > 0 and math.isfinite(link.inertial.mass)]
+    L = len(order)
+    own_m = np.zeros(L)
+    own_mc = np.zeros((L, 3))
+    if links:
+        k = np.array([pos[link.name] for link in links])
+        own_m[k] = [link.inertial.mass for link in links]
+        c = np.array([(W[link.name] @ pose_matrix(link.inertial.origin))[:3, 3] for link in links]).reshape(-1, 3)
+        own_mc[k] = own_m[k][:, None] * c
+    Mtot = _subtree_sums(own_m, parent, levels)
+    Qtot = _subtree_sums(own_mc, parent, levels)
+    every = [j.name for j in movers]
+    frames = {}
+    for n in every:
+        j = robot.joints[n]
+        F = W[j.parent] @ pose_matrix(j.origin)
+        a = F[:3, :3] @ np.asarray(j.axis, dtype=float)
+        norm = np.linalg.norm(a)
+        frames[n] = (F[:3, 3], a / norm if norm > 0 else a)
+    ci = np.array([pos[robot.joints[n].child] for n in names])        # each asked joint's child, in preorder
+    P = np.array([frames[n][0] for n in names])
+    A = np.array([frames[n][1] for n in names])
+    prism = np.array([robot.joints[n].type == "prismatic" for n in names])
+    M, Q = Mtot[ci], Qtot[ci]
+    g = np.array([0.0, 0.0, -GRAVITY])
+    followers = {j.mimic.joint for j in robot.joints.values() if j.mimic is not None}
+
+    def torques(Q_now, P_now, A_now, M_now, prism_now, g_now=g):
+        """|torque| of joints with subtree moment sums ``Q_now``; a leading axis of poses allowed."""
+        moment = Q_now - M_now[:, None] * P_now          # M_i (C_i - p_i)
+        rot = (A_now * np.cross(moment, g_now)).sum(axis=-1)
+        lin = (A_now * g_now).sum(axis=-1) * M_now
+        return np.abs(np.where(prism_now, lin, rot))
+
+    t_rest = torques(Q, P, A, M, prism)
+    best = t_rest.copy()
+    where = [(None, 0.0)] * len(names)
+    # with g along -z, a_i . (moment x g) = G (a_y m_x - a_x m_y): linear in the moment, so turning a
+    # subtree adds the same change to every joint above it; below it, a_i . (mu_i x g') = g' . (a_i x mu_i)
+    r_rest = np.where(prism, 0.0, GRAVITY * (A[:, 1] * (Q[:, 0] - M * P[:, 0]) - A[:, 0] * (Q[:, 1] - M * P[:, 1])))
+    B = np.cross(A, Q - M[:, None] * P)
+    by_tin = np.argsort(ci, kind="stable")           # asked joints by their child's place in preorder
+    tin_sorted = ci[by_tin]
+    up = _asked_above(robot, names, order, pos, parent) if len(levels) <= 64 else None   # shallow: walk up
+    vals = {j.name: sample_values(j, samples) for j in movers}
+    turned = [j for j in movers if j.type != "prismatic" and j.name not in followers and len(vals[j.name]) == samples]
+    R_of = {}
+    if turned:          # every revolute joint's sampled rotations at once
+        R_all = _rotations(np.array([frames[j.name][1] for j in turned]),
+                           np.array([vals[j.name] for j in turned])
+                           - np.array([rest.get(j.name, 0.0) for j in turned])[:, None])
+        R_of = {j.name: k for k, j in enumerate(turned)}
+    for j in movers:
+        values = vals[j.name]
+        cj = pos[j.child]
+        if end[cj] > cj + 1:
+            lo, hi = np.searchsorted(tin_sorted, [cj + 1, end[cj]])
+            below = by_tin[lo:hi]                      # the asked joints under j (j itself excluded)
+        else:
+            below = by_tin[:0]
+        if up is not None:
+            above = np.array(up(cj), dtype=np.int64)
+        else:
+            above = np.flatnonzero((ci <= cj) & (end[ci] > cj))
+        idx = np.concatenate([above, below]) if len(below) else above
+        if not len(idx):
+            continue
+        if j.name in followers:          # a mimic follows it: the whole pose, the slow way
+            T = np.array([_full_tree(robot, rest, j.name, x, names, (links, pos, parent, levels, M, prism),
+                                     torques) for x in values])[:, idx]
+        else:
+            p0, a0 = frames[j.name]
+            d = np.asarray(values) - rest.get(j.name, 0.0)
+            if j.type == "prismatic":
+                R = np.broadcast_to(np.eye(3), (len(d), 3, 3))
+                t = d[:, None] * a0
+            else:
+                R = R_all[R_of[j.name]] if j.name in R_of else _rotations(a0[None, :], d[None, :])[0]
+                t = p0 - R @ p0
+            shift = Qtot[cj] @ np.swapaxes(R, 1, 2) + Mtot[cj] * t - Qtot[cj]   # the turned subtree's moment change
+            T_above = np.abs(np.where(prism[above], t_rest[above],
+                                      r_rest[above] + GRAVITY * (np.outer(shift[:, 0], A[above, 1])
+                                                                 - np.outer(shift[:, 1], A[above, 0]))))
+            if len(below):
+                g_below = g @ R                                        # gravity in the turned frames
+                T_below = np.abs(np.where(prism[below], (g_below @ A[below].T) * M[below], g_below @ B[below].T))
+                T = np.concatenate([T_above, T_below], axis=1)
+            else:
+                T = T_above
+        b = best[idx]
+        gain = T.max(axis=0) > b + 1e-9 * (1 + b)       # only these columns move their worst pose
+        if gain.any():
+            cols, Tg = idx[gain], T[:, gain]
+            bg = best[cols]
+            for x, t in zip(values, Tg):
+                better = t > bg + 1e-9 * (1 + bg)
+                for k in cols[better]:
+                    where[k] = (j.name, x)
+                bg = np.maximum(bg, t)
+        best[idx] = np.maximum(b, T.max(axis=0))
+    out = []
+    for k, n in enumerate(names):
+        j = robot.joints[n]
+        out.append(Need(n, float(best[k]), float(t_rest[k]), where[k][0], float(where[k][1]), effort_of(j),
+                        "N" if j.type == "prismatic" else "N·m"))
+    return out
+
+
+def _rotations(axes, angles):
+    """Rotation matrices (k, n, 3, 3) about each of ``axes`` (k, 3) by its row of ``angles`` (k, n)
+    (Rodrigues; a zero axis gives the identity)."""
+    import numpy as np
+
+    axes = np.asarray(axes, dtype=float)
+    norm = np.linalg.norm(axes, axis=1)
+    a = axes / np.where(norm > 0, norm, 1.0)[:, None]
+    x, y, z = a[:, 0], a[:, 1], a[:, 2]
+    zero = np.zeros(len(a))
+    K = np.stack([np.stack([zero, -z, y], 1), np.stack([z, zero, -x], 1), np.stack([-y, x, zero], 1)], 1)
+    c, s = np.cos(angles)[:, :, None, None], np.sin(angles)[:, :, None, None]
+    return np.eye(3) + s * K[:, None] + (1 - c) * (K @ K)[:, None]
+
+
+def _preorder(robot, W):
+    """(links in depth-first preorder, link -> place, parent place per place (-1 at a root), places
+    by depth (deepest first), end of each subtree's places); None when the links reached are not a
+    tree (a link hanging from two joints)."""
+    import numpy as np
+
+    children = robot.joints_by_parent()
+    has_parent = set()
+    for j in robot.joints.values():
+        if j.parent in W and j.child in W:
+            if j.child in has_parent:
+                return None
+            has_parent.add(j.child)
+    order, pos, parent, depth = [], {}, [], []
+    for root in (name for name in W if name not in has_parent):
+        stack = [(root, -1, 0)]
+        while stack:
+            link, up, dep = stack.pop()
+            if link in pos:
+                return None
+            pos[link] = len(order)
+            order.append(link)
+            parent.append(up)
+            depth.append(dep)
+            here = pos[link]
+            stack.extend((jj.child, here, dep + 1) for jj in reversed(children.get(link, ()))
+                         if jj.child in W)
+    if len(order) != len(W):
+        return None
+    parent = np.array(parent, dtype=np.int64)
+    depth = np.array(depth, dtype=np.int64)
+    by_depth = np.argsort(-depth, kind="stable")
+    cuts = np.flatnonzero(np.diff(depth[by_depth])) + 1
+    levels = np.split(by_depth, cuts)
+    size = _subtree_sums(np.ones(len(order)), parent, levels).astype(np.int64)
+    end = np.arange(len(order)) + size
+    return order, pos, parent, levels, end
+
+
+def _subtree_sums(values, parent, levels):
+    """``values`` (one row per link place) summed over each link's subtree, deepest level first."""
+    import numpy as np
+
+    out = np.array(values, dtype=float, copy=True)
+    for level in levels:
+        up = parent[level]
+        keep = up >= 0
+        if keep.any():
+            np.add.at(out, up[keep], out[level[keep]])
+    return out
+
+
+def _asked_above(robot, names, order, pos, parent):
+    """For a shallow tree: place -> indices of the asked joints on the path from it to its root
+    (the joint whose child it is included)."""
+    joint_of = {pos[robot.joints[n].child]: k for k, n in enumerate(names)}
+
+    def up(place):
+        out = []
+        while place >= 0:
+            k = joint_of.get(place)
+            if k is not None:
+                out.append(k)
+            place = int(parent[place])
+        return out
+
+    return up
+
+
+def _gravity_needs_dense(robot, samples: int = SAMPLES, joints=None) -> list[Need]:
+    """``gravity_needs`` of a model that is not a tree: a dense joint x link matrix of the links below each joint."""
     import numpy as np
 
     rest = robot.rest_pose()
@@ -161,6 +375,30 @@ def gravity_needs(robot, samples: int = SAMPLES, joints=None) -> list[Need]:
         out.append(Need(n, float(best[k]), float(t_rest[k]), where[k][0], float(where[k][1]), effort_of(j),
                         "N" if j.type == "prismatic" else "N·m"))
     return out
+
+
+def _full_tree(robot, rest, name, x, names, tree, torques):
+    """``gravity_needs``' torques with joint ``name`` at ``x`` from the whole pose's transforms
+    (mimic joints follow it)."""
+    import numpy as np
+
+    links, pos, parent, levels, M, prism = tree
+    q = dict(rest)
+    q[name] = x
+    W = world_transforms(robot, q)
+    own_mc = np.zeros((len(pos), 3))
+    for link in links:
+        own_mc[pos[link.name]] = link.inertial.mass * (W[link.name] @ pose_matrix(link.inertial.origin))[:3, 3]
+    Qtot = _subtree_sums(own_mc, parent, levels)
+    P, A = [], []
+    for n in names:
+        j = robot.joints[n]
+        F = W[j.parent] @ pose_matrix(j.origin)
+        a = F[:3, :3] @ np.asarray(j.axis, dtype=float)
+        norm = np.linalg.norm(a)
+        P.append(F[:3, 3])
+        A.append(a / norm if norm > 0 else a)
+    return torques(Qtot[[pos[robot.joints[n].child] for n in names]], np.array(P), np.array(A), M, prism)
 
 
 def _full(robot, rest, name, x, names, masses, torques):

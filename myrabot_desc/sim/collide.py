@@ -283,14 +283,14 @@ def coal_shape(g):
     if g.kind == "mesh" and g.path is not None:
         import numpy as np
 
-        try:
-            m = meshes.load(g.path, process=False)
+        try:            # the lean STL/COLLADA readers: trimesh (and scipy) only for other formats
+            v, f = meshes.triangles(g.path)
         except meshes.MeshError:
             return None
         bvh = coal.BVHModelOBBRSS()
-        bvh.beginModel(len(m.faces), len(m.vertices))
-        bvh.addVertices(np.asarray(m.vertices, dtype=float) * np.asarray(g.scale, dtype=float))
-        bvh.addTriangles(np.asarray(m.faces, dtype=np.int64))
+        bvh.beginModel(len(f), len(v))
+        bvh.addVertices(np.asarray(v, dtype=float) * np.asarray(g.scale, dtype=float))
+        bvh.addTriangles(np.asarray(f, dtype=np.int64))
         bvh.endModel()
         return bvh
     return None

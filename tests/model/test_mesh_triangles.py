@@ -33,6 +33,12 @@ def test_triangles_equal_trimesh(path):
     assert len(f) > 0
 
 
+@pytest.mark.parametrize("path", [p for p in SAMPLE if p.suffix.lower() == ".dae"][:4], ids=lambda p: p.name)
+def test_vertices_of_collada_equal_trimesh(path):
+    """``vertices`` (diff, extents and hulls) reads COLLADA with the lean reader: trimesh's vertices."""
+    assert np.array_equal(meshes.vertices(path), meshes.load(path).vertices)
+
+
 def test_obj_goes_through_trimesh(tmp_path):
     obj = tmp_path / "quad.obj"
     obj.write_text("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n")

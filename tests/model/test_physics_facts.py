@@ -177,3 +177,34 @@ def test_stance_of_the_corpus_arms_and_bases():
         assert not s.legged, (rb["id"], s.why)
     assert "fixed to the 'world' link" in stance(corpus_model(corpus_robot("ur5e"))).why
     assert CORPUS.is_dir()
+
+
+def _tree_urdf(n: int) -> str:
+    """A chain of n links with a side branch on every third link; revolute, continuous and prismatic
+    joints on tilted axes."""
+    inertial = '<inertial><origin xyz="0.05 0.01 0"/><mass value="{m}"/><inertia ixx="1e-3" ixy="0" ixz="0" ' \
+               'iyy="1e-3" iyz="0" izz="1e-3"/></inertial>'
+    out = ['<robot name="t">', f'<link name="l0">{inertial.format(m=2)}</link>']
+    kinds = ("revolute", "continuous", "prismatic")
+    for i in range(1, n):
+        parent = f"l{i - 1}" if i % 3 else f"l{max(0, i - 3)}"
+        out.append(f'<link name="l{i}">{inertial.format(m=0.1 * i)}</link>')
+        out.append(f'<joint name="j{i}" type="{kinds[i % 3]}"><parent link="{parent}"/><child link="l{i}"/>'
+                   f'<origin xyz="0.1 0 0.05" rpy="0 {0.1 * i} 0"/><axis xyz="{i % 2} 1 {i % 5}"/>'
+                   '<limit lower="-1" upper="1.2" effort="10" velocity="1"/></joint>')
+    return "\n".join(out + ["</robot>"])
+
+
+def test_gravity_needs_tree_form_equals_dense_form(tmp_path):
+    """The subtree sums (linear in a wide tree) give the dense joint x link matrix's needs and poses."""
+    from myrabot_desc.model.statics import _gravity_needs_dense
+
+    f = tmp_path / "tree.urdf"
+    f.write_text(_tree_urdf(40))
+    r = load_robot(str(f))
+    fast, dense = gravity_needs(r), _gravity_needs_dense(r)
+    assert [n.joint for n in fast] == [n.joint for n in dense] and len(fast) == 39
+    for a, b in zip(fast, dense):
+        assert a.torque == pytest.approx(b.torque, rel=1e-9, abs=1e-12)
+        assert a.at_rest == pytest.approx(b.at_rest, rel=1e-9, abs=1e-12)
+        assert (a.pose_joint, a.pose_value) == (b.pose_joint, b.pose_value)

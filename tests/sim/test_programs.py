@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import json
 import math
+import subprocess
+import sys
 
 import pytest
 from click.testing import CliRunner
@@ -85,6 +87,16 @@ def test_vuelta_collision_and_tip_over(vuelta):
     # Roomba support: wheels at y ±0.13, casters at x ±0.13 (a diamond); COM near the centre
     assert 0.06 < tip["value"] < 0.13
     assert "rear_wheel_link" in tip["detail"] and "front_wheel_link" in tip["detail"]
+
+
+def test_vuelta_imports_no_trimesh_or_scipy():
+    """The arm collider reads the bundled STL meshes with the lean reader (model/meshes.py):
+    trimesh and with it scipy and networkx (~1 s CPU) are for formats it does not read."""
+    code = ("import sys; from click.testing import CliRunner; from myrabot_desc.commands.main import main;"
+            "r = CliRunner().invoke(main, ['sim', 'vuelta', '--duration', '5']);"
+            "print(r.exit_code, sorted(m for m in ('trimesh', 'scipy', 'networkx') if m in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.split(None, 1) == ["0", "[]\n"]
 
 
 def test_vuelta_on_the_seed_files_as_written():

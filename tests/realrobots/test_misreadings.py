@@ -1,0 +1,73 @@
+"""The misreadings of real files of issue 25, each at its rule or reader, each from a real file.
+
+Robots come from tests/corpus (robots.yaml, drives.yaml; sources and licences in its README).
+"""
+
+from __future__ import annotations
+
+import os
+import shlex
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+import yaml
+from click.testing import CliRunner
+
+from helpers import CORPUS, SHIM, corpus_args, corpus_env, corpus_robot
+from myrabot_desc.commands.main import main
+
+XACRO = Path(sys.executable).with_name("xacro")
+DRIVES = {r["id"]: r for r in yaml.safe_load((CORPUS / "drives.yaml").read_text())["robots"]}
+
+pytestmark = pytest.mark.corpus
+
+
+def _drive_args(robot: dict) -> list[str]:
+    """A drives.yaml entry's command line: its args split like a POSIX shell (one holds a space)."""
+    return [str(CORPUS / robot["top"]), *shlex.split(robot.get("args", "")), "--package-path",
+            str(CORPUS / robot.get("package_path", "."))]
+
+
+def _xacro_cli(robot: dict) -> str:
+    """The real xacro CLI on the same file and args ($(find) answered by the corpus shim)."""
+    env = dict(os.environ, PYTHONPATH=str(SHIM), CORPUS_PACKAGE_PATH=str(CORPUS / robot.get("package_path", ".")))
+    env.update({k: str(v) for k, v in robot.get("env", {}).items()})
+    p = subprocess.run([str(XACRO), str(CORPUS / robot["top"]), *shlex.split(robot.get("args", ""))],
+                       capture_output=True, text=True, env=env, timeout=120)
+    assert p.returncode == 0, p.stderr[-2000:]
+    return p.stdout
+
+
+# ------------------------------------------------------------------ 1. legacy bare-call upgrade
+@pytest.mark.parametrize("robot_id", ["rosbot_xl_mecanum", "rosbot_xl_diff"])
+def test_rosbot_xl_builds_byte_for_byte_like_xacro(robot_id):
+    """gazebo.urdf.xacro defines macro `imu` and is included with ns="gazebo"; the SDF <imu> in
+    its <sensor> is no call (xacro reaches that macro only as gazebo.imu), so nothing is upgraded."""
+    robot = DRIVES[robot_id]
+    want = _xacro_cli(robot)
+    assert want.count("<link ") >= 10 and "<imu>" in want
+    res = CliRunner().invoke(main, ["build", *_drive_args(robot), "-o", "-"])
+    assert res.exit_code == 0, res.output[-2000:]
+    assert res.stdout == want
+    assert "X001" not in res.stderr
+
+
+def test_x001_only_for_what_xacro_evaluated():
+    """Jackal's accessories.urdf.xacro calls its mounts bare inside xacro:if branches on
+    $(optenv JACKAL_LASER...): with no accessory set, nothing is upgraded (the build equals
+    xacro's); with the Hokuyo set, only the Hokuyo's calls are reported, not the bridge plate's
+    or the standoffs' in branches still not taken."""
+    plain = CliRunner().invoke(main, ["build", *corpus_args(corpus_robot("jackal")), "-o", "-"],
+                               env=corpus_env(corpus_robot("jackal")))
+    assert plain.exit_code == 0
+    assert "X001" not in plain.stderr
+    hokuyo = corpus_robot("jackal_hokuyo")
+    res = CliRunner().invoke(main, ["build", *corpus_args(hokuyo), "-o", "-"], env=corpus_env(hokuyo))
+    assert res.exit_code == 0
+    x001 = [line for line in res.stderr.splitlines() if "X001" in line]
+    assert [line.split(": warning")[0].rsplit("/", 1)[1] for line in x001] == \
+        ["accessories.urdf.xacro:23", "hokuyo_ust10.urdf.xacro:52"]
+    assert "(<hokuyo_ust10_mount>) upgraded" in x001[0] and "bridge_plate" not in res.stderr
+    assert "hokuyo_ust10_mount" in res.stdout or "front_laser" in res.stdout

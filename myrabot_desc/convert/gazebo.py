@@ -8,7 +8,8 @@ model/gazebo.py). Several blocks for the same reference merge in document order 
 
 from __future__ import annotations
 
-from myrabot_desc.convert.common import element_of, sub
+from myrabot_desc.convert.common import comment, element_of, sub, xml_text
+from myrabot_desc.model.plugins import node_kind
 from myrabot_desc.model.gazebo import EMITTERS, preserved_joints, velocity_decay
 
 STEP = 0.001        # gz-sim's default physics step, for the Gazebo 0.x stopKp/stopKd conversion
@@ -40,6 +41,7 @@ class GazeboProps:
         self.preserved = preserved_joints(robot)
         unknown: dict[str, object] = {}
         self.dropped: list[tuple[str, str, object]] = []  # (reference, element with its name, loc), each one
+        self.commented: list[tuple[str, object]] = []     # (plugin name, node) of classic plugins in blobs
         for block in robot.gazebo:
             ref = block.reference
             props = self.by_ref.setdefault(ref, {})
@@ -147,13 +149,25 @@ class GazeboProps:
                     if v is not None:
                         sub(ode, tag, v)
         for child in injected:
-            _merge(coll_el, child)
+            if not self._classic_plugin(coll_el, child):
+                _merge(coll_el, child)
 
     def apply_visual(self, vis_el, ref) -> None:
         for child in self.blob_children(ref, "visual"):
             if child.tag == "material":   # the resolved explicit material wins
                 continue
-            _merge(vis_el, child)
+            if not self._classic_plugin(vis_el, child):
+                _merge(vis_el, child)
+
+    def _classic_plugin(self, target, child) -> bool:
+        """A Gazebo classic plugin in an injected <visual>/<collision> (gazebo_ros_video...): kept
+        as an XML comment, as model-level classic plugins are; True when it was one."""
+        if child.ns or child.tag != "plugin" or node_kind(child) == "gz":
+            return False
+        comment(target, f"not converted (no gz-sim equivalent known): {xml_text(child)}")
+        if not any(n is child for _, n in self.commented):
+            self.commented.append((child.get("name") or child.get("filename") or "?", child))
+        return True
 
     # ------------------------------------------------------------ joints
     def apply_joint(self, joint_el, axis_el, ref) -> None:

@@ -299,6 +299,9 @@ def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = Non
         if so.link not in host or host[so.link] not in kept:
             notes.warn(f"sensor on '{so.link}' dropped: that link is not in the model")
     emitter_fates = _emitters(robot, model, host, host_T, kept, notes)
+    if props.commented:
+        notes.warn(f"{len(props.commented)} Gazebo classic plugin(s) in <gazebo> <visual>/<collision> blocks kept as "
+                   "XML comments (no gz-sim equivalent): " + ", ".join(n for n, _ in props.commented))
 
     if repairs:
         notes.warn(f"{len(repairs)} inertia tensor(s) break the triangle inequality (sdformat and gz-sim reject "
@@ -512,6 +515,9 @@ def _report_sdf(robot, report, opts, host, world_links, frame_names, joint_names
             if f"{key} ({ref})" in props.unknown or (key in EMITTERS and ref in robot.links):
                 continue        # each dropped element below; lights and projectors by name (emitters)
             report.set("gazebo", f"{ref}/{key}", "translated", "SDF link/collision/joint property", g.loc)
+    for name, n in props.commented:
+        report.set("plugin", name, "dropped", "a Gazebo classic plugin in a <gazebo> <visual>/<collision>: no gz-sim "
+                   "equivalent, kept as an XML comment", n.loc)
     for ref, label, loc in props.dropped:
         report.set("gazebo", f"{ref}/{label}", "dropped", "no SDF equivalent", loc)
     for e, where in emitter_fates:

@@ -71,3 +71,42 @@ def test_x001_only_for_what_xacro_evaluated():
         ["accessories.urdf.xacro:23", "hokuyo_ust10.urdf.xacro:52"]
     assert "(<hokuyo_ust10_mount>) upgraded" in x001[0] and "bridge_plate" not in res.stderr
     assert "hokuyo_ust10_mount" in res.stdout or "front_laser" in res.stdout
+
+
+# ------------------------------------------------------------------ 4. classic plugin in a <visual>
+VIDEO = ('<gazebo reference="base_link"><visual><plugin name="display_video_controller" '
+         'filename="libgazebo_ros_video.so"><height>120</height><width>160</width></plugin></visual></gazebo>')
+
+
+def _built(robot_id: str, tmp_path) -> Path:
+    robot = corpus_robot(robot_id)
+    out = tmp_path / f"{robot_id}.urdf"
+    res = CliRunner().invoke(main, ["build", *corpus_args(robot), "-o", str(out)], env=corpus_env(robot))
+    assert res.exit_code == 0, res.output[-1500:]
+    return out
+
+
+def test_classic_plugin_in_a_gazebo_visual_is_commented_out(tmp_path):
+    """gazebo_ros_video's documented set-up (a <plugin> in a <gazebo reference><visual>), planted into
+    TurtleBot3 Burger: the SDF visual gets it as a comment, as the model-level classic diff drive is,
+    and the report names it dropped."""
+    from lxml import etree
+
+    urdf = _built("turtlebot3_burger", tmp_path)
+    urdf.write_text(urdf.read_text().replace("</robot>", VIDEO + "\n</robot>"))
+    out, rep = tmp_path / "out.sdf", tmp_path / "report.json"
+    res = CliRunner().invoke(main, ["convert", str(urdf), "--to", "sdf", "-o", str(out), "--report", str(rep),
+                                    "--package-path", str(CORPUS)])
+    assert res.exit_code == 0, res.output[-1500:]
+    root = etree.parse(str(out)).getroot()
+    assert [p.get("filename") for p in root.iter("plugin") if "gazebo_ros" in (p.get("filename") or "")] == []
+    visual = next(v for v in root.iter("visual") if v.getparent().get("name") == "base_link")
+    notes = [c.text for c in visual.iter(etree.Comment)]
+    assert any("libgazebo_ros_video.so" in t and "not converted" in t for t in notes)
+    # the model-level classic diff drive is commented the same way
+    assert any("libgazebo_ros_diff_drive.so" in (c.text or "") for c in root.iter(etree.Comment))
+    import json
+
+    entries = json.loads(rep.read_text())["elements"]
+    video = [e for e in entries if e["kind"] == "plugin" and e["name"] == "display_video_controller"]
+    assert len(video) == 1 and video[0]["fate"] == "dropped"

@@ -284,7 +284,8 @@ def mimic_target(ctx):
                           j.loc, {"joint": j.name, "target": t, "suggestion": guess})
         elif t == j.name:
             yield Finding(f"joint {j.name} mimics itself", j.loc, {"joint": j.name})
-        elif r.joints[t].type == "fixed":
+        elif r.joints[t].type == "fixed" and j.type != "fixed":
+            # both fixed (a gripper macro's default): nothing moves, nothing to follow
             yield Finding(f"joint {j.name} mimics {t}, a fixed joint", j.loc, {"joint": j.name, "target": t})
 
 

@@ -110,3 +110,47 @@ def test_classic_plugin_in_a_gazebo_visual_is_commented_out(tmp_path):
     entries = json.loads(rep.read_text())["elements"]
     video = [e for e in entries if e["kind"] == "plugin" and e["name"] == "display_video_controller"]
     assert len(video) == 1 and video[0]["fate"] == "dropped"
+
+
+def _check_json(urdf: Path, *extra) -> list[dict]:
+    import json
+
+    res = CliRunner().invoke(main, ["check", str(urdf), "--format", "json", "--package-path", str(CORPUS), *extra])
+    assert res.exit_code in (0, 1), res.output[-1500:]
+    return json.loads(res.stdout)["files"][0]["diagnostics"]
+
+
+# ------------------------------------------------------------------ 5. T012 on two fixed joints
+def test_t012_no_error_for_a_mimic_between_two_fixed_joints(tmp_path):
+    """Robotiq 2F-85 (ROS 2) with both knuckle joints fixed, as a macro default would make them:
+    the right knuckle mimics the left one and neither moves (no error); the four revolute joints
+    that still mimic the fixed left knuckle stay errors."""
+    urdf = _built("robotiq_2f_85_ros2", tmp_path)
+    text = urdf.read_text()
+    for j in ("robotiq_85_left_knuckle_joint", "robotiq_85_right_knuckle_joint"):
+        old = f'<joint name="{j}" type="revolute">'
+        assert text.count(old) == 1
+        text = text.replace(old, f'<joint name="{j}" type="fixed">')
+    urdf.write_text(text)
+    t012 = sorted(d["data"]["joint"] for d in _check_json(urdf) if d["code"] == "T012")
+    assert t012 == ["robotiq_85_left_finger_tip_joint", "robotiq_85_left_inner_knuckle_joint",
+                    "robotiq_85_right_finger_tip_joint", "robotiq_85_right_inner_knuckle_joint"]
+
+
+# ------------------------------------------------------------------ 5. G001's message
+def test_g001_names_the_wheel_that_is_off_with_numbers_that_add_up(tmp_path):
+    """Pioneer 3-AT (skid steer, wheelSeparation 0.4) with the rear right wheel's collision moved
+    0.2 m inwards: the measured separation (0.294 m, between the means of each side) used to be
+    shown with the front pair's y (0.197 and -0.197, 0.394 apart)."""
+    urdf = _built("pioneer3at", tmp_path)
+    text = urdf.read_text()
+    i = text.index('<link name="p3at_back_right_wheel">')
+    old = '<origin rpy="-1.57079635 0 0" xyz="0 0 0"/>'
+    j = text.index(old, i)
+    urdf.write_text(text[:j] + old.replace('xyz="0 0 0"', 'xyz="0 0.2 0"') + text[j + len(old):])
+    g001 = [d for d in _check_json(urdf) if d["code"] == "G001"]
+    assert len(g001) == 1
+    msg = g001[0]["message"]
+    assert "0.294 m apart" in msg and "p3at_back_right_wheel_joint 0.003" in msg
+    assert "wheel p3at_back_right_wheel (joint p3at_back_right_wheel_joint) is 194 mm closer" in msg
+    assert (0.197 + 0.197) / 2 - (-0.197 + 0.003) / 2 == pytest.approx(0.294, abs=1e-3)

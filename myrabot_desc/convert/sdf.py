@@ -526,6 +526,7 @@ def _report_sdf(robot, report, opts, host, world_links, frame_names, joint_names
             report.set("gazebo", name, "dropped", f"its link '{e.reference}' is not in the model", e.loc)
         else:
             report.set("gazebo", name, "kept", f"an SDF <{e.kind}> of link '{where}'", e.loc)
+    for g in robot.gazebo:
         for pl in g.plugins:
             kind = plugins.kind(pl)
             fate, detail = {

@@ -110,6 +110,8 @@ def test_classic_plugin_in_a_gazebo_visual_is_commented_out(tmp_path):
     entries = json.loads(rep.read_text())["elements"]
     video = [e for e in entries if e["kind"] == "plugin" and e["name"] == "display_video_controller"]
     assert len(video) == 1 and video[0]["fate"] == "dropped"
+    # and the model-level plugins are still each in the report
+    assert {e["name"] for e in entries if e["kind"] == "plugin"} >= {"turtlebot3_burger_controller", "display_video_controller"}
 
 
 def _check_json(urdf: Path, *extra) -> list[dict]:

@@ -390,3 +390,32 @@ def camera_fov(ctx):
         if hf is not None and 0 < hf <= 2 * math.pi and not 0.05 <= hf < math.pi:
             yield Finding(f"camera {s.name}: horizontal_fov {hf:g} rad ({math.degrees(hf):.0f}°) is outside a pinhole "
                           "camera's range", s.loc, {"sensor": s.name, "horizontal_fov": hf})
+
+
+_IMU = _SENSOR_LINK.format(link="imu_link", rpy="0 0 0") + """
+<gazebo reference="imu_link">
+  <sensor type="imu" name="imu">
+    <always_on>true</always_on>
+    <update_rate>{rate}</update_rate>
+  </sensor>
+</gazebo>"""
+
+
+@rule("S008", "sensor-update-rate", "error",
+      bad=_IMU.format(rate="-100"),
+      message="sensor imu (imu): update_rate -100 Hz is negative",
+      good=_IMU.format(rate="100"))
+def sensor_update_rate(ctx):
+    """A sensor's update rate must not be negative.
+
+    Gazebo reads `<update_rate>` (Electric `<updateRate>`) as the sensor's frequency in Hz;
+    0 means as fast as the simulation steps, and a negative value is no frequency at all
+    (sdformat accepts the number; the sensor then never updates or updates every step,
+    depending on the simulator). Fix: the device's rate in Hz (an IMU 100–400, a camera 30).
+    """
+    for s in ctx.robot.sensors():
+        rate = s.update_rate
+        if rate is not None and rate < 0:
+            word = "updateRate" if s.dialect == "electric" else "update_rate"
+            yield Finding(f"sensor {s.name} ({s.type}): {word} {rate:.4g} Hz is negative", s.loc,
+                          {"sensor": s.name, "update_rate": rate})

@@ -156,3 +156,17 @@ def test_g001_names_the_wheel_that_is_off_with_numbers_that_add_up(tmp_path):
     assert "0.294 m apart" in msg and "p3at_back_right_wheel_joint 0.003" in msg
     assert "wheel p3at_back_right_wheel (joint p3at_back_right_wheel_joint) is 194 mm closer" in msg
     assert (0.197 + 0.197) / 2 - (-0.197 + 0.003) / 2 == pytest.approx(0.294, abs=1e-3)
+
+
+# ------------------------------------------------------------------ 5. negative update_rate (S008)
+def test_s008_negative_sensor_update_rate(tmp_path):
+    """TurtleBot3 Burger's lidar (update_rate 5 Hz) planted with -5: S008; the file as written: none."""
+    urdf = _built("turtlebot3_burger", tmp_path)
+    assert [d for d in _check_json(urdf) if d["code"] == "S008"] == []
+    text = urdf.read_text()
+    i = text.index('<sensor name="lds_lfcd_sensor" type="ray">')
+    j = text.index("<update_rate>5</update_rate>", i)
+    urdf.write_text(text[:j] + "<update_rate>-5</update_rate>" + text[j + len("<update_rate>5</update_rate>"):])
+    s008 = [d for d in _check_json(urdf) if d["code"] == "S008"]
+    assert [(d["severity"], d["data"]["sensor"], d["data"]["update_rate"]) for d in s008] == \
+        [("error", "lds_lfcd_sensor", -5.0)]

@@ -170,3 +170,29 @@ def test_s008_negative_sensor_update_rate(tmp_path):
     s008 = [d for d in _check_json(urdf) if d["code"] == "S008"]
     assert [(d["severity"], d["data"]["sensor"], d["data"]["update_rate"]) for d in s008] == \
         [("error", "lds_lfcd_sensor", -5.0)]
+
+
+# ------------------------------------------------------------------ 5. literal {prefix} (T018)
+def test_t018_literal_brace_in_a_name_from_a_missing_dollar(tmp_path):
+    """UR5e's ur_macro.xacro with `${tf_prefix}base_link_inertia` planted as `{tf_prefix}...` (its 3
+    uses: the link, and the joints naming it): the tree stays whole, T018 names the link and the
+    two joints do not count (only names are judged)."""
+    import shutil
+
+    pkg = tmp_path / "ur_description"
+    shutil.copytree(CORPUS / "ur_description", pkg)
+    macro = pkg / "urdf" / "ur_macro.xacro"
+    text = macro.read_text()
+    assert text.count("${tf_prefix}base_link_inertia") == 3
+    macro.write_text(text.replace("${tf_prefix}base_link_inertia", "{tf_prefix}base_link_inertia"))
+    res = CliRunner().invoke(main, ["check", str(pkg / "urdf" / "ur.urdf.xacro"), "name:=ur5e", "ur_type:=ur5e",
+                                    "--format", "json", "--package-path", str(tmp_path),
+                                    "--package-path", str(CORPUS)])
+    import json
+
+    diags = json.loads(res.stdout)["files"][0]["diagnostics"]
+    t018 = [d for d in diags if d["code"] == "T018"]
+    assert [(d["data"]["kind"], d["data"]["name"]) for d in t018] == [("link", "{tf_prefix}base_link_inertia")]
+    assert t018[0]["file"].endswith("ur_macro.xacro") or "ur_macro.xacro" in t018[0].get("loc", t018[0]["file"])
+    clean = CliRunner().invoke(main, ["check", *corpus_args(corpus_robot("ur5e")), "--format", "json"])
+    assert "T018" not in clean.stdout

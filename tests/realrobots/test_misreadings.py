@@ -196,3 +196,35 @@ def test_t018_literal_brace_in_a_name_from_a_missing_dollar(tmp_path):
     assert t018[0]["file"].endswith("ur_macro.xacro") or "ur_macro.xacro" in t018[0].get("loc", t018[0]["file"])
     clean = CliRunner().invoke(main, ["check", *corpus_args(corpus_robot("ur5e")), "--format", "json"])
     assert "T018" not in clean.stdout
+
+
+# ------------------------------------------------------------------ 5. --allow-path covers file:// meshes
+def test_allow_path_covers_file_meshes(tmp_path):
+    """TurtleBot3 Burger built with --resolve-uris (absolute file:// meshes), its meshes moved to a
+    folder outside the URDF's: X006 for each of the 4 meshes, none with --allow-path naming that
+    folder (which covered includes and YAML only), and convert reads them too."""
+    import json
+    import shutil
+
+    robot = corpus_robot("turtlebot3_burger")
+    model = tmp_path / "a" / "b" / "model"
+    model.mkdir(parents=True)
+    meshes = tmp_path / "meshes"
+    shutil.copytree(CORPUS / "turtlebot3_description" / "meshes", meshes)
+    res = CliRunner().invoke(main, ["build", *corpus_args(robot), "--resolve-uris", "-o", "-"])
+    assert res.exit_code == 0
+    src = "file://" + str((CORPUS / "turtlebot3_description" / "meshes").resolve())
+    assert res.stdout.count(src) == 4      # 4 meshes (visuals only)
+    urdf = model / "burger.urdf"
+    urdf.write_text(res.stdout.replace(src, "file://" + str(meshes)))
+
+    def codes(*extra):
+        r = CliRunner().invoke(main, ["check", str(urdf), "--format", "json", *extra])
+        return sorted(d["code"] for d in json.loads(r.stdout)["files"][0]["diagnostics"] if d["severity"] == "error")
+
+    assert codes() == ["X006"] * 4
+    assert codes("--allow-path", str(meshes)) == []
+    out = tmp_path / "out.sdf"
+    r = CliRunner().invoke(main, ["convert", str(urdf), "--allow-path", str(meshes), "-o", str(out)])
+    assert r.exit_code == 0, r.output[-1500:]
+    assert out.read_text().count(str(meshes)) >= 4

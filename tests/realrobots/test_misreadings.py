@@ -228,3 +228,24 @@ def test_allow_path_covers_file_meshes(tmp_path):
     r = CliRunner().invoke(main, ["convert", str(urdf), "--allow-path", str(meshes), "-o", str(out)])
     assert r.exit_code == 0, r.output[-1500:]
     assert out.read_text().count(str(meshes)) >= 4
+
+
+# ------------------------------------------------------------------ 5. S003 by REP-103 name
+def test_s003_judges_an_optical_frame_by_its_name(tmp_path):
+    """TurtleBot 2 with Kinect: its camera plugin names camera_depth_optical_frame only; its
+    camera_rgb_optical_joint planted with the signs of its rpy flipped.
+    S003 used to judge only frames a camera plugin names; REP-103 goes by the frame's name."""
+    urdf = _built("turtlebot2_kinect", tmp_path)
+    text = urdf.read_text()
+    assert [d for d in _check_json(urdf) if d["code"] == "S003"] == []
+    right = '<origin rpy="-1.5707963267948966 0 -1.5707963267948966" xyz="0 0 0"/>\n' \
+            '    <parent link="camera_rgb_frame"/>'
+    assert text.count(right) == 1
+    urdf.write_text(text.replace(right, right.replace("-1.5707963267948966 0 -1.5707963267948966",
+                                                      "1.5707963267948966 0 1.5707963267948966")))
+    s003 = [d for d in _check_json(urdf) if d["code"] == "S003"]
+    assert [(d["data"]["frame"], d["data"]["parent"], d["data"]["joint"]) for d in s003] == \
+        [("camera_rgb_optical_frame", "camera_rgb_frame", "camera_rgb_optical_joint")]
+    # z still forward, but x points left (+y) where REP-103 wants right (-y): the image is mirrored
+    assert [round(v, 3) + 0.0 for v in s003[0]["data"]["z_axis"]] == [1.0, 0.0, 0.0]
+    assert [round(v, 3) + 0.0 for v in s003[0]["data"]["x_axis"]] == [0.0, 1.0, 0.0]

@@ -249,3 +249,20 @@ def test_s003_judges_an_optical_frame_by_its_name(tmp_path):
     # z still forward, but x points left (+y) where REP-103 wants right (-y): the image is mirrored
     assert [round(v, 3) + 0.0 for v in s003[0]["data"]["z_axis"]] == [1.0, 0.0, 0.0]
     assert [round(v, 3) + 0.0 for v in s003[0]["data"]["x_axis"]] == [0.0, 1.0, 0.0]
+
+
+# ------------------------------------------------------------------ 5. P002 on shape-recognised wheels
+def test_p002_counts_wheels_recognised_by_shape(tmp_path):
+    """TurtleBot3 Burger with its diff-drive plugin removed (no drive declared: its two continuous
+    wheel joints are wheels by shape, model/drive.wheel_joints) and its base joint lowered 0.3 m:
+    P002 says 300 mm into the ground."""
+    import re
+
+    urdf = _built("turtlebot3_burger", tmp_path)
+    text = re.sub(r'<plugin filename="libgazebo_ros_diff_drive.so".*?</plugin>', "", urdf.read_text(), flags=re.S)
+    old = '<origin rpy="0 0 0" xyz="0.0 0.0 0.010"/>'
+    assert "libgazebo_ros_diff_drive" not in text and text.count(old) == 1
+    urdf.write_text(text.replace(old, '<origin rpy="0 0 0" xyz="0.0 0.0 -0.290"/>'))
+    p002 = [d for d in _check_json(urdf) if d["code"] == "P002"]
+    assert len(p002) == 1 and p002[0]["data"]["min_z"] == pytest.approx(-0.300007, abs=1e-6)
+    assert "300 mm into the ground" in p002[0]["message"]

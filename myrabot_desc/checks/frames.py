@@ -180,18 +180,21 @@ def optical_frame(ctx):
     depth_image_proc, RViz) expect the image's frame to have z forward. Stamping images
     with the x-forward body frame puts point clouds and projections 90° off. Fix: a
     child frame `<name>_optical` with `rpy="-1.5708 0 -1.5708"` and that frame as the
-    plugin's frameName / frame_name.
+    plugin's frameName / frame_name. A frame named `*_optical_frame` (or `*_optical`) is judged
+    by its name too, camera plugin or not: under its parent it needs that rotation.
     """
     import numpy as np
 
     r = ctx.robot
     W = ctx.world
+    judged = set()
     for s in r.sensors():
         if not _is_camera(s) or s.reference not in W:
             continue
         frame, how = _camera_frame(s)
         if frame not in W:
             continue                     # S002 reports unknown frames
+        judged.add(frame)
         R = W[s.reference][:3, :3].T @ W[frame][:3, :3]      # frame axes in the sensor link's frame
         z, x = R[:, 2], R[:, 0]
         if z @ np.array([1.0, 0, 0]) > 0.98 and x @ np.array([0, -1.0, 0]) > 0.98:
@@ -204,6 +207,33 @@ def optical_frame(ctx):
                       {"sensor": s.name, "frame": frame, "z_axis": z.tolist(),
                        "fix": {"parent": s.reference, "rpy": [-math.pi / 2, 0.0, -math.pi / 2]}},
                       fix=_optical_fix(r, s, how))
+    yield from _named_optical_frames(r, W, judged)
+
+
+def _named_optical_frames(r, W, judged):
+    """S003 by REP-103's naming: a frame named ``*_optical_frame`` (or ``*_optical``) is an optical
+    frame whatever plugin uses it, so under a body frame (x forward) its z is the parent's +x and its
+    x the parent's -y. A frame under another optical frame (same axes) passes."""
+    import numpy as np
+
+    for name in r.links:
+        if name in judged or name not in W or not name.endswith(("_optical_frame", "_optical")):
+            continue
+        pj = r.parent_joint(name)
+        if pj is None or pj.parent not in W:
+            continue
+        R = W[pj.parent][:3, :3].T @ W[name][:3, :3]
+        z, x = R[:, 2], R[:, 0]
+        if z @ np.array([1.0, 0, 0]) > 0.98 and x @ np.array([0, -1.0, 0]) > 0.98:
+            continue
+        if pj.parent.endswith(("_optical_frame", "_optical")) and np.allclose(R, np.eye(3), atol=0.02):
+            continue
+        yield Finding(f"frame {name} is named as a REP-103 optical frame (z forward, x right, y down), but its z "
+                      f"axis is ({_r(z[0])} {_r(z[1])} {_r(z[2])}) and its x axis ({_r(x[0])} {_r(x[1])} {_r(x[2])}) "
+                      f"in {pj.parent} (joint {pj.name}); under a body frame (x forward) it needs "
+                      f"rpy=\"-1.5708 0 -1.5708\" (z along {pj.parent}'s +x, x along its -y)", pj.loc,
+                      {"frame": name, "parent": pj.parent, "joint": pj.name, "z_axis": z.tolist(),
+                       "x_axis": x.tolist(), "fix": {"parent": pj.parent, "rpy": [-math.pi / 2, 0.0, -math.pi / 2]}})
 
 
 def _optical_fix(robot, sensor, how: str) -> Fix | None:
@@ -390,3 +420,32 @@ def camera_fov(ctx):
         if hf is not None and 0 < hf <= 2 * math.pi and not 0.05 <= hf < math.pi:
             yield Finding(f"camera {s.name}: horizontal_fov {hf:g} rad ({math.degrees(hf):.0f}°) is outside a pinhole "
                           "camera's range", s.loc, {"sensor": s.name, "horizontal_fov": hf})
+
+
+_IMU = _SENSOR_LINK.format(link="imu_link", rpy="0 0 0") + """
+<gazebo reference="imu_link">
+  <sensor type="imu" name="imu">
+    <always_on>true</always_on>
+    <update_rate>{rate}</update_rate>
+  </sensor>
+</gazebo>"""
+
+
+@rule("S008", "sensor-update-rate", "error",
+      bad=_IMU.format(rate="-100"),
+      message="sensor imu (imu): update_rate -100 Hz is negative",
+      good=_IMU.format(rate="100"))
+def sensor_update_rate(ctx):
+    """A sensor's update rate must not be negative.
+
+    Gazebo reads `<update_rate>` (Electric `<updateRate>`) as the sensor's frequency in Hz;
+    0 means as fast as the simulation steps, and a negative value is no frequency at all
+    (sdformat accepts the number; the sensor then never updates or updates every step,
+    depending on the simulator). Fix: the device's rate in Hz (an IMU 100–400, a camera 30).
+    """
+    for s in ctx.robot.sensors():
+        rate = s.update_rate
+        if rate is not None and rate < 0:
+            word = "updateRate" if s.dialect == "electric" else "update_rate"
+            yield Finding(f"sensor {s.name} ({s.type}): {word} {rate:.4g} Hz is negative", s.loc,
+                          {"sensor": s.name, "update_rate": rate})

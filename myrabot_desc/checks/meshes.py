@@ -64,7 +64,8 @@ def mesh_resolves(ctx):
                 p = r.source.parent / p
             # outside the roots: X006 from the model says so, the same words whether or not such a
             # file exists; M001 would only repeat it
-            reason = unresolved_reason(g.filename, r.package_roots, r.source.parent if r.source else Path.cwd())
+            reason = unresolved_reason(g.filename, r.package_roots, r.source.parent if r.source else Path.cwd(),
+                                       r.allow_roots)
             if reason == "outside the allowed folders":
                 continue
             why = f"{p} is {reason}" if reason else f"no such file {p}"

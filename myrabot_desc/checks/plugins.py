@@ -56,12 +56,43 @@ def wheel_separation(ctx):
         if real < 1e-9:  # both wheels at one point (broken origins/axis): nothing to compare
             continue
         if abs(sep - real) > max(0.002, 0.02 * real):
-            yield Finding(f"{spec.separation} {sep:.3g} m, but the wheel joints {lw.joint} and {rw.joint} are "
-                          f"{real:.3g} m apart (y {lw.centre[1]:.3g} and {rw.centre[1]:.3g}): the robot turns at "
+            if len(g.left) == 1 and len(g.right) == 1:
+                where = (f"the wheel joints {lw.joint} and {rw.joint} are {real:.3g} m apart "
+                         f"(y {lw.centre[1]:.3g} and {rw.centre[1]:.3g})")
+            else:
+                where = _sides(g, real)
+            yield Finding(f"{spec.separation} {sep:.3g} m, but {where}: the robot turns at "
                           f"{sep / real:.3g}× the commanded rate (before any diameter error)", p.loc,
                           {"plugin": p.name, "param": spec.separation, "value": sep, "urdf": real,
                            "fix": round(real, 6)},
                           fix=_param_fix(p, spec.separation, round(real, 6)))
+
+
+def _sides(g, real: float) -> str:
+    """G001's words for several wheels a side: the separation is between the means of each side's
+    wheel centres along the axle (model/drive.separation), so every wheel is named with its own
+    coordinate, and a wheel off the others of its side is pointed out."""
+    ax = g.left[0].axis
+    mean = lambda ws: sum(sum(w.centre[k] * ax[k] for k in range(3)) for w in ws) / len(ws)  # noqa: E731
+    sign = 1.0 if mean(g.left) >= mean(g.right) else -1.0     # left positive, as y is
+    coord = {w.joint: sign * sum(w.centre[k] * ax[k] for k in range(3)) for w in g.left + g.right}
+    label = "y" if abs(ax[1]) > 0.99 else "along the axle"
+
+    def side(ws):
+        return ", ".join(f"{w.joint} {coord[w.joint]:.3g}" for w in ws)
+
+    text = (f"the left and right wheel centres are {real:.3g} m apart (the mean of each side, {label}: "
+            f"{side(g.left)}; {side(g.right)})")
+    # the wheel off the pattern: farthest from the median distance to the centre line of all wheels
+    dist = sorted(abs(v) for v in coord.values())
+    n = len(dist)
+    median = dist[n // 2] if n % 2 else (dist[n // 2 - 1] + dist[n // 2]) / 2
+    w = max(g.left + g.right, key=lambda w: abs(abs(coord[w.joint]) - median))
+    off = abs(coord[w.joint]) - median
+    if abs(off) > 0.002:
+        text += (f"; wheel {w.link} (joint {w.joint}) is {abs(off) * 1000:.0f} mm "
+                 f"{'closer to' if off < 0 else 'farther from'} the centre line than the others")
+    return text
 
 
 @rule("G002", "drive-wheel-size", "error",

@@ -304,7 +304,8 @@ def model_sources(task: Task) -> set[Path] | None:
         return None
     out = {f.resolve() for f in files}
     for uri in set(_MESH.findall(text)):
-        p = resolve_resource_uri(uri, roots, src.parent)
+        p = resolve_resource_uri(uri, roots, src.parent, tuple(Path(d).expanduser().resolve()
+                                                              for d in build.get("allow_paths") or ()))
         if p is not None:
             out.add(Path(p).resolve())
     return out

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 
 from myrabot_desc.checks.rule import Finding, Fix, FixInfo, SetValue, rule
 from myrabot_desc.checks.urdf_syntax import only_candidate, suggest
@@ -284,7 +285,8 @@ def mimic_target(ctx):
                           j.loc, {"joint": j.name, "target": t, "suggestion": guess})
         elif t == j.name:
             yield Finding(f"joint {j.name} mimics itself", j.loc, {"joint": j.name})
-        elif r.joints[t].type == "fixed":
+        elif r.joints[t].type == "fixed" and j.type != "fixed":
+            # both fixed (a gripper macro's default): nothing moves, nothing to follow
             yield Finding(f"joint {j.name} mimics {t}, a fixed joint", j.loc, {"joint": j.name, "target": t})
 
 
@@ -354,3 +356,30 @@ def joint_type_known(ctx):
 
 def _v(v) -> str:
     return " ".join(f"{x:g}" for x in v)
+
+
+_BRACED = re.compile(r"(?<!\$)\{[A-Za-z_][A-Za-z0-9_.]*\}")     # {word} not preceded by $
+
+
+@rule("T018", "name-unexpanded-brace", "warning",
+      bad='<link name="{prefix}arm"/>  <!-- ${ns}{prefix}arm: the $ of ${prefix} is missing -->\n'
+          '<joint name="arm_joint" type="fixed"><parent link="base_link"/><child link="{prefix}arm"/></joint>',
+      message="link {prefix}arm has '{prefix}' in its name: a xacro ${prefix} written without its $",
+      good='<link name="arm"/>\n'
+           '<joint name="arm_joint" type="fixed"><parent link="base_link"/><child link="arm"/></joint>')
+def unexpanded_brace(ctx):
+    """A link or joint name holds `{word}`: an xacro `${word}` written without its `$`.
+
+    xacro expands `${prefix}` but copies `{prefix}` as it stands, so `${ns}{prefix}${name}`
+    builds names with a literal `{prefix}` in them: valid to urdfdom, and nothing that
+    looks the frame up by its intended name (TF, controllers, MoveIt) finds it. Fix: the
+    missing `$`.
+    """
+    r = ctx.robot
+    for kind, items in (("link", r.links.values()), ("joint", r.joints.values())):
+        for item in items:
+            m = _BRACED.search(item.name or "")
+            if m:
+                word = m.group(0)
+                yield Finding(f"{kind} {item.name} has '{word}' in its name: a xacro ${word} written without its $",
+                              item.loc, {"kind": kind, "name": item.name, "text": word})

@@ -8,15 +8,16 @@ model/gazebo.py). Several blocks for the same reference merge in document order 
 
 from __future__ import annotations
 
-from myrabot_desc.convert.common import element_of, sub
-from myrabot_desc.model.gazebo import preserved_joints
+from myrabot_desc.convert.common import comment, element_of, sub, xml_text
+from myrabot_desc.model.plugins import node_kind
+from myrabot_desc.model.gazebo import EMITTERS, preserved_joints, velocity_decay
 
 STEP = 0.001        # gz-sim's default physics step, for the Gazebo 0.x stopKp/stopKd conversion
 
 # keys that map onto SDF elements; everything else is reported once
 LINK_KEYS = {"material", "mu1", "mu2", "fdir1", "fdir", "kp", "kd", "maxVel", "minDepth", "maxContacts",
              "laserRetro", "selfCollide", "turnGravityOff", "gravity", "dampingFactor", "linearDamping",
-             "angularDamping", "kinematic", "minDepth", "slip1", "slip2", "torsional"}
+             "angularDamping", "kinematic", "minDepth", "slip1", "slip2", "torsional", "enable_wind"}
 JOINT_KEYS = {"springReference", "springStiffness", "stopCfm", "stopErp", "stopKp", "stopKd", "erp", "cfm",
               "provideFeedback",
               "implicitSpringDamper", "cfmDamping", "fudgeFactor", "preserveFixedJoint",
@@ -24,6 +25,8 @@ JOINT_KEYS = {"springReference", "springStiffness", "stopCfm", "stopErp", "stopK
 MODEL_KEYS = {"static", "selfCollide", "self_collide", "allow_auto_disable", "enable_wind"}
 # Electric-era keys that have no SDF meaning (Gazebo 0.x rendering/physics tuning)
 IGNORED_KEYS = {"genTexCoord", "laserFiducialId", "visual", "collision", "sensor", "plugin"}
+# elements with children that a link's block carries into the SDF (sdf.py places the emitters)
+LINK_ELEMENTS = {"visual", "collision", "sensor", "plugin", "velocity_decay", *EMITTERS}
 
 
 class GazeboProps:
@@ -34,25 +37,49 @@ class GazeboProps:
         self.typed: dict[str | None, dict] = {}       # reference -> the typed values (GazeboBlock.values)
         self.blobs: dict[str | None, list] = {}       # reference -> [<visual>|<collision> node]
         self.locs: dict[str | None, object] = {}
+        self.decay: dict[str | None, list] = {}       # reference -> [linear, angular] velocity decay
         self.preserved = preserved_joints(robot)
         unknown: dict[str, object] = {}
+        self.dropped: list[tuple[str, str, object]] = []  # (reference, element with its name, loc), each one
+        self.commented: list[tuple[str, object]] = []     # (plugin name, node) of classic plugins in blobs
         for block in robot.gazebo:
             ref = block.reference
             props = self.by_ref.setdefault(ref, {})
             props.update(block.properties)
             self.typed.setdefault(ref, {}).update(block.values)
             self.locs.setdefault(ref, block.loc)
+            is_link = ref is not None and ref in robot.links
+            if is_link:
+                decay = self.decay.setdefault(ref, [None, None])
+                for k, v in enumerate(velocity_decay(block)):
+                    if v is not None:
+                        decay[k] = v
             for child in block.node.elements:
                 if child.tag in ("visual", "collision") and not child.ns:
                     self.blobs.setdefault(ref, []).append(child)
-            known = MODEL_KEYS if ref is None else (LINK_KEYS if ref in robot.links else JOINT_KEYS)
-            for key in block.properties:
-                if key not in known and key not in IGNORED_KEYS:
+                elif is_link and child.elements and not child.ns and child.tag not in LINK_ELEMENTS:
+                    self._drop(ref, child, block.loc)
+            known = MODEL_KEYS if ref is None else (LINK_KEYS if is_link else JOINT_KEYS)
+            for child in block.node.elements:
+                key = child.tag
+                if child.elements or child.ns or key not in block.properties:
+                    continue
+                if key not in known and key not in IGNORED_KEYS and not (is_link and key in EMITTERS):
                     unknown.setdefault(f"{key} ({ref or 'model'})", block.loc)
+                    self._drop(ref, child, block.loc)
         self.unknown = unknown
-        if unknown:
-            names = ", ".join(sorted(unknown))
-            notes.warn(f"gazebo properties with no SDF equivalent, not converted: {names}")
+        if self.dropped:
+            names = ", ".join(f"{label} ({ref})" for ref, label, _ in self.dropped)
+            notes.warn(f"gazebo elements with no SDF equivalent, not converted: {names}")
+
+    def _drop(self, ref, child, loc) -> None:
+        name = child.get("name")
+        ref = ref or "model"
+        label = base = f"{child.tag} '{name}'" if name else child.tag
+        k = 2
+        while any(r == ref and lb == label for r, lb, _ in self.dropped):
+            label, k = f"{base} #{k}", k + 1
+        self.dropped.append((ref, label, child.loc or loc))
 
     def get(self, ref) -> dict[str, str]:
         """The properties of a reference as written (text)."""
@@ -83,9 +110,9 @@ class GazeboProps:
             sub(link_el, "self_collide", sc)
         if p.get("kinematic") is not None:
             sub(link_el, "kinematic", p["kinematic"])
-        lin = p.get("dampingFactor")
-        lin = lin if lin is not None else p.get("linearDamping")
-        ang = p.get("angularDamping")
+        if p.get("enable_wind") is not None:
+            sub(link_el, "enable_wind", p["enable_wind"])
+        lin, ang = self.decay.get(ref, (None, None))
         if lin is not None or ang is not None:
             vd = sub(link_el, "velocity_decay")
             if lin is not None:
@@ -122,13 +149,25 @@ class GazeboProps:
                     if v is not None:
                         sub(ode, tag, v)
         for child in injected:
-            _merge(coll_el, child)
+            if not self._classic_plugin(coll_el, child):
+                _merge(coll_el, child)
 
     def apply_visual(self, vis_el, ref) -> None:
         for child in self.blob_children(ref, "visual"):
             if child.tag == "material":   # the resolved explicit material wins
                 continue
-            _merge(vis_el, child)
+            if not self._classic_plugin(vis_el, child):
+                _merge(vis_el, child)
+
+    def _classic_plugin(self, target, child) -> bool:
+        """A Gazebo classic plugin in an injected <visual>/<collision> (gazebo_ros_video...): kept
+        as an XML comment, as model-level classic plugins are; True when it was one."""
+        if child.ns or child.tag != "plugin" or node_kind(child) == "gz":
+            return False
+        comment(target, f"not converted (no gz-sim equivalent known): {xml_text(child)}")
+        if not any(n is child for _, n in self.commented):
+            self.commented.append((child.get("name") or child.get("filename") or "?", child))
+        return True
 
     # ------------------------------------------------------------ joints
     def apply_joint(self, joint_el, axis_el, ref) -> None:
@@ -182,6 +221,9 @@ class GazeboProps:
 def _merge(target, child) -> None:
     """Deep-merge an injected SDF fragment (a model node): same-named children merge, leaves replace."""
     existing = target.find(f"{{{child.ns}}}{child.tag}" if child.ns else child.tag)
+    if existing is not None and not child.elements and not (child.text or "").strip() and not child.attrs \
+            and len(existing):
+        return      # an empty <ode/> adds nothing to what the properties wrote (minDepth, kp...)
     if existing is None or not child.children:
         if existing is not None:
             target.remove(existing)

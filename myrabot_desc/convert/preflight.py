@@ -92,7 +92,7 @@ def mesh_problems(robot) -> list[Problem]:
                 continue
             if g.path is None:
                 base = robot.source.parent if robot.source else Path.cwd()
-                why = unresolved_reason(g.filename, robot.package_roots, base) or "cannot be found"
+                why = unresolved_reason(g.filename, robot.package_roots, base, robot.allow_roots) or "cannot be found"
             else:
                 if g.path not in checked:
                     checked[g.path] = meshio.unreadable(g.path)

@@ -32,6 +32,7 @@ from myrabot_desc.convert.systems import Systems
 from myrabot_desc.convert.uris import UriMapper
 from myrabot_desc.errors import InputError
 from myrabot_desc.model import plugins
+from myrabot_desc.model.gazebo import EMITTERS, emitters
 from myrabot_desc.model.inertia import describe, repaired
 from myrabot_desc.model.tree import rigid_bodies
 from myrabot_desc.model.transforms import (
@@ -41,6 +42,7 @@ from myrabot_desc.model.transforms import (
     is_identity,
     matmul3,
     pose_T,
+    transform,
     transpose3,
 )
 
@@ -296,6 +298,10 @@ def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = Non
     for so in sensor_outs:
         if so.link not in host or host[so.link] not in kept:
             notes.warn(f"sensor on '{so.link}' dropped: that link is not in the model")
+    emitter_fates = _emitters(robot, model, host, host_T, kept, notes)
+    if props.commented:
+        notes.warn(f"{len(props.commented)} Gazebo classic plugin(s) in <gazebo> <visual>/<collision> blocks kept as "
+                   "XML comments (no gz-sim equivalent): " + ", ".join(n for n, _ in props.commented))
 
     if repairs:
         notes.warn(f"{len(repairs)} inertia tensor(s) break the triangle inequality (sdformat and gz-sim reject "
@@ -397,8 +403,35 @@ def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = Non
     uris.finish()
     look.finish()
     _report_sdf(robot, report, opts, host, world_links, frame_names, joint_names, lumped_joints, repairs_by_link,
-                massless, props, systems, sensor_fates)
+                massless, props, systems, sensor_fates, emitter_fates)
     return SdfResult(model, notes, kept, frames, out_joints, sensor_names, sorted(uris.resource_dirs))
+
+
+def _emitters(robot, model, host, host_T, kept, notes) -> list:
+    """The lights and projectors of the links' <gazebo> blocks, into the SDF link that hosts their
+    link (as ``ign sdf -p`` does), the pose carried through fixed-joint lumping; [(emitter, host or None)]."""
+    out = []
+    links = {el.get("name"): el for el in model.findall("link")}
+    for e in emitters(robot):
+        n = host.get(e.reference)
+        el = links.get(n) if n in kept else None
+        if el is None:
+            notes.warn(f"{e.kind} '{e.name}' of link '{e.reference}' dropped: that link is not in the model", e.loc)
+            out.append((e, None))
+            continue
+        new = element_of(e.node)
+        T, old = host_T[e.reference], new.find("pose")
+        if e.relative_to is None and (e.pose is not None or old is None and not is_identity(T)):
+            # a pose relative_to a named frame stays as written; an unreadable one too
+            if old is not None:
+                new.remove(old)
+            P = compose(T, transform(e.pose[:3], e.pose[3:]) if e.pose is not None else IDENTITY)
+            if not is_identity(P):
+                new.insert(0, etree.Element("pose"))
+                new[0].text = pose_text(P)
+        el.append(new)
+        out.append((e, n))
+    return out
 
 
 # what a model-level <gazebo> block may carry into the SDF <model> verbatim (sdformat copies them too)
@@ -438,7 +471,7 @@ def _model_extras(model, robot, notes, report, taken) -> list[str]:
 
 
 def _report_sdf(robot, report, opts, host, world_links, frame_names, joint_names, lumped_joints, repairs_by_link,
-                massless, props, systems, sensor_fates) -> None:
+                massless, props, systems, sensor_fates, emitter_fates=()) -> None:
     """The fate of every source element in the SDF (seed() marked them all kept)."""
 
     lumped = {j.name for j in lumped_joints}
@@ -479,10 +512,21 @@ def _report_sdf(robot, report, opts, host, world_links, frame_names, joint_names
     for g in robot.gazebo:
         for key in g.properties:
             ref = g.reference or "model"
-            if f"{key} ({ref})" in props.unknown:
-                report.set("gazebo", f"{ref}/{key}", "dropped", "no SDF equivalent", g.loc)
-            else:
-                report.set("gazebo", f"{ref}/{key}", "translated", "SDF link/collision/joint property", g.loc)
+            if f"{key} ({ref})" in props.unknown or (key in EMITTERS and ref in robot.links):
+                continue        # each dropped element below; lights and projectors by name (emitters)
+            report.set("gazebo", f"{ref}/{key}", "translated", "SDF link/collision/joint property", g.loc)
+    for name, n in props.commented:
+        report.set("plugin", name, "dropped", "a Gazebo classic plugin in a <gazebo> <visual>/<collision>: no gz-sim "
+                   "equivalent, kept as an XML comment", n.loc)
+    for ref, label, loc in props.dropped:
+        report.set("gazebo", f"{ref}/{label}", "dropped", "no SDF equivalent", loc)
+    for e, where in emitter_fates:
+        name = f"{e.reference}/{e.kind} '{e.name}'" if e.name else f"{e.reference}/{e.kind}"
+        if where is None:
+            report.set("gazebo", name, "dropped", f"its link '{e.reference}' is not in the model", e.loc)
+        else:
+            report.set("gazebo", name, "kept", f"an SDF <{e.kind}> of link '{where}'", e.loc)
+    for g in robot.gazebo:
         for pl in g.plugins:
             kind = plugins.kind(pl)
             fate, detail = {

@@ -158,6 +158,11 @@ class _Build:
         self.call_stack: list[tuple[str, Loc | None]] = []
         self.diagnostics: list[Diagnostic] = []
         self.macro_names: set[str] = set()
+        # the macros a bare element can call: not those of a file included with ns= (xacro, old
+        # and new, resolves a bare or prefixed name in the caller's scope; ns.name is the only way in)
+        self.bare_macros: set[str] = set()
+        self.upgraded: dict[str, tuple] = {}   # mdsrc index of an upgraded element -> (kind, tag, file)
+        self.upgrade_used: set[str] = set()    # ... of those xacro evaluated (not in a branch not taken)
         self.macro_files: dict[str, str] = {}
         # resolved path -> [bytes, domread.Parsed not yet handed to xacro (or None), name shown]
         self.trees: dict[Path, list] = {}
@@ -236,9 +241,10 @@ class _Build:
             raise InputError(exc.message, asked_at or exc.loc, code=exc.code) from None
 
     # ------------------------------------------------------------ prescan
-    def prescan(self, path: Path, seen: set, depth: int = 0) -> None:
-        """Collect macro names over the include tree (needed to spot bare calls)."""
-        key = self.key(path)
+    def prescan(self, path: Path, seen: set, depth: int = 0, in_ns: bool = False) -> None:
+        """Collect macro names over the include tree (needed to spot bare calls); ``in_ns``: the
+        file is reached through an include with ``ns=``."""
+        key = (self.key(path), in_ns)
         if key in seen or depth > self.limits.max_include_depth:
             return
         seen.add(key)
@@ -250,11 +256,13 @@ class _Build:
         root = parsed.doc.documentElement
         for name in lg.macro_names(root, parsed.noted):
             self.macro_names.add(name)
+            if not in_ns:
+                self.bare_macros.add(name)
             self.macro_files.setdefault(name, display(path))
-        for spec in lg.include_filenames(root, parsed.noted):
+        for spec, ns in lg.includes(root, parsed.noted):
             target = self._guess_include(spec, path)
             if target is not None:
-                self.prescan(target, seen, depth + 1)
+                self.prescan(target, seen, depth + 1, in_ns or ns)
 
     def _guess_include(self, spec: str, including: Path) -> Path | None:
         def find(m):
@@ -283,7 +291,7 @@ class _Build:
         parsed = self.take_parsed(path, asked_at)
         doc = parsed.doc
         if (self.legacy == "on" or self.legacy == "auto" and self.robot) and \
-                (any(lg.is_legacy_tag(el) for el in parsed.plain_words) or parsed.plain_tags & self.macro_names):
+                (any(lg.is_legacy_tag(el) for el in parsed.plain_words) or parsed.plain_tags & self.bare_macros):
             self._upgrade(doc.documentElement, path)
         return doc
 
@@ -291,15 +299,12 @@ class _Build:
         els = lg.elements(root)
         locs = self.locs
         line_of = {el: locs[int(el.getAttribute(SRC_ATTR))].line for el in els if el.hasAttribute(SRC_ATTR)}
-        kinds = lg.upgrade(root, self.macro_names, line_of, els)
-        for kind, (count, line, names) in sorted(kinds.items()):
-            new = "xacro:" + kind.strip("<>") if kind.startswith("<") else "xacro:NAME"
-            if names:
-                kind += " (" + ", ".join(f"<{n}>" for n in names[:4]) + (", ..." if len(names) > 4 else "") + ")"
-            times = f" ({count} times)" if count > 1 else ""
-            self.diagnostics.append(Diagnostic(
-                "X001", "warning", f"legacy {kind} upgraded to <{new}>{times}; xacro 2.x would copy it "
-                "into the URDF unexpanded", Loc(display(path), line)))
+        upgraded: list = []
+        lg.upgrade(root, self.bare_macros, line_of, els, upgraded)
+        shown = display(path)
+        for el, kind in upgraded:       # reported once xacro has evaluated them (_report_upgrades)
+            if el.hasAttribute(SRC_ATTR):
+                self.upgraded[el.getAttribute(SRC_ATTR)] = (kind, el.tagName[6:], shown)
         # the renamed elements are xacro's now: their annotation moves to xacro:mdsrc, which
         # xacro's attribute checks ignore
         uri = lg.xacro_uri(root)
@@ -308,6 +313,28 @@ class _Build:
                 value = el.getAttribute(SRC_ATTR)
                 el.removeAttribute(SRC_ATTR)
                 el.setAttributeNS(uri, XSRC_ATTR, value)
+
+    def _report_upgrades(self) -> None:
+        """X001 once per construct and file, for the upgraded elements xacro evaluated: one in an
+        xacro:if branch not taken (or a macro never called) changed nothing, so is not reported."""
+        found: dict[tuple[str, str], list] = {}
+        for index, (kind, tag, shown) in self.upgraded.items():
+            if index not in self.upgrade_used:
+                continue
+            entry = found.setdefault((shown, kind), [0, self.locs[int(index)].line or 0, []])
+            entry[0] += 1
+            entry[1] = min(entry[1], self.locs[int(index)].line or 0)
+            if kind == "bare macro call" and tag not in entry[2]:
+                entry[2].append(tag)
+        order = {shown: i for i, shown in enumerate(dict.fromkeys(v[2] for v in self.upgraded.values()))}
+        for (shown, kind), (count, line, names) in sorted(found.items(), key=lambda kv: (order[kv[0][0]], kv[0][1])):
+            new = "xacro:" + kind.strip("<>") if kind.startswith("<") else "xacro:NAME"
+            if names:
+                kind += " (" + ", ".join(f"<{n}>" for n in names[:4]) + (", ..." if len(names) > 4 else "") + ")"
+            times = f" ({count} times)" if count > 1 else ""
+            self.diagnostics.append(Diagnostic(
+                "X001", "warning", f"legacy {kind} upgraded to <{new}>{times}; xacro 2.x would copy it "
+                "into the URDF unexpanded", Loc(shown, line)))
 
     # ------------------------------------------------------------ run
     def run(self) -> BuildResult:
@@ -354,6 +381,7 @@ class _Build:
             except (NameError, TypeError, ValueError, LookupError, AttributeError, ArithmeticError) as exc:
                 raise InputError(f"{type(exc).__name__}: {exc}", self.last_loc, self._stack()) from None
             self.deps = [str(self.src)] + [d for d in dict.fromkeys(xacro.all_includes)]
+        self._report_upgrades()
         self._xacro_warnings(chatter.getvalue())
         if self.env_used:
             self.diagnostics.append(Diagnostic(
@@ -787,9 +815,15 @@ class _Hooks:
             v = node.getAttribute(attr)
             return b.locs[int(v)] if v.isdigit() and int(v) < len(b.locs) else None
 
+        upgraded, upgrade_used = b.upgraded, b.upgrade_used
+
         def take_xloc(node):
             loc = loc_of(node, XSRC_ATTR)
             if node.nodeType == node.ELEMENT_NODE and node.hasAttribute(XSRC_ATTR):
+                if upgraded:
+                    v = node.getAttribute(XSRC_ATTR)
+                    if v in upgraded:
+                        upgrade_used.add(v)     # xacro evaluates an element the upgrade renamed
                 node.removeAttribute(XSRC_ATTR)
             if loc:
                 b.last_loc = loc

@@ -82,7 +82,20 @@ def macro_names(root, els=None) -> set[str]:
 
 def include_filenames(root, els=None) -> list[str]:
     """The filename spec of every include, prefixed or not."""
-    return _named(els if els is not None else elements(root), xacro_uri(root), "include", "filename")
+    return [spec for spec, _ in includes(root, els)]
+
+
+def includes(root, els=None) -> list[tuple[str, bool]]:
+    """(filename spec, has ns=) of every include, prefixed or not. A file included with ``ns=``
+    puts its macros in that name space: xacro reaches them only as ``ns.name``, never bare."""
+    uri = xacro_uri(root)
+    out = []
+    for el in els if els is not None else elements(root):
+        if (el.namespaceURI is None and el.tagName == "include") or (is_xacro(el, uri) and el.localName == "include"):
+            value = el.getAttribute("filename")
+            if value:
+                out.append((value, bool(el.getAttribute("ns"))))
+    return out
 
 
 def _inside_macro(el, name: str, uri) -> bool:
@@ -97,10 +110,10 @@ def _inside_macro(el, name: str, uri) -> bool:
     return False
 
 
-def upgrade(root, known_macros: set[str], line_of: dict, els=None):
+def upgrade(root, known_macros: set[str], line_of: dict, els=None, upgraded: list | None = None):
     """Rename legacy elements in place (declaring the xacro namespace on the root when the file
     has none, as Electric-era files often do); return {kind: (count, first_line, macro names)}.
-    ``line_of``: element -> source line."""
+    ``line_of``: element -> source line; ``upgraded`` collects (element, kind) of each one renamed."""
     uri = xacro_uri(root)
     if uri is None:
         uri = XACRO_NS
@@ -119,6 +132,8 @@ def upgrade(root, known_macros: set[str], line_of: dict, els=None):
         el.tagName = el.nodeName = "xacro:" + tag
         el.prefix = "xacro"
         el.namespaceURI = uri
+        if upgraded is not None:
+            upgraded.append((el, kind))
         entry = found.setdefault(kind, [0, line_of.get(el) or 0, []])
         entry[0] += 1
         if kind == "bare macro call" and tag not in entry[2]:

@@ -178,13 +178,15 @@ def split_package_uri(uri: str) -> tuple[str, str] | None:
     return (pkg, tail) if pkg else None
 
 
-def resource_roots(base: Path, package_roots: dict[str, Path]) -> list[Path]:
+def resource_roots(base: Path, package_roots: dict[str, Path], extra=()) -> list[Path]:
     """Folders a model's meshes and textures may come from: the model's own package (else the
     folder above the model, for the common urdf/ + meshes/ layout), the packages its URIs
     name, and the bundled package. A model from a stranger cannot make us read /etc/passwd
-    or ~/.ssh through ``file://``, an absolute path, ``../..`` or a symlink."""
+    or ~/.ssh through ``file://``, an absolute path, ``../..`` or a symlink. ``extra``: the folders
+    the user allowed (``--allow-path``), which cover meshes as they cover includes."""
 
-    return list(_base_roots(real_root(base))) + [real_root(r) for r in package_roots.values()]
+    return list(_base_roots(real_root(base))) + [real_root(r) for r in package_roots.values()] + \
+        [real_root(Path(r)) for r in extra]
 
 
 @functools.lru_cache(maxsize=256)
@@ -197,7 +199,7 @@ def _base_roots(base: Path) -> tuple[Path, ...]:
                  if not is_pseudo_folder(r) or Path(r).resolve() == data_root().resolve())
 
 
-def _locate(uri: str, package_roots: dict[str, Path], base: Path) -> tuple[Path | None, bool]:
+def _locate(uri: str, package_roots: dict[str, Path], base: Path, extra=()) -> tuple[Path | None, bool]:
     """(the file ``uri`` names or None, whether it lies inside :func:`resource_roots`).
 
     A path outside the roots is returned (not inside) whether or not it exists: nothing about it is
@@ -206,7 +208,7 @@ def _locate(uri: str, package_roots: dict[str, Path], base: Path) -> tuple[Path 
         path = _resolve_any(uri, package_roots, base, exists=False)
         if path is None:
             return None, False
-        roots = resource_roots(base, package_roots)
+        roots = resource_roots(base, package_roots, extra)
         real = path.resolve()
         if not any(real == real_root(r) or real.is_relative_to(real_root(r)) for r in roots):
             return path, False
@@ -217,35 +219,36 @@ def _locate(uri: str, package_roots: dict[str, Path], base: Path) -> tuple[Path 
         return None, False
 
 
-def outside_roots(uri: str, package_roots: dict[str, Path], base: Path) -> Path | None:
+def outside_roots(uri: str, package_roots: dict[str, Path], base: Path, extra=()) -> Path | None:
     """The path ``uri`` names when it lies outside :func:`resource_roots`, existing or not (else None)."""
-    path, inside = _locate(uri, package_roots, base)
-    return path if path is not None and not inside and _outside(path, package_roots, base) else None
+    path, inside = _locate(uri, package_roots, base, extra)
+    return path if path is not None and not inside and _outside(path, package_roots, base, extra) else None
 
 
-def _outside(path: Path, package_roots, base) -> bool:
+def _outside(path: Path, package_roots, base, extra=()) -> bool:
     real = path.resolve()
-    return not any(real == real_root(r) or real.is_relative_to(real_root(r)) for r in resource_roots(base, package_roots))
+    return not any(real == real_root(r) or real.is_relative_to(real_root(r))
+                   for r in resource_roots(base, package_roots, extra))
 
 
-def unresolved_reason(uri: str, package_roots: dict[str, Path], base: Path) -> str | None:
+def unresolved_reason(uri: str, package_roots: dict[str, Path], base: Path, extra=()) -> str | None:
     """Why a URI that does not resolve does not (for messages): "outside the allowed folders" (never
     whether such a file exists), "not a regular file", or None when it simply names no file."""
 
-    path, inside = _locate(uri, package_roots, base)
+    path, inside = _locate(uri, package_roots, base, extra)
     if path is not None and not inside:
-        if _outside(path, package_roots, base):
+        if _outside(path, package_roots, base, extra):
             return "outside the allowed folders"
         try:
-            check_path(path, resource_roots(base, package_roots))
+            check_path(path, resource_roots(base, package_roots, extra))
         except InputError as exc:
             return exc.message.split(": ", 1)[-1]
     return None
 
 
-def resolve_resource_uri(uri: str, package_roots: dict[str, Path], base: Path) -> Path | None:
+def resolve_resource_uri(uri: str, package_roots: dict[str, Path], base: Path, extra=()) -> Path | None:
     """Resolve a mesh/texture URI to a file inside :func:`resource_roots`, or None."""
-    path, inside = _locate(uri, package_roots, base)
+    path, inside = _locate(uri, package_roots, base, extra)
     return path if inside else None
 
 

@@ -15,6 +15,8 @@ that are text (``material``) or unknown; None for a number or vector that cannot
 
 from __future__ import annotations
 
+from typing import Any, NamedTuple
+
 from myrabot_desc.model import values as V
 
 NUMBERS = frozenset({
@@ -28,6 +30,58 @@ EXTENSION_FLAGS = frozenset({"selfCollide", "static", "provideFeedback", "implic
 INVERTED_FLAGS = frozenset({"turnGravityOff"})
 # flags it copies into the SDF as they are (read by sdformat's Param: true/1, false/0)
 SDF_FLAGS = frozenset({"gravity", "kinematic", "self_collide", "allow_auto_disable", "enable_wind"})
+# elements of a link's <gazebo> block that SDF has under <link> (sdformat's converter copies them there)
+EMITTERS = ("light", "projector")
+
+
+class Emitter(NamedTuple):
+    """A ``<light>`` or ``<projector>`` in a ``<gazebo reference="LINK">`` block."""
+
+    kind: str                       # 'light' | 'projector'
+    name: str | None
+    reference: str                  # the link whose block holds it
+    pose: tuple | None              # x y z roll pitch yaw as written (None: no <pose>, or unreadable)
+    relative_to: str | None         # the <pose relative_to=...> frame, if any
+    node: Any                       # the element (model Node), copied as written
+    loc: Any = None
+
+
+def emitters(robot) -> list[Emitter]:
+    """Every light and projector of the links' ``<gazebo>`` blocks, in document order."""
+
+    def build():
+        out = []
+        for g in robot.gazebo:
+            if g.reference is None or g.reference not in robot.links:
+                continue
+            for c in g.node.elements:
+                if c.ns or c.tag not in EMITTERS:
+                    continue
+                pose = c.child("pose")
+                out.append(Emitter(c.tag, c.get("name"), g.reference, c.vector("pose", n=6),
+                                   pose.get("relative_to") if pose is not None else None, c, c.loc or g.loc))
+        return tuple(out)
+    return list(robot.derive("gazebo.emitters", build))
+
+
+def velocity_decay(block) -> tuple[float | None, float | None]:
+    """(linear, angular) velocity decay one ``<gazebo reference>`` block sets: ``dampingFactor``
+    sets both (sdformat's parser_urdf.cc writes it as linear and angular), ``linearDamping`` /
+    ``angularDamping`` each one, a ``<velocity_decay>`` element (copied by sdformat as written)
+    its ``<linear>``/``<angular>``; a later one wins. None where none is given."""
+    v = block.values
+    lin = ang = v.get("dampingFactor")
+    if v.get("linearDamping") is not None:
+        lin = v["linearDamping"]
+    if v.get("angularDamping") is not None:
+        ang = v["angularDamping"]
+    for c in block.node.elements:
+        if not c.ns and c.tag == "velocity_decay":
+            if c.number("linear") is not None:
+                lin = c.number("linear")
+            if c.number("angular") is not None:
+                ang = c.number("angular")
+    return lin, ang
 
 
 def typed(name: str, text: str | None):

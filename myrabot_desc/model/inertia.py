@@ -22,6 +22,9 @@ from myrabot_desc.model.transforms import Mat3, matmul3, transpose3
 # Jacobi sweeps, far cheaper than importing numpy for it.
 
 
+MIN_FRACTION = 1e-6     # the smallest principal moment a repair leaves, as a fraction of the largest
+
+
 def tensor(ine) -> Mat3:
     """The 3x3 inertia matrix of a model.Inertial, in its inertial frame."""
     return ((ine.ixx, ine.ixy, ine.ixz), (ine.ixy, ine.iyy, ine.iyz), (ine.ixz, ine.iyz, ine.izz))
@@ -87,12 +90,16 @@ def repaired(ine) -> tuple[Mat3, bool]:
     changed = False
     if w[0] <= 0:
         # non-positive moment: make it a small positive fraction of the largest
-        w = [max(x, 1e-6 * scale) for x in w]
+        w = [max(x, MIN_FRACTION * scale) for x in w]
         changed = True
     a, b, c = w
     if a + b < c - tol:
         f = c / (a + b) * (1 + 1e-9)    # a hair over, so rounding never lands below
-        w = [a * f, b * f, c]
+        # A rod (moments 1.4e-15, 1.256e-4, 1.2560011e-4): raised alike, the smallest stays
+        # negligible and the hair over makes b exceed c by more than a, breaking b <= a + c; and
+        # 1.4e-15 is written as 0. The smallest gets a floor of 1e-6 of the largest, a margin on
+        # both sides that 12-digit text and the readers' eigen-decompositions keep.
+        w = [max(a * f, MIN_FRACTION * c), b * f, c]
         changed = True
     if not changed:
         return I, False

@@ -112,27 +112,30 @@ def load_robot(path=None, **build_options) -> Robot:
                               root=result.root, source_map=result.source_map,
                               build_warnings=result.diagnostics, from_xacro=True,
                               packages=build_options.get("packages"),
-                              package_paths=build_options.get("package_paths", ()))
+                              package_paths=build_options.get("package_paths", ()),
+                              allow_paths=build_options.get("allow_paths") or ())
     return read_urdf_bytes(data, src, packages=build_options.get("packages"),
-                           package_paths=build_options.get("package_paths", ()))
+                           package_paths=build_options.get("package_paths", ()),
+                           allow_paths=build_options.get("allow_paths") or ())
 
 
-def read_urdf_bytes(data: bytes, src: Path, packages=None, package_paths=()) -> Robot:
+def read_urdf_bytes(data: bytes, src: Path, packages=None, package_paths=(), allow_paths=()) -> Robot:
     root = parse_xml_bytes(data, str(src))
     text = data.decode("utf-8", errors="replace")
-    robot = _read(root, text, src, None, {}, [], False, packages, package_paths)
+    robot = _read(root, text, src, None, {}, [], False, packages, package_paths, allow_paths)
     robot.source_bytes = data
     return robot
 
 
 def read_urdf_text(text: str, src: Path, locations=None, package_roots=None, build_warnings=None,
-                   from_xacro=False, packages=None, package_paths=(), root=None, source_map=None) -> Robot:
+                   from_xacro=False, packages=None, package_paths=(), root=None, source_map=None,
+                   allow_paths=()) -> Robot:
     """Read URDF text into a Robot; ``root`` is the text already parsed (the build hands it over)."""
 
     if root is None:
         root = parse_xml_bytes(text.encode("utf-8"), str(src))
     robot = _read(root, text, src, locations, package_roots or {}, list(build_warnings or []), from_xacro,
-                  packages, package_paths)
+                  packages, package_paths, allow_paths)
     robot.source_map = source_map
     return robot
 
@@ -156,6 +159,7 @@ def what_document(tag: str) -> str:
 class _Reader:
     def __init__(self, root, src: Path, locations):
         self.src = src
+        self.allow_roots: tuple = ()        # --allow-path folders (meshes may come from them)
         self.issues: list[Diagnostic] = []
         elements = [el for el in root.iter() if isinstance(el.tag, str)] if locations is not None else ()
         if locations is not None and len(locations) == len(elements):
@@ -232,7 +236,7 @@ class _Reader:
             fn = shape.get("filename", "")
             path = resolve(fn) if fn else None
             if fn and path is None:
-                if outside_roots(fn, package_roots, robot_src_dir) is not None:
+                if outside_roots(fn, package_roots, robot_src_dir, self.allow_roots) is not None:
                     self.issue(shape, f"mesh {fn} lies outside the allowed folders (the model's package and folder): not read "
                                "(a model may only use files of its own package or of the packages it names)",
                                code="X006")
@@ -291,7 +295,7 @@ def _read(*args) -> Robot:
 
 
 def _read_model(root, text, src: Path, locations, package_roots, build_warnings, from_xacro, packages,
-                package_paths) -> Robot:
+                package_paths, allow_paths=()) -> Robot:
     if root.tag != "robot":
         loc = locations[0] if locations and locations[0] is not None else Loc(str(src), root.sourceline)
         raise InputError(f"{what_document(root.tag)}: check, convert, info and sim read URDF robots; "
@@ -311,6 +315,7 @@ def _read_model(root, text, src: Path, locations, package_roots, build_warnings,
             if p is not None:
                 roots[parts[0]] = p
     base = src.parent
+    extra = r.allow_roots = tuple(Path(p).expanduser().resolve() for p in allow_paths)
 
     resolved: dict[str, Path | None] = {}
 
@@ -318,7 +323,7 @@ def _read_model(root, text, src: Path, locations, package_roots, build_warnings,
         # models name the same mesh many times (visual and collision, repeated parts); each
         # resolution stats and realpaths the candidates
         if uri not in resolved:
-            resolved[uri] = resolve_resource_uri(uri, roots, base)
+            resolved[uri] = resolve_resource_uri(uri, roots, base, extra)
         return resolved[uri]
 
     top: dict = {"material": [], "link": [], "joint": [], "gazebo": [], "transmission": []}
@@ -403,7 +408,7 @@ def _read_model(root, text, src: Path, locations, package_roots, build_warnings,
 
     return Robot(name=root.get("name", ""), links=links, joints=joints, materials=materials, gazebo=gazebo,
                  transmissions=transmissions, root_element=root, source=src, urdf_text=text, loc=r.loc(root),
-                 package_roots=roots, build_warnings=build_warnings, from_xacro=from_xacro, load_issues=r.issues,
+                 package_roots=roots, allow_roots=extra, build_warnings=build_warnings, from_xacro=from_xacro, load_issues=r.issues,
                  element_locs=r.loc_of, _elements=r._keep, ros2_control=ros2_control)
 
 

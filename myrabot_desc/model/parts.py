@@ -439,6 +439,7 @@ class Robot:
     urdf_text: str                        # the URDF document as text (built or read)
     loc: Loc | None = None
     package_roots: dict[str, Path] = field(default_factory=dict)   # packages the build resolved
+    allow_roots: tuple = ()           # --allow-path folders: meshes and textures may come from them too
     build_warnings: list = field(default_factory=list)              # Diagnostics from build (X codes)
     from_xacro: bool = False
     # Problems found while reading (bad numbers, unknown joint types...) that checks report.
@@ -575,7 +576,7 @@ class Robot:
         """package://, file:// or a relative path -> a file on disk, or None."""
 
         base = self.source.parent if self.source else Path.cwd()
-        return resolve_resource_uri(uri, self.package_roots, base)
+        return resolve_resource_uri(uri, self.package_roots, base, self.allow_roots)
 
     def pinocchio(self, floating: bool = False):
         """A Pinocchio model of this robot (built on demand; see pin_bridge)."""

@@ -70,6 +70,14 @@ def kind(p) -> str:
     return "unknown"
 
 
+def node_kind(n) -> str:
+    """kind() of a ``<plugin>`` element no typed Plugin holds (one nested in the ``<visual>`` of a
+    ``<gazebo reference>`` block, which Gazebo classic loads as a visual plugin)."""
+    from types import SimpleNamespace
+
+    return kind(SimpleNamespace(filename=n.get("filename"), name=n.get("name"), dialect="sdf", tag=n.tag))
+
+
 def param(p, *names) -> str | None:
     """The first of ``names`` the plugin gives a non-empty value, stripped."""
     for n in names:

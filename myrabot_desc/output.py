@@ -177,21 +177,38 @@ class OutputDir:
         except OSError as exc:
             raise InputError(f"cannot write into {self.target}: {exc.strerror}") from None
         _clean_stale_stages(self.target)
-        # the staging folder is named for this process: a run killed with SIGKILL leaves it, and
-        # the next run into the same folder removes it (the process is gone)
-        self.stage = Path(tempfile.mkdtemp(prefix=f".staging.{os.getpid()}.", dir=self.target))
         self.saved_term = None
         if threading.current_thread() is threading.main_thread():
-            # SIGTERM: unwind through __exit__ (staging removed) instead of dying in place
+            # SIGTERM: unwind through __exit__ (staging removed) instead of dying in place; set
+            # before the staging folder exists, so that no moment leaves one behind
             self.saved_term = signal.signal(signal.SIGTERM, _terminate)
+        # the staging folder is named for this process: a run killed with SIGKILL leaves it, and
+        # the next run into the same folder removes it (the process is gone)
+        try:
+            self.stage = Path(tempfile.mkdtemp(prefix=f".staging.{os.getpid()}.", dir=self.target))
+        except BaseException:
+            if self.saved_term is not None:
+                signal.signal(signal.SIGTERM, self.saved_term)
+            raise
         return self.stage
 
     def __exit__(self, exc_type, exc, tb):
         import shutil
         import signal
 
-        if self.saved_term is not None:
-            signal.signal(signal.SIGTERM, self.saved_term)
+        # a SIGTERM during the clean-up waits until it is done (then acts as it would have)
+        blocked = self.saved_term is not None
+        if blocked:
+            signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGTERM})
+        try:
+            self._finish(exc_type, shutil)
+        finally:
+            if blocked:
+                signal.signal(signal.SIGTERM, self.saved_term)
+                signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGTERM})
+        return False
+
+    def _finish(self, exc_type, shutil) -> None:
         try:
             if exc_type is None:
                 for item in sorted(self.stage.rglob("*")):
@@ -207,7 +224,6 @@ class OutputDir:
                         d.rmdir()          # only if still empty
                     except OSError:
                         break
-        return False
 
 
 def _terminate(signum, frame):

@@ -78,6 +78,9 @@ LIMITS: tuple[Limit, ...] = (
           "most MuJoCo steps one `sim settle`/`sweep`/`drive --engine mujoco` takes (2,000 s at 2 ms)"),
     Limit("max_sweep_poses", "MYRABOT_DESC_MAX_SWEEP_POSES", 100_000, None,
           "most poses one `sim sweep` visits (joints x samples)"),
+    Limit("max_collision_pairs", "MYRABOT_DESC_MAX_COLLISION_PAIRS", 20_000, None,
+          "most pairs of collision shapes whose bounding spheres meet that self-collision (P005, settle, "
+          "sweep) tests one by one"),
 )
 LIMIT_ENV = {lim.field: lim.env for lim in LIMITS}
 

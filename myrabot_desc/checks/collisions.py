@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from myrabot_desc.checks.rule import Finding, FixInfo, rule
-from myrabot_desc.model.collisions import Scene
+from myrabot_desc.model.collisions import Scene, TooManyPairs
 from myrabot_desc.model.srdf import load_srdf
 
 _ARM = """<link name="body">
@@ -116,7 +116,12 @@ def self_collision(ctx):
         srdf = None                              # group states only: it says nothing of which pairs may touch
     scene = Scene(ctx.robot, (lambda g: ctx.mesh(g)) if ctx.opts.load_meshes else False, srdf)
     worst: dict = {}
-    for o in scene.overlaps(ctx.robot.rest_pose()):
+    try:
+        overlaps = scene.overlaps(ctx.robot.rest_pose())
+    except TooManyPairs as exc:                  # said once, in numbers, instead of millions of pairs
+        yield Finding(exc.message, ctx.robot.loc, {"limit": "max_collision_pairs"})
+        return
+    for o in overlaps:
         key = frozenset((o.link_a, o.link_b))
         if key not in worst:                     # deepest first
             worst[key] = o

@@ -23,12 +23,40 @@ from __future__ import annotations
 
 from typing import NamedTuple
 
+from myrabot_desc.errors import InputError
 from myrabot_desc.model import meshes as meshio
 from myrabot_desc.model.kinematics import world_transforms
 from myrabot_desc.model.shapes import describe
 from myrabot_desc.model.support import _mesh_reader, placed_collisions
+from myrabot_desc.safety import limit
 
 TOUCH = 0.001        # m: overlaps this shallow are contact (see the module docstring)
+
+
+class TooManyPairs(InputError):
+    """More pairs of shapes meet than self-collision tests one by one (links all at one place)."""
+
+
+def _sphere_pairs(np, items, min_depth: float) -> list:
+    """(i, j), i < j, of the shapes whose bounding spheres overlap by more than ``min_depth``: rows
+    of the distance matrix a block at a time (memory linear in the shape count), refused past
+    ``max_collision_pairs`` (TooManyPairs) before any pair is tested."""
+    C = np.array([i.centre for i in items])
+    R = np.array([i.radius for i in items])
+    most = limit("max_collision_pairs")
+    out: list = []
+    block = 128
+    for s in range(0, len(items), block):
+        d = np.linalg.norm(C[s:s + block, None, :] - C[None, :, :], axis=2)
+        ii, jj = np.nonzero(d < R[s:s + block, None] + R[None, :] - min_depth)
+        ii = ii + s
+        keep = jj > ii
+        out.extend(zip(ii[keep].tolist(), jj[keep].tolist()))
+        if len(out) > most:
+            raise TooManyPairs(f"self-collision: over {most} pairs of collision shapes meet at this pose (the links "
+                               "are probably all at one place); not tested pair by pair "
+                               "(MYRABOT_DESC_MAX_COLLISION_PAIRS)")
+    return out
 
 
 class Overlap(NamedTuple):
@@ -201,10 +229,7 @@ class Scene:
         items = self._placed(world)
         if len(items) < 2:
             return []
-        C = np.array([i.centre for i in items])
-        R = np.array([i.radius for i in items])
-        D = np.linalg.norm(C[:, None, :] - C[None, :, :], axis=2)
-        near = [(a, b) for a, b in np.argwhere(np.triu(D < R[:, None] + R[None, :] - min_depth, 1))
+        near = [(a, b) for a, b in _sphere_pairs(np, items, min_depth)
                 if items[a].body != items[b].body and frozenset((items[a].body, items[b].body)) not in self.adjacent
                 and _boxes_meet(np, (items[a].centre, items[a].T[:3, :3], items[a].half),
                                 (items[b].centre, items[b].T[:3, :3], items[b].half), min_depth)]

@@ -126,3 +126,20 @@ def test_rules_say_why_they_have_no_fix():
     rules = load_all()
     for code in ("P005", "P006"):
         assert rules[code].fix.availability == "never" and rules[code].fix.how
+
+
+def test_links_all_at_one_place_are_one_finding_not_millions_of_pairs(tmp_path, monkeypatch):
+    """300 boxes at one place meet in 44,850 pairs: over the limit (here 1,000), P005 says so once
+    instead of testing each pair."""
+    link = ('<link name="l{i}"><inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" '
+            'izz="0.01"/></inertial><collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>')
+    joint = ('<joint name="j{i}" type="revolute"><parent link="l{p}"/><child link="l{i}"/><axis xyz="0 0 1"/>'
+             '<limit lower="-1" upper="1" effort="100" velocity="1"/></joint>')
+    body = link.format(i=0) + "".join(link.format(i=i) + joint.format(i=i, p=i - 1) for i in range(1, 300))
+    f = tmp_path / "pile.urdf"
+    f.write_text(f'<robot name="pile">\n{body}\n</robot>\n')
+    monkeypatch.setenv("MYRABOT_DESC_MAX_COLLISION_PAIRS", "1000")
+    code, diags = _json("--select", "P005", f)
+    assert [(d["severity"], d["message"]) for d in diags] == [
+        ("warning", "self-collision: over 1000 pairs of collision shapes meet at this pose (the links are probably "
+                    "all at one place); not tested pair by pair (MYRABOT_DESC_MAX_COLLISION_PAIRS)")]

@@ -7,6 +7,7 @@ from __future__ import annotations
 import json
 import shutil
 import subprocess
+import sys
 from xml.etree import ElementTree as ET
 
 import pytest
@@ -76,7 +77,7 @@ def test_wander_bot_fixed_copy_stands(tmp_path):
     ground, the inertias computed): it stands."""
     wb = tmp_path / "wander_bot"
     shutil.copytree(WANDER, wb)
-    fixed = subprocess.run([str(ROOT / ".venv/bin/myrabot-desc"), "check", "--fix", "--unsafe-fixes", "urdf/robot.xacro"],
+    fixed = subprocess.run([sys.executable, "-m", "myrabot_desc", "check", "--fix", "--unsafe-fixes", "urdf/robot.xacro"],
                            cwd=wb, capture_output=True, text=True, timeout=300)
     assert fixed.returncode == 0, fixed.stdout + fixed.stderr
     r = invoke("sim", "settle", wb / "urdf" / "robot.xacro", "-p", f"wander_bot={wb}", "--json")

@@ -21,11 +21,16 @@ def import_mujoco(what: str = "MJCF"):
 
     # We never render: without this, `import mujoco` loads pyGLFW, which spawns a Python
     # subprocess to probe libglfw (a process per conversion, seen by the hardening audit).
+    # (only while importing: a process this one starts later, a render, chooses its own)
+    saved = os.environ.get("MUJOCO_GL")
     os.environ.setdefault("MUJOCO_GL", "disable")
     try:
         import mujoco
     except ImportError:
         raise InputError(f"{what} needs the mujoco package: pip install 'myrabot-desc[mjcf]'") from None
+    finally:
+        if saved is None:
+            os.environ.pop("MUJOCO_GL", None)
     return mujoco
 
 

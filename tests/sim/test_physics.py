@@ -12,7 +12,7 @@ from xml.etree import ElementTree as ET
 
 import pytest
 
-from helpers import ERD, ROOT, WANDER, corpus_args, corpus_robot, invoke, planted_panda, weak
+from helpers import ERD, WANDER, corpus_args, corpus_robot, invoke, planted_panda, weak
 
 pytest.importorskip("mujoco")
 

@@ -1,7 +1,7 @@
 """The console entry point (``myrabot-desc``).
 
 A plain ``build ...`` command line runs straight from commands/fastbuild.py, parsed from the same
-option tables as the click command, without importing click (issue 13: ``build`` must start faster
+option tables as the click command, without importing click (``build`` must start faster
 than the xacro CLI). Everything else, including ``--help`` and any command line the plain
 parser does not take (unusual forms, errors), goes to the click group in commands/main.py, which
 gives its usual output and exit codes.

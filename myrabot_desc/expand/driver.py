@@ -14,7 +14,7 @@ We drive the real ROS ``xacro`` library and hook it at a few points:
   (safe_eval.py) unless ``--unsafe-eval``;
 * node replacement -> the linear-time splice of fast.py.
 
-Start-up counts (issue 13: ``build`` must beat the xacro CLI on small robots): nothing
+Start-up counts (``build`` must beat the xacro CLI on small robots): nothing
 here imports lxml, click or dataclasses, and PyYAML and xacro's command-line module
 are placeholders until used (_LazyModule).
 

@@ -623,7 +623,7 @@ def turn_sign(drive: Drive) -> float:
     return -1.0 if drive.legacy else 1.0
 
 
-# ------------------------------------------------------------------ drive kinds (issue 25)
+# ------------------------------------------------------------------ drive kinds
 # What a base is, beyond "left and right wheels": each kind as real packages declare it.
 #   * ros2_control controllers named in the controller YAML a gz/gazebo ros2_control plugin's
 #     <parameters> names (the controller_manager's ``type:`` of each controller);

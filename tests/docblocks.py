@@ -146,6 +146,7 @@ def run_block(block: Block, scratch: Path, env: dict | None = None, timeout: flo
     scratch.mkdir(parents=True, exist_ok=True)
     bindir = str(Path(sys.executable).parent)
     env = dict(os.environ if env is None else env)
+    env.pop("MUJOCO_GL", None)          # a user's shell: not what a test before set for its own MuJoCo import
     env["PATH"] = bindir + os.pathsep + env.get("PATH", "")
     env.setdefault("PYTHONUNBUFFERED", "1")          # stdout and stderr in the order printed
     env.setdefault("MYRABOT_DESC_CACHE_DIR", str(scratch / ".cache"))

@@ -85,11 +85,17 @@ def no_mujoco_log() -> None:
     Python bindings, which the converters report)."""
     import os
 
-    os.environ.setdefault("MUJOCO_GL", "disable")      # no GL probing (convert never renders)
+    # no GL probing while importing (convert never renders; render has chosen its backend already);
+    # only while importing, so that a process started later chooses its own
+    saved = os.environ.get("MUJOCO_GL")
+    os.environ.setdefault("MUJOCO_GL", "disable")
     try:
         import mujoco
     except ImportError:
         return
+    finally:
+        if saved is None:
+            os.environ.pop("MUJOCO_GL", None)
     config = getattr(mujoco, "MjLogConfig", None)
     if config is not None:
         cfg = config()

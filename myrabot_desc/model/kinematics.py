@@ -139,9 +139,10 @@ def world_transforms(robot: Robot, q: dict[str, float] | None = None, root_pose:
     return _world_transforms(robot, q, root_pose)
 
 
-def _walk(robot: Robot, children) -> tuple[list[str], dict]:
-    """(links in walk order from the roots, link -> the joint that placed it (None: a root)); a
-    link reached twice (a cycle, a second parent) keeps its first placement."""
+def _walk(robot: Robot, children) -> tuple[list[str], dict, dict]:
+    """(links in walk order from the roots, link -> the joint that placed it (None: a root), link
+    -> the joints that placed its children); a link reached twice (a cycle, a second parent) keeps
+    its first placement."""
     order: list[str] = []
     via: dict[str, Joint | None] = {}
     for root in robot.roots or list(robot.links)[:1]:
@@ -155,7 +156,12 @@ def _walk(robot: Robot, children) -> tuple[list[str], dict]:
             for c in children.get(link, []):
                 if c.child not in via:
                     stack.append((c.child, c))
-    return order, via
+    kids: dict[str, list[Joint]] = {}
+    for link in order:
+        j = via[link]
+        if j is not None:
+            kids.setdefault(j.parent, []).append(j)
+    return order, via, kids
 
 
 def _world_transforms(robot: Robot, q, root_pose, frozen: bool = False) -> dict[str, np.ndarray]:
@@ -169,16 +175,11 @@ def _world_transforms(robot: Robot, q, root_pose, frozen: bool = False) -> dict[
     base = np.eye(4) if root_pose is None else root_pose
     if frozen:
         base.flags.writeable = False
-    order, via = _walk(robot, children)
+    order, via, kids = _walk(robot, children)
     out: dict[str, np.ndarray] = {}
     level = [link for link in order if via[link] is None]
     for link in level:
         out[link] = base
-    kids: dict[str, list[Joint]] = {}
-    for link in order:
-        j = via[link]
-        if j is not None:
-            kids.setdefault(j.parent, []).append(j)
     while level:
         joints = [j for link in level for j in kids.get(link, ())]
         if not joints:
@@ -239,15 +240,10 @@ def centers_of_mass(robot: Robot, q: dict) -> tuple[float, np.ndarray]:
         if j.mimic and j.mimic.joint in q and j.name not in q:
             q[j.name] = q[j.mimic.joint] * j.mimic.multiplier + j.mimic.offset
     children = robot.joints_by_parent()
-    order, via = _walk(robot, children)
+    order, via, kids = _walk(robot, children)
     eye = np.broadcast_to(np.eye(4), (n, 4, 4))
     out: dict[str, np.ndarray] = {link: eye for link in order if via[link] is None}
     level = list(out)
-    kids: dict[str, list[Joint]] = {}
-    for link in order:
-        j = via[link]
-        if j is not None:
-            kids.setdefault(j.parent, []).append(j)
     while level:
         joints = [j for link in level for j in kids.get(link, ())]
         if not joints:

@@ -113,13 +113,7 @@ def gravity_needs(robot, samples: int = SAMPLES, joints=None) -> list[Need]:
     Mtot = _subtree_sums(own_m, parent, levels)
     Qtot = _subtree_sums(own_mc, parent, levels)
     every = [j.name for j in movers]
-    frames = {}
-    for n in every:
-        j = robot.joints[n]
-        F = W[j.parent] @ pose_matrix(j.origin)
-        a = F[:3, :3] @ np.asarray(j.axis, dtype=float)
-        norm = np.linalg.norm(a)
-        frames[n] = (F[:3, 3], a / norm if norm > 0 else a)
+    frames = _joint_frames(np, robot, W, every)
     ci = np.array([pos[robot.joints[n].child] for n in names])        # each asked joint's child, in preorder
     P = np.array([frames[n][0] for n in names])
     A = np.array([frames[n][1] for n in names])
@@ -263,6 +257,18 @@ def _preorder(robot, W):
     return order, pos, parent, levels, end
 
 
+def _joint_frames(np, robot, W, names) -> dict:
+    """joint -> (its origin, its unit axis) in the world, from the link poses ``W``."""
+    frames = {}
+    for n in names:
+        j = robot.joints[n]
+        F = W[j.parent] @ pose_matrix(j.origin)
+        a = F[:3, :3] @ np.asarray(j.axis, dtype=float)
+        norm = np.linalg.norm(a)
+        frames[n] = (F[:3, 3], a / norm if norm > 0 else a)
+    return frames
+
+
 def _subtree_sums(values, parent, levels):
     """``values`` (one row per link place) summed over each link's subtree, deepest level first."""
     import numpy as np
@@ -311,13 +317,7 @@ def _gravity_needs_dense(robot, samples: int = SAMPLES, joints=None) -> list[Nee
     c = np.array([(W[link.name] @ pose_matrix(link.inertial.origin))[:3, 3] for link in links]).reshape(-1, 3)
     # every moving joint (the sampled ones and the ones whose torque is asked): frames at rest
     every = [j.name for j in movers]
-    frames = {}
-    for n in every:
-        j = robot.joints[n]
-        F = W[j.parent] @ pose_matrix(j.origin)
-        a = F[:3, :3] @ np.asarray(j.axis, dtype=float)
-        norm = np.linalg.norm(a)
-        frames[n] = (F[:3, 3], a / norm if norm > 0 else a)
+    frames = _joint_frames(np, robot, W, every)
     below = _subtrees(robot, every)
     S = np.zeros((len(names), len(links)))
     for r, n in enumerate(names):

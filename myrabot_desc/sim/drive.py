@@ -20,7 +20,7 @@ from myrabot_desc.model.pin_model import build_model
 from myrabot_desc.safety import sim_steps
 from myrabot_desc.sim import kinds, stability
 from myrabot_desc.sim.diffdrive import find_drive, integrate
-from myrabot_desc.sim.result import Check, Series, SimResult
+from myrabot_desc.sim.result import Series, SimResult, ratio_checks
 from myrabot_desc.sim.stability import footprint
 
 DEFAULT_SCRIPT = ((0.2, 0.0, 5.0), (0.0, 0.5, 4.0), (0.2, 0.4, 5.0))
@@ -118,16 +118,7 @@ def run(robot, *, rate=1000.0, duration=None, script=DEFAULT_SCRIPT, wheels="plu
             w_ratios.append(w_meas / w)
         rows.append(row)
 
-    def worst(r):
-        return max(r, key=lambda x: abs(x - 1.0)) if r else float("nan")
-
-    vr, wr = worst(v_ratios), worst(w_ratios)
-    if v_ratios:
-        res.checks.append(Check("speed ratio", abs(vr - 1) <= tolerance, float(vr), "",
-                                f"achieved/commanded = 1 ±{tolerance:.0%}"))
-    if w_ratios:
-        res.checks.append(Check("turn-rate ratio", abs(wr - 1) <= tolerance, float(wr), "",
-                                f"achieved/commanded = 1 ±{tolerance:.0%}"))
+    res.checks.extend(ratio_checks(v_ratios, w_ratios, tolerance))
     ex, ey, eth = expected
     perr = math.hypot(base.axle_x[-1] - ex[-1], base.axle_y[-1] - ey[-1])
     herr = math.degrees(abs(math.remainder(base.yaw[-1] - eth[-1], 2 * math.pi)))

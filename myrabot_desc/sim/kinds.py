@@ -25,7 +25,7 @@ from myrabot_desc.errors import InputError
 from myrabot_desc.model import drive as D
 from myrabot_desc.safety import sim_steps
 from myrabot_desc.sim.diffdrive import BaseTrack
-from myrabot_desc.sim.result import Check, Series, SimResult
+from myrabot_desc.sim.result import Series, SimResult, ratio_checks
 from myrabot_desc.sim.stability import footprint
 
 CORNERS = ("front_left", "front_right", "back_left", "back_right")
@@ -249,16 +249,7 @@ def run(robot, base: D.Base, *, rate=1000.0, duration=None, script=(), wheels="p
             w_ratios.append(w_meas / w)
         rows.append(row)
 
-    def worst(r):
-        return max(r, key=lambda x: abs(x - 1.0)) if r else float("nan")
-
-    vr, wr_ = worst(v_ratios), worst(w_ratios)
-    if v_ratios:
-        res.checks.append(Check("speed ratio", abs(vr - 1) <= tolerance, float(vr), "",
-                                f"achieved/commanded = 1 ±{tolerance:.0%}"))
-    if w_ratios:
-        res.checks.append(Check("turn-rate ratio", abs(wr_ - 1) <= tolerance, float(wr_), "",
-                                f"achieved/commanded = 1 ±{tolerance:.0%}"))
+    res.checks.extend(ratio_checks(v_ratios, w_ratios, tolerance))
     # the commanded motion, integrated the same way (what the user expects)
     dthc = cmd[:, 2] * dt
     thc = np.concatenate([[0.0], np.cumsum(dthc)])

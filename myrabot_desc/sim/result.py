@@ -140,3 +140,15 @@ def _fmt(v) -> str:
     if isinstance(v, dict):
         return ", ".join(f"{k} {_fmt(x)}" for k, x in v.items())
     return str(v)
+
+
+def ratio_checks(v_ratios: list, w_ratios: list, tolerance: float) -> list:
+    """The speed and turn-rate verdicts of a drive: the worst achieved/commanded ratio of the
+    segments that command each, within ``tolerance`` of 1."""
+    out = []
+    for name, ratios in (("speed ratio", v_ratios), ("turn-rate ratio", w_ratios)):
+        if ratios:
+            worst = max(ratios, key=lambda x: abs(x - 1.0))
+            out.append(Check(name, abs(worst - 1) <= tolerance, float(worst), "",
+                             f"achieved/commanded = 1 ±{tolerance:.0%}"))
+    return out

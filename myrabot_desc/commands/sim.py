@@ -219,10 +219,11 @@ def vuelta_cmd(inputs, duration, rate, as_json, csv_path, plot_path, junit_path,
               help="Allowed relative error of the achieved speed and turn rate: against the command (builtin, "
                    "default 0.02) or against the kinematic prediction (mujoco, default 0.10).")
 @click.option("--engine", type=click.Choice(["builtin", "mujoco"]), default="builtin", show_default=True,
-              help="builtin: the kinematic diff drive (exact arcs from the wheel rates). mujoco: the same "
-                   "command to the velocity actuators of our MJCF, the base standing on a floor, compared "
-                   "with the kinematic prediction; a mismatch names its cause (wheel gains, slip, mass on "
-                   "casters, friction).")
+              help="builtin: the kind's kinematic model (exact arcs from the wheel rates). mujoco: the same "
+                   "command to the actuators of our MJCF (wheels; steering of a swerve or Ackermann base; the "
+                   "planar base of a mecanum, omni or planar one), the base standing on a floor, compared "
+                   "with the kinematic prediction; a mismatch names its cause (wheel gains, a wheel rubbing, "
+                   "steering short of its angle, slip, mass on casters, friction).")
 def drive_cmd(inputs, duration, rate, as_json, csv_path, plot_path, junit_path, progress, wheels, wheel_speed_max,
               wheel_accel_max, left_wheels, right_wheels, twists, tolerance, engine):
     """Drive any wheeled robot through a scripted twist.
@@ -238,7 +239,8 @@ def drive_cmd(inputs, duration, rate, as_json, csv_path, plot_path, junit_path, 
     A skid-steer base drives as its equivalent diff drive. A mecanum, omni,
     planar, swerve or Ackermann base (model/drive.base) runs its kind's
     kinematic model: an omni twist, steered modules, or a bicycle model that
-    turns no tighter than its minimum turning radius (the builtin engine).
+    turns no tighter than its minimum turning radius; --engine mujoco drives
+    the same base in MuJoCo against that model.
 
     \b
     Examples:

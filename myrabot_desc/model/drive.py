@@ -815,6 +815,14 @@ def joint_position(robot, name: str):
     return None if j is None else _axis_and_origin(robot, j, link_transforms(robot))[1]
 
 
+def joint_turn_sign(robot, name: str) -> float:
+    """+1 if a positive angle of a (steering) joint turns what it carries to the left (its axis along
+    the root frame's +z), -1 if along -z."""
+    j = robot.joints.get(name)
+    a = None if j is None else _axis_and_origin(robot, j, link_transforms(robot))[0]
+    return -1.0 if a is not None and a[2] < 0 else 1.0
+
+
 def _spread(values) -> float | None:
     vals = list(values)
     return max(vals) - min(vals) if len(vals) > 1 else None

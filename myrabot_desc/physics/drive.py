@@ -27,6 +27,7 @@ from myrabot_desc.model import drive as D
 from myrabot_desc.model.statics import effort_of
 from myrabot_desc.sim import drive as kinematic
 from myrabot_desc.sim.diffdrive import find_drive
+from myrabot_desc.physics import kinds
 from myrabot_desc.physics.engine import Engine
 from myrabot_desc.physics.result import Cause, PhysicsResult
 from myrabot_desc.sim.result import Check
@@ -45,11 +46,9 @@ def run(robot, *, script=kinematic.DEFAULT_SCRIPT, wheels="plugin", left=(), rig
     wall0 = time.perf_counter()
     b = D.base(robot) if not left and not right else None
     if b is not None and b.kind not in ("differential", "skid_steer"):
-        # its wheels are no differential pair: driving them as one would pass or fail for the wrong reason
-        raise InputError(f"{robot.name}: a {b.kind} base ({b.why}): `sim drive --engine mujoco` drives differential "
-                         "and skid-steer bases; the builtin engine runs its kinematic model, and `convert --to mjcf` "
-                         + ("gives it a planar base to drive in MuJoCo" if b.kind in D.BODY_MOVED
-                            else "gives its wheels and steering joints their actuators"), b.loc or robot.loc)
+        # its wheels are no differential pair: its kind's own commands and kinematic model
+        return kinds.run(robot, b, script=script, tolerance=tolerance, settle=SETTLE, ramp=RAMP,
+                         sample_rate=SAMPLE_RATE, tracking=TRACKING, progress=progress)
     drv = find_drive(robot, wheels, left, right)
     declared = D.main_drive(robot, tuple(left), tuple(right), guess=True)
     predicted = kinematic.run(robot, rate=1000.0, script=script, wheels=wheels, left=left, right=right,
@@ -131,7 +130,7 @@ def run(robot, *, script=kinematic.DEFAULT_SCRIPT, wheels="plugin", left=(), rig
             if k >= skip and index is not None:
                 seg.setdefault("from", len(ts) - 1)
                 seg["track"].append({name: float(d.qvel[dofs[name]]) for name in per_wheel})
-                load, drag = _contact_loads(eng, wheel_bodies, R[:, 0])
+                load, drag = eng.floor_loads(wheel_bodies, R[:, 0])
                 seg["load"].append(load)
                 seg["drag"].append(drag)
         seg["end"] = len(ts) - 1
@@ -197,32 +196,6 @@ def run(robot, *, script=kinematic.DEFAULT_SCRIPT, wheels="plugin", left=(), rig
     if progress:
         progress(1.0)
     return res
-
-
-def _contact_loads(eng, wheel_bodies, forward):
-    """(share of the floor's normal force on the wheels, friction force of the other contacts along the
-    base's forward axis: positive drags it back)."""
-    import numpy as np
-
-    mj, m, d = eng.mujoco, eng.model, eng.data
-    f = np.zeros(6)
-    on_wheels = total = drag = 0.0
-    for i in range(d.ncon):
-        c = d.contact[i]
-        if eng.floor not in (c.geom1, c.geom2):
-            continue
-        mj.mj_contactForce(m, d, i, f)
-        frame = c.frame.reshape(3, 3)
-        world = frame.T @ f[:3]              # contact force on geom2 (the floor is geom1 or 2)
-        if c.geom2 == eng.floor:
-            world = -world
-        body = m.geom_bodyid[c.geom2 if c.geom1 == eng.floor else c.geom1]
-        total += abs(float(f[0]))
-        if body in wheel_bodies:
-            on_wheels += abs(float(f[0]))
-        else:
-            drag -= float(world @ forward)
-    return (on_wheels / total if total > 0 else None), drag
 
 
 def _mean(groups):

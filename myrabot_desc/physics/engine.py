@@ -53,10 +53,13 @@ def warnings_to(mujoco, notes: list):
 
 
 def decide_base(robot, base: str, q: dict | None = None) -> tuple[str, str]:
-    """('free' | 'fixed', why). ``auto``: a wheeled base (model/drive.is_mobile) or a robot that stands
+    """('free' | 'fixed', why). ``planar``: free, and a mecanum, omni or planar base gets convert's
+    planar base (``convert --to mjcf`` does so under ``--base auto``). ``auto``: a wheeled base (model/drive.is_mobile) or a robot that stands
     on legs (model/legs.stance) is free; anything else is welded where it stands."""
     if base in ("free", "fixed"):
         return base, f"--base {base}"
+    if base == "planar":
+        return "free", "a base moved as a body in the plane (slides and a yaw hinge)"
     if D.is_mobile(robot):
         return "free", "a wheeled base (it declares a drive or has wheels)"
     s = stance(robot, q)
@@ -90,7 +93,7 @@ class Engine:
         self.mujoco = mj = import_mujoco()
         self.base, self.base_why = decide_base(robot, base, q0)
         with warnings_to(mj, self.notes):
-            text, assets, res = mjcf_in_memory(robot, self.base)
+            text, assets, res = mjcf_in_memory(robot, "auto" if base == "planar" else self.base)
             self.convert_notes = [str(w) for w in getattr(res.notes, "warnings", [])]
             self.report = res.report
             spec = mj.MjSpec.from_string(text, assets=assets)
@@ -330,6 +333,58 @@ class Engine:
         self.data.qpos[:] = qpos
         mj.mj_forward(m, self.data)
         return sorted(pairs)
+
+    # ------------------------------------------------------------------ contacts
+    def floor_loads(self, wheel_bodies, forward):
+        """(share of the floor's normal force on ``wheel_bodies``, friction force of the other floor
+        contacts along ``forward``: positive drags the base back)."""
+        import numpy as np
+
+        mj, m, d = self.mujoco, self.model, self.data
+        f = np.zeros(6)
+        on_wheels = total = drag = 0.0
+        for i in range(d.ncon):
+            c = d.contact[i]
+            if self.floor not in (c.geom1, c.geom2):
+                continue
+            mj.mj_contactForce(m, d, i, f)
+            world = c.frame.reshape(3, 3).T @ f[:3]      # the force on geom2 (the floor is geom1 or 2)
+            if c.geom2 == self.floor:
+                world = -world
+            body = m.geom_bodyid[c.geom2 if c.geom1 == self.floor else c.geom1]
+            total += abs(float(f[0]))
+            if body in wheel_bodies:
+                on_wheels += abs(float(f[0]))
+            else:
+                drag -= float(world @ forward)
+        return (on_wheels / total if total > 0 else None), drag
+
+    def on_floor(self, exclude=()) -> set:
+        """The links whose collisions touch the floor now, but for those of the bodies ``exclude``."""
+        m, d = self.model, self.data
+        out = set()
+        for i in range(d.ncon):
+            g1, g2 = int(d.contact[i].geom1), int(d.contact[i].geom2)
+            if self.floor in (g1, g2):
+                g = g2 if g1 == self.floor else g1
+                if int(m.geom_bodyid[g]) not in exclude:
+                    out.add(self.link_of_geom(g))
+        return out
+
+    def rubbing(self, bodies) -> set:
+        """(body in ``bodies``, other link) pairs of the robot's own collisions in contact now."""
+        m, d = self.model, self.data
+        out = set()
+        for i in range(d.ncon):
+            g1, g2 = int(d.contact[i].geom1), int(d.contact[i].geom2)
+            if self.floor in (g1, g2):
+                continue
+            b1, b2 = int(m.geom_bodyid[g1]), int(m.geom_bodyid[g2])
+            if b1 in bodies:
+                out.add((b1, self.link_of_geom(g2)))
+            if b2 in bodies:
+                out.add((b2, self.link_of_geom(g1)))
+        return out
 
     def steps(self, seconds: float) -> int:
         n = int(math.ceil(seconds / self.model.opt.timestep))

@@ -114,6 +114,17 @@ class Model:
         self.info.update({"modules": len(mods), "wheelbase": b.wheelbase, "track": b.track, "wheel radius": b.radius,
                           "steering lock": "free" if self.lock is None else f"±{self.lock:.4g} rad"})
 
+    def _module(self, x, y, vx, vy, w):
+        """A swerve module at (x, y): (steering angle, wheel speed m/s, whether the lock lets it point)."""
+        cx, cy = self.ref
+        px, py = x - cx, y - cy
+        mvx, mvy = vx - w * py, vy + w * px
+        speed = math.hypot(mvx, mvy)
+        ang = math.atan2(mvy, mvx) if speed > 1e-12 else 0.0
+        if self.lock is not None and abs(ang) > self.lock + 1e-9:
+            ang, speed = math.remainder(ang + math.pi, 2 * math.pi), -speed     # the other way round
+        return ang, speed, self.lock is None or abs(ang) <= self.lock + 1e-9
+
     def _achieve_swerve(self, vx, vy, w):
         import numpy as np
 
@@ -121,12 +132,7 @@ class Model:
         cx, cy = self.ref
         for s, wheel, x, y, r in self.mods:
             px, py = x - cx, y - cy
-            mvx, mvy = vx - w * py, vy + w * px
-            speed = math.hypot(mvx, mvy)
-            ang = math.atan2(mvy, mvx) if speed > 1e-12 else 0.0
-            if self.lock is not None and abs(ang) > self.lock + 1e-9:
-                ang, speed = math.remainder(ang + math.pi, 2 * math.pi), -speed     # the other way round
-            reach = self.lock is None or abs(ang) <= self.lock + 1e-9
+            ang, speed, reach = self._module(x, y, vx, vy, w)
             rates[wheel] = speed / r if reach else 0.0
             got = (speed * math.cos(ang), speed * math.sin(ang)) if reach else (0.0, 0.0)
             rows += [[1.0, 0.0, -py], [0.0, 1.0, px]]
@@ -168,6 +174,50 @@ class Model:
             self._note(f"vy {vy:g} m/s: an Ackermann base cannot move sideways")
         return (vx, 0.0, vx * math.tan(delta) / self.L), {n: vx / self.r for n in self.rear}
 
+    def _steer(self, vx, w):
+        """The bicycle's steering angle for (v, ω), held at the lock."""
+        if abs(vx) < 1e-12:
+            return 0.0
+        delta = math.atan(self.L * w / vx)
+        return delta if self.lock is None else max(-self.lock, min(self.lock, delta))
+
+    def joint_commands(self, vx, vy, w) -> dict:
+        """{joint: ("position" | "velocity", value)} that move a simulated base as this model does:
+        steering joints at their angle (rad, about their own axis), each wheel at the rate that rolls
+        it along its own path (rad/s, signed to roll the base forward). Mecanum/omni/planar bases are
+        moved as a body in MuJoCo: {}."""
+        kind = self.base.kind
+        out = {}
+        if kind == "swerve":
+            for s, wheel, x, y, r in self.mods:
+                ang, speed, reach = self._module(x, y, vx, vy, w)
+                if reach:
+                    out[s] = ("position", ang * D.joint_turn_sign(self.robot, s))
+                    out[wheel] = ("velocity", speed / r * _forward(self.robot, wheel))
+        elif kind == "ackermann":
+            delta = self._steer(vx, w)
+            weff = vx * math.tan(delta) / self.L
+            rx, ry = self.ref
+            kids = self.robot.joints_by_parent()
+            for s in self.base.steering:
+                p = D.joint_position(self.robot, s)
+                carries = any(c.name in self.base.wheels for c in kids.get(self.robot.joints[s].child, []))
+                if p is None or not carries:
+                    out[s] = ("position", delta * D.joint_turn_sign(self.robot, s))    # the bicycle's own joint
+                    continue
+                ahead, side = p[0] - rx, p[1] - ry
+                along = vx - weff * side
+                ang = math.atan(weff * ahead / along) if abs(along) > 1e-12 else 0.0
+                out[s] = ("position", ang * D.joint_turn_sign(self.robot, s))
+            for n in self.base.wheels:
+                p = D.joint_position(self.robot, n)
+                wh = D.wheel(self.robot, n)
+                if p is None or wh is None or not wh.radius:
+                    continue
+                speed = math.copysign(math.hypot(vx - weff * (p[1] - ry), weff * (p[0] - rx)), vx)
+                out[n] = ("velocity", speed / wh.radius * wh.forward_sign)
+        return out
+
     def _note(self, text: str) -> None:
         if text not in self.notes:
             self.notes.append(text)
@@ -175,6 +225,11 @@ class Model:
     def achieve(self, vx, vy, w):
         kind = "mecanum" if self.base.kind == "omni" else self.base.kind
         return getattr(self, f"_achieve_{kind}")(vx, vy, w)
+
+
+def _forward(robot, joint: str) -> float:
+    w = D.wheel(robot, joint)
+    return w.forward_sign if w is not None else 1.0
 
 
 def _or(a, b):

@@ -80,8 +80,50 @@ def test_a_sideways_twist_for_a_differential_base_is_one_error_line():
     assert len(lines) == 1 and ": error: " in lines[0] and "sideways" in lines[0]
 
 
-def test_the_mujoco_engine_refuses_a_base_it_would_drive_as_a_diff_drive():
-    res = invoke("sim", "drive", "--engine", "mujoco", *drive_args(ROBOTS["rosbot_xl_mecanum"]))
-    assert res.exit_code == 2
-    lines = [x for x in res.output.splitlines() if x.strip()]
-    assert len(lines) == 1 and ": error: " in lines[0] and "mecanum base" in lines[0]
+@pytest.mark.parametrize("rid", ["rosbot_xl_mecanum", "ridgeback", "mpo_700", "mpo_700_planar_move"])
+def test_the_mujoco_engine_drives_holonomic_bases_as_their_kinematic_model(rid):
+    """Mecanum and planar bases slide on convert's planar base, the MPO-700 rolls on its four steered
+    modules: sideways, on the spot and in an arc, MuJoCo's twist is the kinematic model's within 10 %
+    (the module base within 5 % sideways), and the base keeps to the floor."""
+    doc, checks = _drive(rid, "0.2,0.2,0,2", "0,0,0.5,2", "0.2,-0.1,0.3,2", extra=("--engine", "mujoco"))
+    assert doc["passed"], doc["checks"]
+    assert doc["info"]["drive kind"] == ROBOTS[rid]["drive_kind"] and doc["engine"].startswith("MuJoCo")
+    assert checks["speed vs kinematic"]["value"] == pytest.approx(1.0, abs=0.1)
+    assert checks["turn rate vs kinematic"]["value"] == pytest.approx(1.0, abs=0.1)
+    assert abs(checks["stays on the floor"]["value"]) <= 0.005
+    seg = doc["info"]["segments"][0]
+    assert (seg["vx"], seg["vy"]) == pytest.approx((0.2, 0.2), abs=0.01)
+    moved = "planar base" in doc["info"]["moved by"]
+    assert moved == (ROBOTS[rid]["drive_kind"] != "swerve")
+
+
+def test_the_mujoco_engine_steers_an_ackermann_car_along_its_bicycle_model():
+    """Audibot (1820 kg) in a 4.4 m arc: each front wheel at its own Ackermann angle, each wheel at its
+    own path speed; speed and turn rate within 10 % of the bicycle model."""
+    doc, checks = _drive("audibot", "2.0,0.45,4", extra=("--engine", "mujoco"))
+    assert doc["passed"], doc["checks"]
+    seg = doc["info"]["segments"][0]
+    assert seg["vx"] == pytest.approx(2.0, rel=0.05) and seg["w"] == pytest.approx(0.45, rel=0.1)
+
+
+def test_the_mujoco_engine_names_a_wheel_that_rubs_on_the_chassis():
+    """swerve_robot: after the base settles on its wheels the chassis collision box rests on the four
+    wheel cylinders, which cannot turn at their 1 N·m effort: the base stays where it is and each
+    cause names the wheel joint (at its xacro line) and chassis_link."""
+    doc, checks = _drive("swerve_robot", "0.2,0,0,2", extra=("--engine", "mujoco"))
+    assert not doc["passed"]
+    assert abs(checks["speed vs kinematic"]["value"]) < 0.05
+    causes = [c for c in doc["causes"] if c["check"] == "speed vs kinematic"]
+    assert causes and all("touches chassis_link" in c["cause"] and c["file"].endswith("wheel.xacro")
+                          for c in causes)
+
+
+def test_the_mujoco_engine_names_the_wheels_that_drag_a_car():
+    """CarlikeBot's front wheels are steered but have no joint to roll them (its bicycle's virtual
+    joints drive and steer): in MuJoCo they slide, and the car makes 14 % of the commanded speed.
+    The cause names them and the force they drag with."""
+    doc, checks = _drive("carlikebot", "0.2,0,3", extra=("--engine", "mujoco"))
+    assert not doc["passed"]
+    assert checks["speed vs kinematic"]["value"] < 0.5
+    text = " ".join(c["cause"] for c in doc["causes"])
+    assert "front_left_wheel, front_right_wheel touch the floor without a joint that rolls them" in text

@@ -28,7 +28,7 @@ from myrabot_desc.model.statics import effort_of
 from myrabot_desc.sim import drive as kinematic
 from myrabot_desc.sim.diffdrive import find_drive
 from myrabot_desc.physics import kinds
-from myrabot_desc.physics.engine import Engine
+from myrabot_desc.physics.engine import Engine, Path
 from myrabot_desc.physics.result import Cause, PhysicsResult
 from myrabot_desc.sim.result import Check
 
@@ -96,14 +96,14 @@ def run(robot, *, script=kinematic.DEFAULT_SCRIPT, wheels="plugin", left=(), rig
     wheel_ids = {n: eng.actuators[n] for n in per_wheel}
     dofs = {n: int(m.jnt_dofadr[eng.joint_ids[n]]) for n in per_wheel}
     wheel_bodies = {eng.body_of_link(robot.joints[n].child) for n in per_wheel}
-    ts, xs, ys, yaws = [], [], [], []
+    path = Path()
+    ts, xs, ys, yaws = path.t, path.x, path.y, path.yaw
     wheel_rate_series = {n: [] for n in per_wheel}
     segments = []
     step = 0
     n_settle = eng.steps(SETTLE)
     plan = [(0.0, 0.0, SETTLE, n_settle, None)] + [(v, w, s, eng.steps(s), i) for i, (v, w, s) in enumerate(script)]
     total_steps = sum(p[3] for p in plan)
-    yaw_unwrapped, last_yaw = 0.0, None
     for v, w, seconds, n, index in plan:
         cmd = rates(v, w)
         for name, a in wheel_ids.items():
@@ -116,15 +116,7 @@ def run(robot, *, script=kinematic.DEFAULT_SCRIPT, wheels="plugin", left=(), rig
             if step % every:
                 continue
             R = d.xmat[root].reshape(3, 3)
-            p = d.xpos[root] + R @ mid
-            yaw = math.atan2(R[1, 0], R[0, 0])
-            if last_yaw is not None:
-                yaw_unwrapped += math.remainder(yaw - last_yaw, 2 * math.pi)
-            last_yaw = yaw
-            ts.append(step * m.opt.timestep)
-            xs.append(float(p[0]))
-            ys.append(float(p[1]))
-            yaws.append(yaw_unwrapped)
+            path.sample(step * m.opt.timestep, R, d.xpos[root] + R @ mid)
             for name in per_wheel:
                 wheel_rate_series[name].append(float(d.qvel[dofs[name]]))
             if k >= skip and index is not None:
@@ -141,7 +133,7 @@ def run(robot, *, script=kinematic.DEFAULT_SCRIPT, wheels="plugin", left=(), rig
     res.steps = step
     t = np.asarray(ts)
     res.t = t
-    res.series.update({"base_x_m": np.asarray(xs), "base_y_m": np.asarray(ys), "base_yaw_rad": np.asarray(yaws)})
+    res.series.update(path.series())
     for name, vals in wheel_rate_series.items():
         res.series[f"{name}_rate_rad_s"] = np.asarray(vals)
         res.joints.append(f"{name}_rate_rad_s")

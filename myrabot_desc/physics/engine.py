@@ -392,3 +392,40 @@ class Engine:
             raise InputError(f"{seconds:g} s at MuJoCo's {self.model.opt.timestep:g} s step is {n} steps, over the "
                              f"{self.max_steps} allowed (MYRABOT_DESC_MAX_PHYSICS_STEPS)")
         return n
+
+
+class Path:
+    """Samples of a point fixed in a body: time, world x and y, and the body's yaw, unwrapped."""
+
+    def __init__(self):
+        self.t: list[float] = []
+        self.x: list[float] = []
+        self.y: list[float] = []
+        self.yaw: list[float] = []
+        self._last = None
+
+    def sample(self, t: float, R, p) -> None:
+        """Record the point at world position ``p`` of a body with rotation ``R`` at time ``t``."""
+        yaw = math.atan2(R[1, 0], R[0, 0])
+        turned = 0.0 if self._last is None else self.yaw[-1] + math.remainder(yaw - self._last, 2 * math.pi)
+        self._last = yaw
+        self.t.append(t)
+        self.x.append(float(p[0]))
+        self.y.append(float(p[1]))
+        self.yaw.append(turned)
+
+    def series(self) -> dict:
+        import numpy as np
+
+        return {"base_x_m": np.asarray(self.x), "base_y_m": np.asarray(self.y), "base_yaw_rad": np.asarray(self.yaw)}
+
+    def body_twist(self, a: int, b: int) -> tuple[float, float, float]:
+        """The mean body-frame (vx, vy, w) between samples ``a`` and ``b`` (each step's chord at its
+        mid heading)."""
+        import numpy as np
+
+        T = self.t[b] - self.t[a]
+        dx, dy = np.diff(self.x[a:b + 1]), np.diff(self.y[a:b + 1])
+        h = (np.asarray(self.yaw[a:b]) + np.asarray(self.yaw[a + 1:b + 1])) / 2
+        return (float(np.sum(np.cos(h) * dx + np.sin(h) * dy)) / T, float(np.sum(-np.sin(h) * dx + np.cos(h) * dy)) / T,
+                (self.yaw[b] - self.yaw[a]) / T)

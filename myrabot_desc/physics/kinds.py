@@ -25,7 +25,7 @@ import time
 
 from myrabot_desc.convert.mjcf.bodies import PLANAR_BASE
 from myrabot_desc.model import drive as D
-from myrabot_desc.physics.engine import Engine
+from myrabot_desc.physics.engine import Engine, Path
 from myrabot_desc.physics.result import Cause, PhysicsResult
 from myrabot_desc.sim import kinds as kinematic
 from myrabot_desc.sim.result import Check
@@ -67,8 +67,9 @@ def run(robot, base: D.Base, *, script, tolerance, settle, ramp, sample_rate, tr
     floor0 = None
     wheel_bodies = {eng.body_of_link(robot.joints[n].child) for n in base.wheels if n in robot.joints}
     every = max(1, int(round(1.0 / (sample_rate * m.opt.timestep))))
-    ts, xs, ys, yaws = [], [], [], []
-    segments, step, last_yaw, yaw_unwrapped = [], 0, None, 0.0
+    path = Path()
+    ts = path.t
+    segments, step = [], 0
     plan = [((0.0, 0.0, 0.0), settle, None)] + [((vx, vy, w), s, i) for i, (vx, vy, w, s) in enumerate(script)]
     counts = [eng.steps(s) for _, s, _ in plan]
     total_steps = sum(counts)
@@ -93,15 +94,7 @@ def run(robot, base: D.Base, *, script, tolerance, settle, ramp, sample_rate, tr
             if step % every:
                 continue
             R = d.xmat[root].reshape(3, 3)
-            p = d.xpos[root] + R @ ref
-            yaw = math.atan2(R[1, 0], R[0, 0])
-            if last_yaw is not None:
-                yaw_unwrapped += math.remainder(yaw - last_yaw, 2 * math.pi)
-            last_yaw = yaw
-            ts.append(step * m.opt.timestep)
-            xs.append(float(p[0]))
-            ys.append(float(p[1]))
-            yaws.append(yaw_unwrapped)
+            path.sample(step * m.opt.timestep, R, d.xpos[root] + R @ ref)
             if k >= skip and index is not None:
                 seg.setdefault("from", len(ts) - 1)
                 for name, (mode, want) in joints.items():
@@ -128,7 +121,7 @@ def run(robot, base: D.Base, *, script, tolerance, settle, ramp, sample_rate, tr
             progress(step / total_steps)
     res.steps = step
     res.t = np.asarray(ts)
-    res.series.update({"base_x_m": np.asarray(xs), "base_y_m": np.asarray(ys), "base_yaw_rad": np.asarray(yaws)})
+    res.series.update(path.series())
 
     kin_rows = {r["segment"]: r for r in predicted.info.get("segments", [])}
     rows, v_rel, w_rel = [], [], []
@@ -136,12 +129,7 @@ def run(robot, base: D.Base, *, script, tolerance, settle, ramp, sample_rate, tr
         a, b = seg.get("from"), seg["end"]
         if a is None or b - a < 2:
             continue
-        T = ts[b] - ts[a]
-        dx, dy = np.diff(xs[a:b + 1]), np.diff(ys[a:b + 1])
-        h = (np.asarray(yaws[a:b]) + np.asarray(yaws[a + 1:b + 1])) / 2
-        bx = float(np.sum(np.cos(h) * dx + np.sin(h) * dy)) / T
-        by = float(np.sum(-np.sin(h) * dx + np.cos(h) * dy)) / T
-        w_meas = float(yaws[b] - yaws[a]) / T
+        bx, by, w_meas = path.body_twist(a, b)
         vx, vy, w = seg["cmd"]
         kin = kin_rows.get(i + 1, {})
         row = {"segment": i + 1, "vx_cmd": vx, "vy_cmd": vy, "w_cmd": w,

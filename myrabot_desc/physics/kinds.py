@@ -206,7 +206,7 @@ def _causes(robot, eng, base, seg, tracking) -> list:
                              "actuator's force limit or gain, or the joint's limits)", j.loc))
         elif kind == "wheel" and abs(want) > 1e-6 and mean / want < tracking:
             touch = rubs.get(eng.body_name[eng.body_of_link(j.child)])
-            why = (f"its collision touches {', '.join(touch)}'s, which holds it" if touch else
+            why = (f"turning, its collision meets {', '.join(touch)}'s, which holds it" if touch else
                    "its actuator's force limit, the effort, or its gain")
             out.append(Cause(f"wheel {name} turns at {mean / want:.0%} of its {want:.3g} rad/s command: {why}", j.loc))
     out = out[:3]

@@ -652,6 +652,15 @@ class Controller(NamedTuple):
     type: str
     params: dict
     file: str                         # the YAML as written in <parameters>
+    plugin: object = None             # the plugin whose <parameters> names it (for locations)
+
+    @property
+    def loc(self):
+        p = self.plugin
+        if p is None:
+            return None
+        node = p.param("parameters")
+        return (node.loc if node is not None else None) or p.loc
 
 
 class Base(NamedTuple):
@@ -724,7 +733,7 @@ def controllers(robot) -> list[Controller]:
                 for name, v in cm.items():
                     ctype = v.get("type") if isinstance(v, dict) else None
                     if isinstance(ctype, str) and _controller_kind(ctype):
-                        out.append(Controller(str(name), ctype, _ros_params(doc, str(name)) or {}, text.strip()))
+                        out.append(Controller(str(name), ctype, _ros_params(doc, str(name)) or {}, text.strip(), p))
         return tuple(out)
     return list(robot.derive("drive.controllers", build))
 
@@ -747,19 +756,134 @@ def _times(v, m):
     return None if v is None else v * (m if m is not None else 1.0)
 
 
-def controller_numbers(c: Controller) -> tuple[float | None, float | None, float | None]:
-    """(wheelbase, track, wheel radius) the controller turns with, its multipliers applied (the
-    parameter names of ros2_controllers' diff_drive / mecanum_drive / steering controllers)."""
-    p = c.params
+class Term(NamedTuple):
+    """One geometric number a controller or plugin drives with: what it is, the key as written,
+    the value before and after its multiplier (controllers) or the plugin's default when the key is
+    not written."""
+
+    what: str                         # 'track' | 'wheelbase' | 'radius' | 'kingpin' | 'half_sum' | 'steer_limit'
+    key: str
+    raw: float
+    multiplier: float | None = None
+    multiplier_key: str | None = None
+    default: bool = False             # the plugin's own default (the key is not written)
+
+    @property
+    def value(self) -> float:
+        return self.raw * (self.multiplier if self.multiplier is not None else 1.0)
+
+
+def _term(params: dict, what: str, keys, mult_keys=()):
+    key = next((k for k in keys if _num(params, k) is not None), None)
+    if key is None:
+        return None
+    mkey = next((k for k in mult_keys if _num(params, k) is not None), None)
+    return Term(what, key, _num(params, key), _num(params, mkey) if mkey else None, mkey)
+
+
+# Parameter names of ros2_controllers' diff_drive_controller, mecanum_drive_controller (its
+# ``kinematics.*`` and Husarion's/ROS 1's ``wheel_separation_x/y``) and the steering controllers
+# (ackermann, bicycle, tricycle: current ``traction_*``/``steering_*`` names, then the deprecated
+# ``rear_*``/``front_*`` ones; front steering, the default, makes the rear wheels the traction ones).
+RADIUS_KEYS = ("wheel_radius", "traction_wheels_radius", "traction_wheel_radius", "rear_wheels_radius",
+               "rear_wheel_radius", "kinematics.wheels_radius")
+RADIUS_MULT = ("wheel_radius_multiplier", "left_wheel_radius_multiplier")
+
+
+def controller_terms(c: Controller) -> list[Term]:
+    """The geometric numbers a drive controller turns with, each with its multiplier."""
+    p = dict(c.params)
+    kin = p.get("kinematics")
+    if isinstance(kin, dict):       # ros2_controllers' mecanum_drive_controller nests them
+        p.update({f"kinematics.{k}": v for k, v in kin.items()})
     kind = _controller_kind(c.type)
-    radius = _times(_num(p, "wheel_radius", "traction_wheel_radius", "front_wheel_radius", "rear_wheel_radius"),
-                    _num(p, "wheel_radius_multiplier", "left_wheel_radius_multiplier"))
+    out = [_term(p, "radius", RADIUS_KEYS, RADIUS_MULT)]
     if kind == "differential":
-        return None, _times(_num(p, "wheel_separation"), _num(p, "wheel_separation_multiplier")), radius
-    base = _times(_num(p, "wheel_separation_x", "wheelbase", "wheel_base"), _num(p, "wheel_separation_multiplier_x"))
-    track = _times(_num(p, "wheel_separation_y", "traction_track_width", "wheel_track", "track_width"),
-                   _num(p, "wheel_separation_multiplier_y"))
-    return base, track, radius
+        out.append(_term(p, "track", ("wheel_separation",), ("wheel_separation_multiplier",)))
+    else:
+        out.append(_term(p, "wheelbase", ("wheel_separation_x", "wheelbase", "wheel_base"),
+                         ("wheel_separation_multiplier_x", "wheel_separation_multiplier")))
+        out.append(_term(p, "track", ("wheel_separation_y", "traction_track_width", "rear_wheel_track", "wheel_track",
+                                      "track_width"),
+                         ("wheel_separation_multiplier_y", "wheel_separation_multiplier")))
+        out.append(_term(p, "kingpin", ("steering_track_width", "front_wheel_track")))
+        out.append(_term(p, "half_sum", ("kinematics.sum_of_robot_center_projection_on_X_Y_axis",)))
+    return [t for t in out if t is not None]
+
+
+def controller_numbers(c: Controller) -> tuple[float | None, float | None, float | None]:
+    """(wheelbase, track, wheel radius) the controller turns with, its multipliers applied."""
+    got = {t.what: t.value for t in controller_terms(c)}
+    return got.get("wheelbase"), got.get("track"), got.get("radius")
+
+
+# gz-sim MecanumDrive / AckermannSteering and Gazebo classic gazebo_ros_ackermann_drive: each
+# geometric parameter with the default the system uses when it is not written (read from gz-sim's
+# MecanumDrive.cc, AckermannSteering.cc and gazebo_ros_pkgs' gazebo_ros_ackermann_drive.cpp; the
+# classic plugin measures its wheelbase, track and radius on the model itself).
+PLUGIN_TERMS = {
+    ("gz", "mecanum"): (("track", "wheel_separation", 1.0), ("wheelbase", "wheelbase", 1.0),
+                        ("radius", "wheel_radius", 0.2)),
+    ("gz", "ackermann"): (("wheelbase", "wheel_base", 1.0), ("track", "wheel_separation", 1.0),
+                          ("kingpin", "kingpin_width", 0.8), ("radius", "wheel_radius", 0.2),
+                          ("steer_limit", "steering_limit", 0.5)),
+    ("classic", "ackermann"): (("steer_limit", "max_steer", 0.6),),
+}
+
+
+def plugin_terms(p) -> list[Term]:
+    """The geometric numbers a mecanum or Ackermann plugin drives with (its defaults where a key
+    is not written); [] for any other plugin."""
+    kind = plugin_kind(p)
+    table = PLUGIN_TERMS.get(("gz" if p.dialect == "gz" else "classic", kind or ""), ())
+    steering_only = kind == "ackermann" and V.boolean(p.text("steering_only"), False)
+    out = []
+    for what, key, default in table:
+        if steering_only and what in ("radius", "kingpin"):
+            continue          # AckermannSteering reads them only when it drives the wheels
+        v, ok = number(p, key)
+        if not ok:
+            continue          # not a number: the plugin fails on it, nothing to compare
+        out.append(Term(what, key, default, default=True) if v is None else Term(what, key, v))
+    return out
+
+
+class Declared(NamedTuple):
+    """A number a drive's controller or plugin declares about the base, beside the URDF's."""
+
+    term: Term
+    urdf: float                       # the same quantity measured on the URDF
+    owner: object                     # the Controller or the Plugin
+    source: str                       # 'controller' | 'plugin'
+
+
+def kingpin_width(robot, b: "Base") -> float | None:
+    """The distance between the steering axes (left to right) on the URDF, in the root frame."""
+    if not b.steering:
+        return None
+    T = link_transforms(robot)
+    return _spread(_axis_and_origin(robot, robot.joints[n], T)[1][1] for n in b.steering)
+
+
+def declared(robot) -> list[Declared]:
+    """Every geometric number the base's controllers and mecanum/Ackermann plugins drive with, with
+    its URDF counterpart (``base``'s wheelbase, track, wheel radius and steering lock, the steering
+    axes' spread): what check's G016-G018 compare. Numbers with no URDF counterpart are left out."""
+    def build():
+        b = base(robot)
+        if b is None:
+            return ()
+        urdf = {"wheelbase": b.wheelbase, "track": b.track, "radius": b.radius, "steer_limit": b.steer_limit,
+                "kingpin": kingpin_width(robot, b),
+                "half_sum": (b.wheelbase + b.track) / 2 if b.wheelbase and b.track else None}
+        out = []
+        for c in controllers(robot):
+            out += [Declared(t, urdf[t.what], c, "controller") for t in controller_terms(c)
+                    if urdf.get(t.what)]
+        for p in robot.plugins():
+            out += [Declared(t, urdf[t.what], p, "plugin") for t in plugin_terms(p) if urdf.get(t.what)]
+        return tuple(out)
+    return list(robot.derive("drive.declared", build))
 
 
 def _axis_and_origin(robot, j, T):

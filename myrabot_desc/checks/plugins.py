@@ -170,9 +170,13 @@ def drive_joints_continuous(ctx):
     A fixed wheel joint is merged away by the URDF→SDF conversion so the plugin cannot
     find it; a revolute one stops turning at its limit (warning). Joints named as
     casters by the Create/Roomba plugin are reported as a warning when fixed: the plugin
-    publishes zeros for them. Fix: `type="continuous"`.
+    publishes zeros for them. Wheels that ros_control or ros2_control commands in velocity are
+    judged the same way (model/drive.ros_wheel_joints), with the distance a revolute wheel
+    rolls before its stop; a range of a million radians or more is taken as unlimited. Fix:
+    `type="continuous"`.
     """
     r = ctx.robot
+    yield from _ros_wheel_types(r)
     for p, d in drives(ctx):
         spec = d.spec
         for key in (*spec.left, *spec.right, *spec.fixed_ok):
@@ -193,6 +197,38 @@ def drive_joints_continuous(ctx):
                               {"plugin": p.name, "joint": name, "type": j.type}, severity=sev)
 
 
+UNLIMITED = 1e6         # rad: a revolute range this wide never stops a wheel (MPO-700 writes ±1e16)
+
+
+def _ros_wheel_types(r):
+    """G004 for the wheels ros_control/ros2_control commands in velocity."""
+    names, source = D.ros_wheel_joints(r)
+    label = f"{source} velocity wheels"
+    for name in names:
+        j = r.joints[name]
+        if j.type == "continuous":
+            continue
+        if j.type == "revolute":
+            lim = j.limit
+            # urdfdom reads a missing lower or upper as 0: such a wheel cannot turn that way at all
+            lo, hi = (lim.lower or 0.0, lim.upper or 0.0) if lim is not None else (0.0, 0.0)
+            if min(-lo, hi) >= UNLIMITED:
+                continue
+            w = D.wheel(r, name)
+            rad = w.radius if w is not None else None
+            reach = min(abs(lo), abs(hi))
+            roll = f", {reach * rad:.3g} m of travel" if rad else ""
+            yield Finding(f"{label}: joint {name} is revolute ({lo:.3g} to {hi:.3g} rad): a revolute wheel stops at "
+                          f"its limits, after {reach / (2 * math.pi):.2g} turn from the zero pose{roll}", j.loc,
+                          {"joint": name, "type": j.type, "lower": lo, "upper": hi, "radius": rad,
+                           "travel": reach * rad if rad else None, "source": source}, severity="warning")
+        else:
+            why = ("fixed joints are merged away in URDF→SDF conversion, so the controller cannot find it"
+                   if j.type == "fixed" else f"a {j.type} joint cannot roll a wheel")
+            yield Finding(f"{label}: joint {name} is {j.type}: {why}", j.loc,
+                          {"joint": name, "type": j.type, "source": source}, severity="error")
+
+
 @rule("G005", "drive-axis-across-travel", "error",
       bad=_drive(axis="0 0 1"),
       message="gazebo_ros_diff_drive (ROS 1): left wheel joint left_wheel_joint turns about (0 0 1) in base_link: "
@@ -206,24 +242,36 @@ def drive_axis(ctx):
     swaps the turning direction (warning); for ros_control/ros2_control wheels, whose
     sides the controller's configuration gives (outside the URDF), a wheel joint named
     "left" on the right side (or "right" on the left) is reported the same way
-    (ros2_control_demos' DiffBot). Fix: `<axis xyz="0 1 0"/>` (in the wheel joint's frame)
-    and the left wheel at +y.
+    (ros2_control_demos' DiffBot); when every such wheel sits on one side (a wheel mirrored to
+    the wrong side) there is no drive at all, an error. Fix: `<axis xyz="0 1 0"/>` (in the wheel
+    joint's frame) and the left wheel at +y.
     """
     import re
 
-    for d in D.find(ctx.robot):
-        if d.source not in ("ros_control", "ros2_control"):
-            continue
-        for w in D.measure(ctx.robot, d).wheels:
-            words = set(re.split(r"[^a-z]+", w.joint.lower()))
-            y = w.origin[1]
-            named = "left" if "left" in words and "right" not in words else \
-                "right" if "right" in words and "left" not in words else None
-            if (named == "left" and y < -1e-3) or (named == "right" and y > 1e-3):
-                yield Finding(f"{d.label}: wheel joint {w.joint} is named {named} but sits at y {y:.3g} (the "
-                              f"{'right' if y < 0 else 'left'} side; +y is left, REP-103): a controller given it as "
-                              f"the {named} wheel turns the robot the wrong way", ctx.robot.joints[w.joint].loc,
-                              {"joint": w.joint, "y": float(y), "named": named}, severity="warning")
+    names, source = D.ros_wheel_joints(ctx.robot)
+    label = f"{source} velocity wheels"
+    T = D.link_transforms(ctx.robot)
+    ws = [w for w in (D.wheel(ctx.robot, n, T, read_meshes=False) for n in names) if w is not None]
+    for w in ws:
+        words = set(re.split(r"[^a-z]+", w.joint.lower()))
+        y = w.origin[1]
+        named = "left" if "left" in words and "right" not in words else \
+            "right" if "right" in words and "left" not in words else None
+        if (named == "left" and y < -1e-3) or (named == "right" and y > 1e-3):
+            yield Finding(f"{label}: wheel joint {w.joint} is named {named} but sits at y {y:.3g} (the "
+                          f"{'right' if y < 0 else 'left'} side; +y is left, REP-103): a controller given it as "
+                          f"the {named} wheel turns the robot the wrong way", ctx.robot.joints[w.joint].loc,
+                          {"joint": w.joint, "y": float(y), "named": named}, severity="warning")
+    lateral = [w for w in ws if abs(w.axis[1]) >= D.LATERAL and abs(w.origin[1]) >= 1e-4]
+    sides = {w.origin[1] > 0 for w in lateral}
+    if len(lateral) >= 2 and len(sides) == 1 and not any(d.source == source for d in D.find(ctx.robot)):
+        side = "left" if sides == {True} else "right"
+        where = ", ".join(f"{w.joint} {w.origin[1]:.3g}" for w in lateral)
+        yield Finding(f"{label}: every wheel sits on the {side} side (y: {where}; +y is left, REP-103): with no "
+                      "wheel on the other side nothing drives this base (a wheel moved or mirrored to the wrong "
+                      "side)", ctx.robot.joints[lateral[0].joint].loc,
+                      {"joints": [w.joint for w in lateral], "y": [float(w.origin[1]) for w in lateral],
+                       "side": side})
     r = ctx.robot
     for p, d in drives(ctx):
         spec = d.spec

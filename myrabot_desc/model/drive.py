@@ -361,6 +361,30 @@ def velocity_joints(robot) -> tuple[list[str], str | None]:
     return out, source
 
 
+def ros_wheel_joints(robot) -> tuple[list[str], str | None]:
+    """The joints ros_control/ros2_control commands in velocity that are wheels, in file order, and
+    where they were declared: those named like a wheel (whatever their type: a fixed or revolute
+    wheel is still the wheel the controller drives) and moving ones about a level axis. Unlike
+    ``from_velocity_joints`` they need not stand on both sides: check judges them even when a
+    wheel moved to the other side leaves no left/right pair."""
+    names, source = velocity_joints(robot)
+    T = link_transforms(robot)
+    out = []
+    for n in names:
+        j = robot.joints.get(n)
+        if j is None:
+            continue
+        low = n.lower()
+        if ("wheel" in low or "wheel" in j.child.lower()) and "caster" not in low and "castor" not in low:
+            out.append(n)
+            continue
+        if j.type in ("continuous", "revolute"):
+            a, _ = _axis_and_origin(robot, j, T)
+            if a is not None and abs(a[1]) >= LATERAL:
+                out.append(n)
+    return out, source
+
+
 def commanded_joints(robot) -> set[str]:
     """Joints something commands: named in a transmission or with a command interface in a
     ``<ros2_control>`` block, or turned by a declared drive. Empty when the model says nothing of

@@ -266,3 +266,66 @@ def test_p002_counts_wheels_recognised_by_shape(tmp_path):
     p002 = [d for d in _check_json(urdf) if d["code"] == "P002"]
     assert len(p002) == 1 and p002[0]["data"]["min_z"] == pytest.approx(-0.300007, abs=1e-6)
     assert "300 mm into the ground" in p002[0]["message"]
+
+
+# ------------------------------------------------------------------ 5. recall: ros_control wheels planted
+def test_g004_a_ros_control_wheel_made_revolute(tmp_path):
+    """Husky (ros_control velocity transmissions) with front_left_wheel made revolute ±π: G004 says
+    it stops after half a turn, 0.519 m of travel on its 0.1651 m wheel; the unplanted Husky is quiet."""
+    urdf = _built("husky", tmp_path)
+    text = urdf.read_text()
+    assert not [d for d in _check_json(urdf) if d["code"] == "G004"]
+    old = '<joint name="front_left_wheel" type="continuous">'
+    assert text.count(old) == 1
+    text = text.replace(old, '<joint name="front_left_wheel" type="revolute">\n    '
+                             '<limit lower="-3.14159" upper="3.14159" effort="10" velocity="10"/>')
+    urdf.write_text(text)
+    g004 = [d for d in _check_json(urdf) if d["code"] == "G004"]
+    assert len(g004) == 1 and g004[0]["severity"] == "warning"
+    assert g004[0]["data"]["joint"] == "front_left_wheel" and g004[0]["data"]["source"] == "ros_control"
+    assert g004[0]["data"]["travel"] == pytest.approx(3.14159 * 0.1651, abs=1e-3)
+    assert "after 0.5 turn from the zero pose, 0.519 m of travel" in g004[0]["message"]
+
+
+def test_g004_a_ros2_control_wheel_made_revolute_without_limits(tmp_path):
+    """PMB2 (ros2_control velocity wheels) with wheel_right_joint made revolute, its <limit> giving
+    no lower or upper: urdfdom reads both as 0, so the wheel cannot turn at all."""
+    urdf = _built("pmb2", tmp_path)
+    text = urdf.read_text()
+    old = '<joint name="wheel_right_joint" type="continuous">'
+    assert text.count(old) == 1
+    urdf.write_text(text.replace(old, '<joint name="wheel_right_joint" type="revolute">'))
+    g004 = [d for d in _check_json(urdf) if d["code"] == "G004"]
+    assert len(g004) == 1 and g004[0]["data"]["source"] == "ros2_control"
+    assert (g004[0]["data"]["lower"], g004[0]["data"]["upper"], g004[0]["data"]["travel"]) == (0, 0, 0)
+
+
+def test_g005_a_ros2_control_wheel_mirrored_to_the_other_side(tmp_path):
+    """PMB2 with its left wheel's origin y negated (0.2022 -> -0.2022): both velocity wheels on the
+    right, so no left/right drive is recognised; G005 says so (error) and names the left wheel on
+    the right side, where the report used to lose the drive without a word."""
+    urdf = _built("pmb2", tmp_path)
+    text = urdf.read_text()
+    assert not [d for d in _check_json(urdf) if d["code"] == "G005"]
+    old = '<origin rpy="-1.5707963267948966 0 0" xyz="0 0.2022 0.0"/>'
+    assert text.count(old) == 1
+    urdf.write_text(text.replace(old, old.replace("0.2022", "-0.2022")))
+    diags = _check_json(urdf)
+    assert not [d for d in diags if d["code"] == "G014"]       # the drive is gone...
+    g005 = sorted((d for d in diags if d["code"] == "G005"), key=lambda d: d["severity"])
+    assert [d["severity"] for d in g005] == ["error", "warning"]  # ...and G005 says why
+    assert g005[0]["data"]["side"] == "right"
+    assert g005[0]["data"]["y"] == pytest.approx([-0.2022, -0.2022], abs=1e-4)
+    assert g005[1]["data"] == {"joint": "wheel_left_joint", "y": pytest.approx(-0.2022, abs=1e-4), "named": "left"}
+
+
+def test_g005_a_ros_control_wheel_renamed_to_the_other_side(tmp_path):
+    """Husky with front_left_wheel renamed front_right_wheel2 (still at y +0.2854, its transmission
+    renamed with it): G005 names the right wheel on the left side."""
+    urdf = _built("husky", tmp_path)
+    text = urdf.read_text()
+    assert text.count('"front_left_wheel"') == 2
+    urdf.write_text(text.replace('"front_left_wheel"', '"front_right_wheel2"'))
+    g005 = [d for d in _check_json(urdf) if d["code"] == "G005"]
+    assert len(g005) == 1 and g005[0]["severity"] == "warning"
+    assert g005[0]["data"] == {"joint": "front_right_wheel2", "y": pytest.approx(0.2854, abs=1e-4), "named": "right"}

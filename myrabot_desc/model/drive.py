@@ -754,10 +754,20 @@ def controllers(robot) -> list[Controller]:
             for text in p.values("parameters"):
                 doc = _controller_yaml(robot, text)
                 cm = _ros_params(doc, "controller_manager") or {}
+                named = []
                 for name, v in cm.items():
                     ctype = v.get("type") if isinstance(v, dict) else None
                     if isinstance(ctype, str) and _controller_kind(ctype):
-                        out.append(Controller(str(name), ctype, _ros_params(doc, str(name)) or {}, text.strip(), p))
+                        named.append((str(name), ctype))
+                # a controller may give its type among its own parameters (ros2_control_demos'
+                # example 11: the spawner reads it from the controller's section)
+                for key in (doc if isinstance(doc, dict) else {}):
+                    name = str(key).rsplit("/", 1)[-1]
+                    own = _ros_params(doc, name) or {}
+                    ctype = own.get("type")
+                    if isinstance(ctype, str) and _controller_kind(ctype) and name not in {n for n, _ in named}:
+                        named.append((name, ctype))
+                out += [Controller(n, t, _ros_params(doc, n) or {}, text.strip(), p) for n, t in named]
         return tuple(out)
     return list(robot.derive("drive.controllers", build))
 

@@ -385,6 +385,27 @@ def ros_wheel_joints(robot) -> tuple[list[str], str | None]:
     return out, source
 
 
+def virtual_joints(robot) -> dict[str, tuple[str, ...]]:
+    """Moving joints that stand for others: other moving joints mimic them, and their child link has
+    no collision and no mass (a bicycle model's virtual steering and traction joints, CarlikeBot's
+    ``virtual_front_wheel_joint``): joint -> the joints that mimic it. Their links may be drawn but
+    are no physical body; the joints that mimic them move the real wheels. Built once per robot."""
+    def build():
+        followers: dict[str, list[str]] = {}
+        for j in robot.joints.values():
+            if j.mimic is not None and j.type != "fixed":
+                followers.setdefault(j.mimic.joint, []).append(j.name)
+        out = {}
+        for name, fs in followers.items():
+            j = robot.joints.get(name)
+            link = robot.links.get(j.child) if j is not None else None
+            if j is None or j.type == "fixed" or link is None or link.collisions or link.mass > 0:
+                continue
+            out[name] = tuple(fs)
+        return out
+    return dict(robot.derive("drive.virtual_joints", build))
+
+
 def commanded_joints(robot) -> set[str]:
     """Joints something commands: named in a transmission or with a command interface in a
     ``<ros2_control>`` block, or turned by a declared drive. Empty when the model says nothing of

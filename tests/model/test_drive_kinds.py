@@ -98,10 +98,10 @@ def test_a_controller_yaml_outside_the_allowed_folders_is_not_read(tmp_path):
     assert D.controllers(load_robot(str(f))) == []
 
 
-# check's errors on these bases, reviewed: real ones, not drive misreadings. CarlikeBot's virtual
-# (bicycle-model) links have visuals but no mass (a simulator drops or rejects them); Audibot writes
-# effort and velocity -1 on every joint (SDF's "no limit", but a URDF limit must be positive).
-ERRORS = {"carlikebot": ["I001", "I001", "P003"], "audibot": ["T011"] * 6}
+# check's errors on these bases, reviewed: none. CarlikeBot's virtual (bicycle-model) links, drawn but
+# massless, and Audibot's effort and velocity -1 on every joint (SDF's "no limit") are warnings that say
+# what a simulator does with them (tests/realrobots/test_misreadings.py).
+ERRORS: dict = {}
 
 
 @pytest.mark.parametrize("rid", list(ROBOTS))

@@ -329,3 +329,48 @@ def test_g005_a_ros_control_wheel_renamed_to_the_other_side(tmp_path):
     g005 = [d for d in _check_json(urdf) if d["code"] == "G005"]
     assert len(g005) == 1 and g005[0]["severity"] == "warning"
     assert g005[0]["data"] == {"joint": "front_right_wheel2", "y": pytest.approx(0.2854, abs=1e-4), "named": "right"}
+
+
+# ------------------------------------------------------------------ 5. CarlikeBot's virtual links, Audibot's -1
+def test_carlikebot_virtual_links_are_warnings_that_keep_the_truth(tmp_path):
+    """CarlikeBot's bicycle model: virtual_front/rear_wheel are drawn (a visual, no collision) but
+    massless, and the real wheels mimic their joints. I001 and P003 say so as warnings, with what
+    Gazebo does (drops the link with its joint); given a collision, the link is a body again and
+    I001 an error."""
+    args = [*_drive_args(DRIVES["carlikebot"]), "--format", "json"]
+    import json
+
+    res = CliRunner().invoke(main, ["check", *args])
+    diags = json.loads(res.stdout)["files"][0]["diagnostics"]
+    i001 = {d["data"]["link"]: d for d in diags if d["code"] == "I001"}
+    assert set(i001) == {"virtual_front_wheel", "virtual_rear_wheel"}
+    assert all(d["severity"] == "warning" and d["data"]["virtual"] for d in i001.values())
+    assert sorted(i001["virtual_rear_wheel"]["data"]["mimicked_by"]) == ["rear_left_wheel_joint", "rear_right_wheel_joint"]
+    assert "Gazebo's URDF→SDF conversion drops a massless moving link with its joint" in i001["virtual_rear_wheel"]["message"]
+    (p003,) = [d for d in diags if d["code"] == "P003"]
+    assert p003["severity"] == "warning" and p003["data"]["virtual"]
+    assert not [d for d in diags if d["severity"] == "error"]
+    # a collision on the virtual rear wheel: a physical body without mass, the error it always was
+    out = tmp_path / "carlikebot.urdf"
+    assert CliRunner().invoke(main, ["build", *_drive_args(DRIVES["carlikebot"]), "-o", str(out)]).exit_code == 0
+    text = out.read_text()
+    i = text.index('<link name="virtual_rear_wheel">')
+    j = text.index("</link>", i)
+    out.write_text(text[:j] + '<collision><geometry><sphere radius="0.05"/></geometry></collision>' + text[j:])
+    i001 = [d for d in _check_json(out) if d["code"] == "I001"]
+    assert {(d["data"]["link"], d["severity"]) for d in i001} == {("virtual_rear_wheel", "error"),
+                                                                   ("virtual_front_wheel", "warning")}
+
+
+def test_audibot_negative_limits_are_warnings_that_say_no_limit():
+    """Audibot writes effort="-1" velocity="-1" on its six joints: SDF's "no limit" (its default,
+    "not enforced if negative"), which sdformat's URDF→SDF copies and Gazebo does not enforce, and
+    the MJCF writer reads as no limit. check says that as a warning (convert's side:
+    tests/convert/test_sdf_and_world.py)."""
+    import json
+
+    res = CliRunner().invoke(main, ["check", *_drive_args(DRIVES["audibot"]), "--format", "json"])
+    t011 = [d for d in json.loads(res.stdout)["files"][0]["diagnostics"] if d["code"] == "T011"]
+    assert len(t011) == 6 and all(d["severity"] == "warning" and d["data"]["no_limit"] for d in t011)
+    assert all(d["data"]["effort"] == -1 and d["data"]["velocity"] == -1 for d in t011)
+    assert "effort -1, velocity -1 (negative: SDF's \"no limit\"" in t011[0]["message"]

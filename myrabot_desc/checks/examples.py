@@ -196,3 +196,37 @@ def ackermann_example(base="0.5", limit="0.5") -> str:
                               ("rear_left", "0 0.2 0.1", "base_link"), ("rear_right", "0 -0.2 0.1", "base_link")):
         parts.append(_CAR_WHEEL.format(name=name, xyz=xyz, parent=parent))
     return "\n".join(parts + [_ACKERMANN.format(base=base, limit=limit)])
+
+
+# A mecanum base: four wheels of radius 0.05 m at (±0.2, ±0.2), driven by gz-sim's MecanumDrive;
+# with ``rollers`` each wheel's contact grips only along a diagonal (mu 1 along fdir1, mu2 0), as
+# gz-sim's mecanum example sets it: FL and RR along (1 -1 0), FR and RL along (1 1 0).
+_MECANUM_FRICTION = """<gazebo reference="{name}_wheel">
+  <collision><surface><friction><ode>
+    <mu>1</mu>
+    <mu2>0</mu2>
+    <fdir1 gz:expressed_in="base_link" xmlns:gz="http://gazebosim.org/schema">{fdir}</fdir1>
+  </ode></friction></surface></collision>
+</gazebo>"""
+_MECANUM_DRIVE = """<gazebo>
+  <plugin filename="gz-sim-mecanum-drive-system" name="gz::sim::systems::MecanumDrive">
+    <front_left_joint>front_left_wheel_joint</front_left_joint>
+    <front_right_joint>front_right_wheel_joint</front_right_joint>
+    <back_left_joint>rear_left_wheel_joint</back_left_joint>
+    <back_right_joint>rear_right_wheel_joint</back_right_joint>
+    <wheel_separation>0.4</wheel_separation>
+    <wheelbase>0.4</wheelbase>
+    <wheel_radius>0.05</wheel_radius>
+  </plugin>
+</gazebo>"""
+
+
+def mecanum_example(rollers=True) -> str:
+    parts = []
+    for name, x, y, fdir in (("front_left", "0.2", "0.2", "1 -1 0"), ("front_right", "0.2", "-0.2", "1 1 0"),
+                             ("rear_left", "-0.2", "0.2", "1 1 0"), ("rear_right", "-0.2", "-0.2", "1 -1 0")):
+        parts.append(_CAR_WHEEL.format(name=name, xyz=f"{x} {y} 0.05", parent="base_link")
+                     .replace('radius="0.1"', 'radius="0.05"'))
+        if rollers:
+            parts.append(_MECANUM_FRICTION.format(name=name, fdir=fdir))
+    return "\n".join(parts + [_MECANUM_DRIVE])

@@ -6,7 +6,7 @@ import difflib
 import math
 
 from myrabot_desc.checks.examples import ELECTRIC_IMU, MODERN_IMU, ackermann_example, controllers_yaml, \
-    ros2_control_example
+    mecanum_example, ros2_control_example
 from myrabot_desc.checks.examples import drive_example as _drive
 from myrabot_desc.checks.rule import Finding, Fix, FixInfo, InsertInto, RemoveElement, RenameTag, SetValue, rule
 from myrabot_desc.checks.urdf_syntax import local, suggest
@@ -588,6 +588,66 @@ def steering_limit(ctx):
                        "joint": joint, "min_turn_radius": turn(lim), "plugin_min_turn_radius": turn(t.value),
                        "fix": round(lim, 6)},
                       fix=None if t.default else _param_fix(p, t.key, round(lim, 6)))
+
+
+def _ratio(x: float) -> str:
+    return f"{x:.2g}×" if abs(x) >= 0.005 else "0×"
+
+
+@rule("G019", "mecanum-roller-friction", "error",
+      bad=mecanum_example(rollers=False),
+      message="mecanum base (plugin gz-sim-mecanum-drive-system) without modelled rollers: with its wheels' "
+              "contact friction (every wheel mu 1, mu2 1, no fdir1) a sideways command drives sideways at 0×; a "
+              "mecanum wheel's contact needs mu2 0 across an fdir1 at 45° to its axle, front-left and rear-right "
+              "along one diagonal, front-right and rear-left along the other",
+      good=mecanum_example())
+def mecanum_rollers(ctx):
+    """A mecanum base driven wheel by wheel must be able to roll sideways in simulation.
+
+    Unless its rollers are links of their own, a mecanum wheel is a plain cylinder to the
+    simulator; what makes it mecanum is its contact friction: `mu` along an `fdir1` at 45° to
+    the axle and `mu2` 0 across it (gz-sim's mecanum example, ROSbot XL), so the contact
+    pushes only along that diagonal, front-left and rear-right along one, front-right and
+    rear-left along the other. model/drive.roller_response measures the twist the four
+    contacts give for a unit sideways and turning command (the least-squares body motion under
+    each wheel's constraint, the wheel speeds from the mecanum kinematics): plain wheels
+    (isotropic friction, the default) drive sideways at 0×; the diagonals the wrong way round
+    drive sideways backwards (-1×) and turn 4.4× too fast on ROSbot XL. A base moved by a
+    body-force plugin (Ridgeback) is not judged: its wheels carry no load sideways by design.
+    Fix: the friction set-up above in each wheel's `<gazebo reference>` block.
+    """
+    r = ctx.robot
+    rr = D.roller_response(r)
+    if rr is None:
+        return
+    b = D.base(r)
+    vx, vy, wz = rr.sideways
+    turn = rr.turn[2]
+    if abs(vy - 1) <= 0.15 and abs(vx) <= 0.15 and abs(wz) <= 0.15 and abs(turn - 1) <= 0.15:
+        return
+    desc = {(c.mu, c.mu2, c.fdir1 and (round(c.fdir1[0], 2), round(c.fdir1[1], 2))) for c in rr.contacts}
+    if len(desc) == 1:
+        c = rr.contacts[0]
+        said = f"every wheel mu {c.mu:g}, mu2 {c.mu2:g}, " + (
+            f"fdir1 ({c.fdir1[0]:.2g} {c.fdir1[1]:.2g})" if c.fdir1 else "no fdir1")
+    else:
+        said = "; ".join(f"{c.link} mu {c.mu:g}, mu2 {c.mu2:g}, "
+                         + (f"fdir1 ({c.fdir1[0]:.2g} {c.fdir1[1]:.2g})" if c.fdir1 else "no fdir1")
+                         for c in rr.contacts)
+    effect = [f"a sideways command drives sideways at {_ratio(vy)}"]
+    if abs(vx) > 0.15:
+        effect.append(f"forward at {_ratio(vx)}")
+    if abs(wz) > 0.15:
+        effect.append(f"turning {wz:.2g} rad/s per m/s")
+    msg = f"mecanum base ({b.why}) without modelled rollers: with its wheels' contact friction ({said}) " + \
+        ", ".join(effect)
+    if abs(turn - 1) > 0.15:
+        msg += f", and it turns at {_ratio(turn)} the commanded rate"
+    yield Finding(msg + "; a mecanum wheel's contact needs mu2 0 across an fdir1 at 45° to its axle, front-left and "
+                  "rear-right along one diagonal, front-right and rear-left along the other", b.loc,
+                  {"sideways": list(rr.sideways), "turn": list(rr.turn), "forward": list(rr.forward),
+                   "contacts": [{"link": c.link, "mu": c.mu, "mu2": c.mu2, "fdir1": c.fdir1 and list(c.fdir1),
+                                 "written": c.written} for c in rr.contacts]})
 
 
 @rule("G007", "plugin-unknown-parameter", "warning",

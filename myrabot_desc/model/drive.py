@@ -1110,3 +1110,140 @@ def _base(robot) -> Base | None:
                 _limit(robot, steering) if steering else None,
                 declared if kind in ("differential", "skid_steer", "mecanum", "omni") else None,
                 plugin, ctrl, cb, ct, cr, loc)
+
+
+# ------------------------------------------------------------------ mecanum wheels' contact
+# A simulator has no rollers unless the URDF models them as links: a mecanum wheel is a plain
+# cylinder whose contact friction is made anisotropic (gz-sim's mecanum example, ROSbot XL): ``mu``
+# along ``fdir1`` at 45° to the axle, ``mu2`` 0 across it, so the contact pushes only along fdir1,
+# as a wheel whose rollers turn freely across that direction. The twist such contacts give for a
+# commanded one is measurable on the URDF: the least-squares body twist under each wheel's
+# constraints (surface speeds from the mecanum inverse kinematics).
+FRICTION_DEFAULT = 1.0      # sdformat's <ode><mu>/<mu2> and Gazebo classic's mu1/mu2 when not written
+
+
+class Contact(NamedTuple):
+    """A wheel link's friction as the simulator reads it: ``mu`` along ``fdir1`` (root frame, unit,
+    None when not given: then both coefficients act in every direction), ``mu2`` across it."""
+
+    link: str
+    mu: float
+    mu2: float
+    fdir1: tuple[float, float, float] | None
+    written: str                      # 'sdf' (<collision><surface>...), 'classic' (mu1/mu2/fdir1) or 'default'
+
+
+def _collision_rotation(robot, link: str, T):
+    R, _ = T.get(link, IDENTITY)
+    cols = robot.links[link].collisions if link in robot.links else ()
+    return compose((R, (0.0, 0.0, 0.0)), pose_T(cols[0].origin))[0] if cols else R
+
+
+def wheel_contact(robot, link: str, T=None) -> Contact:
+    """The contact friction of a wheel link: a ``<gazebo reference>`` block's SDF
+    ``<collision><surface><friction><ode>`` (``fdir1`` in the collision frame, or the frame its
+    ``expressed_in`` names), else its classic ``mu1``/``mu2``/``fdir1`` (collision frame), else the
+    defaults (1, 1, no direction)."""
+    T = T if T is not None else link_transforms(robot)
+    for g in robot.gazebo:
+        if g.reference != link:
+            continue
+        ode = g.node.find("collision", "surface", "friction", "ode")
+        if ode is not None and (ode.child("mu") is not None or ode.child("mu2") is not None):
+            f = ode.child("fdir1")
+            vec = ode.vector("fdir1", n=3)
+            frame = next((v for k, v in f.attrs if k.rsplit("}", 1)[-1] == "expressed_in"), None) if f else None
+            R = T[frame][0] if frame in T else _collision_rotation(robot, link, T)
+            return Contact(link, ode.number("mu", default=FRICTION_DEFAULT), ode.number("mu2", default=FRICTION_DEFAULT),
+                           _unit(rotate(R, vec)) if vec else None, "sdf")
+        v = g.values
+        if "mu1" in v or "mu2" in v:
+            vec = v.get("fdir1")
+            R = _collision_rotation(robot, link, T)
+            return Contact(link, float(v.get("mu1", FRICTION_DEFAULT)), float(v.get("mu2", FRICTION_DEFAULT)),
+                           _unit(rotate(R, vec)) if vec else None, "classic")
+    return Contact(link, FRICTION_DEFAULT, FRICTION_DEFAULT, None, "default")
+
+
+class RollerResponse(NamedTuple):
+    """What a mecanum base driven by its wheels does for unit commands, given its wheels' contact:
+    achieved (vx, vy, ωz) for a forward (vx 1), a sideways (vy 1) and a turning (ωz 1) command."""
+
+    contacts: tuple[Contact, ...]
+    forward: tuple[float, float, float]
+    sideways: tuple[float, float, float]
+    turn: tuple[float, float, float]
+
+
+def _solve3(A, b):
+    """x of the 3×3 system A x = b (Cramer), None when singular."""
+    def det(M):
+        return (M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) - M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0])
+                + M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]))
+    d = det(A)
+    if abs(d) < 1e-12:
+        return None
+    out = []
+    for k in range(3):
+        M = [list(r) for r in A]
+        for i in range(3):
+            M[i][k] = b[i]
+        out.append(det(M) / d)
+    return tuple(out)
+
+
+def roller_response(robot) -> RollerResponse | None:
+    """The twist the wheels' contacts give a mecanum base driven wheel by wheel (a mecanum
+    controller or plugin; a body-force plugin moves the body itself: None), for unit commands."""
+    def build():
+        b = base(robot)
+        if b is None or b.kind != "mecanum" or len(b.wheels) != 4:
+            return None
+        if b.controller is None and plugin_kind(b.plugin or _NoPlugin) != "mecanum":
+            return None
+        T = link_transforms(robot)
+        ws = [wheel(robot, n, T, read_meshes=False) for n in b.wheels]
+        if any(w is None for w in ws) or len({(w.origin[0] > 0, w.origin[1] > 0) for w in ws}) != 4:
+            return None         # four wheels, one at each corner
+        children = robot.joints_by_parent()
+        if any(c.type != "fixed" for w in ws for c in children.get(robot.joints[w.joint].child, [])):
+            return None         # rollers modelled as links: the physics rolls them
+        cx = sum(w.origin[0] for w in ws) / 4
+        cy = sum(w.origin[1] for w in ws) / 4
+        L = (_spread(w.origin[0] for w in ws) + _spread(w.origin[1] for w in ws)) / 2
+        contacts = tuple(wheel_contact(robot, robot.joints[w.joint].child, T) for w in ws)
+        rows = []       # (direction in the plane, wheel index)
+        for i, c in enumerate(contacts):
+            if c.mu > 0 and c.mu2 > 0 or c.fdir1 is None:
+                if c.mu > 0 or c.mu2 > 0:
+                    rows += [((1.0, 0.0), i), ((0.0, 1.0), i)]
+            else:
+                f = c.fdir1 if c.mu > 0 else (-c.fdir1[1], c.fdir1[0], 0.0)   # the direction that grips
+                d = _unit((f[0], f[1], 0.0))
+                if d is not None:
+                    rows.append(((d[0], d[1]), i))
+
+        def achieved(cmd):
+            vx, vy, wz = cmd
+            A = [[0.0] * 3 for _ in range(3)]
+            rhs = [0.0] * 3
+            for (dx, dy), i in rows:
+                x, y = ws[i].origin[0] - cx, ws[i].origin[1] - cy
+                s = vx - math.copysign(1.0, x * y) * vy - math.copysign(1.0, y) * L * wz   # surface speed
+                row = (dx, dy, -y * dx + x * dy)
+                target = s * dx                   # the wheel's surface moves along x
+                for p in range(3):
+                    rhs[p] += row[p] * target
+                    for q in range(3):
+                        A[p][q] += row[p] * row[q]
+            return _solve3(A, rhs)
+
+        got = [achieved(c) for c in ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))]
+        if any(g is None for g in got):
+            return None         # the contacts do not hold the base (frictionless wheels)
+        return RollerResponse(contacts, *got)
+    return robot.derive("drive.roller_response", build)
+
+
+class _NoPlugin:
+    library = name = ""

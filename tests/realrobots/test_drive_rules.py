@@ -1,4 +1,4 @@
-"""G016-G018 on the real bases of every drive kind (tests/corpus/drives.yaml): no false alarm on the
+"""G016-G019 on the real bases of every drive kind (tests/corpus/drives.yaml): no false alarm on the
 robots as published, and each planted defect found with its numbers.
 
 Planting: the URDF is built from the corpus, then edited as text (a controller YAML named by a
@@ -19,7 +19,7 @@ from helpers import CORPUS, drive_args, drive_robots
 from myrabot_desc.commands.main import main
 
 ROBOTS = {r["id"]: r for r in drive_robots()}
-CODES = ("G016", "G017", "G018")
+CODES = ("G016", "G017", "G018", "G019")
 pytestmark = [pytest.mark.corpus,
               pytest.mark.skipif(not ROBOTS, reason="the real-robot corpus is not here")]
 
@@ -180,3 +180,23 @@ def test_g017_mecanum_drive_planted_into_rosbot_xl(tmp_path):
     assert g["message"] == ("gz::sim::systems::MecanumDrive: wheel_radius not given: it uses its default 0.2 m, "
                             "but the URDF's wheel radius is 0.05 m: the robot drives and sideways at 0.25× the "
                             "commanded speed")
+
+
+def test_g019_mecanum_roller_friction_planted_into_rosbot_xl(tmp_path):
+    """ROSbot XL mecanum's wheels grip only along diagonals (mu 1 along fdir1, mu2 0): sideways 1×
+    as published (no G019). With mu2 1 the wheels are plain and cannot roll sideways (0×); with the
+    diagonals the wrong way round it drives sideways backwards and turns 4.4× too fast."""
+    urdf = _built("rosbot_xl_mecanum", tmp_path)
+    base = urdf.read_text()
+    assert base.count("<mu2>0.0</mu2>") == 4
+    urdf.write_text(base.replace("<mu2>0.0</mu2>", "<mu2>1.0</mu2>"))
+    (g,) = _found(urdf, "G019")
+    assert g["data"]["sideways"][1] == pytest.approx(0, abs=1e-9)
+    assert "(every wheel mu 1, mu2 1, fdir1 (0.71 -0.71))" not in g["message"]
+    assert "a sideways command drives sideways at 0×" in g["message"]
+    fl, fr = '">1 -1 0</fdir1>', '">1 1 0</fdir1>'
+    assert base.count(fl) == 2 and base.count(fr) == 2
+    urdf.write_text(base.replace(fl, "@").replace(fr, fl).replace("@", fr))
+    (g,) = _found(urdf, "G019")
+    assert g["data"]["sideways"][1] == pytest.approx(-1) and g["data"]["turn"][2] == pytest.approx(4.4, abs=0.01)
+    assert "a sideways command drives sideways at -1×, and it turns at 4.4× the commanded rate" in g["message"]

@@ -364,7 +364,8 @@ def velocity_joints(robot) -> tuple[list[str], str | None]:
 def ros_wheel_joints(robot) -> tuple[list[str], str | None]:
     """The joints ros_control/ros2_control commands in velocity that are wheels, in file order, and
     where they were declared: those named like a wheel (whatever their type: a fixed or revolute
-    wheel is still the wheel the controller drives) and moving ones about a level axis. Unlike
+    wheel is still the wheel the controller drives) and moving ones that carry a round shape about
+    a lateral axis (an arm's pitch joint commanded in velocity is neither). Unlike
     ``from_velocity_joints`` they need not stand on both sides: check judges them even when a
     wheel moved to the other side leaves no left/right pair."""
     names, source = velocity_joints(robot)
@@ -379,8 +380,8 @@ def ros_wheel_joints(robot) -> tuple[list[str], str | None]:
             out.append(n)
             continue
         if j.type in ("continuous", "revolute"):
-            a, _ = _axis_and_origin(robot, j, T)
-            if a is not None and abs(a[1]) >= LATERAL:
+            w = wheel(robot, n, T, read_meshes=False)
+            if w is not None and w.round and abs(w.axis[1]) >= LATERAL:
                 out.append(n)
     return out, source
 

@@ -374,3 +374,19 @@ def test_audibot_negative_limits_are_warnings_that_say_no_limit():
     assert len(t011) == 6 and all(d["severity"] == "warning" and d["data"]["no_limit"] for d in t011)
     assert all(d["data"]["effort"] == -1 and d["data"]["velocity"] == -1 for d in t011)
     assert "effort -1, velocity -1 (negative: SDF's \"no limit\"" in t011[0]["message"]
+
+
+def test_g004_leaves_an_arm_commanded_in_velocity_alone():
+    """Panda with Gazebo's hand (ros_control velocity interfaces on its arm joints, several about a
+    lateral axis at rest): no wheel among them, so no G004 or G005."""
+    from helpers import corpus_model
+
+    from myrabot_desc.model import drive as D
+
+    robot = corpus_robot("panda_gazebo_hand")
+    assert D.ros_wheel_joints(corpus_model(robot)) == ([], "ros_control")
+    res = CliRunner().invoke(main, ["check", *corpus_args(robot), "--format", "json"], env=corpus_env(robot))
+    import json
+
+    codes = {d["code"] for d in json.loads(res.stdout)["files"][0]["diagnostics"]}
+    assert not codes & {"G004", "G005"}

@@ -572,9 +572,7 @@ def steering_limit(ctx):
     if b is None or b.steer_limit is None or not b.wheelbase:
         return
     lim = b.steer_limit
-    joint = next((n for n in b.steering if ctx.robot.joints[n].limit is not None
-                  and abs(min(abs(ctx.robot.joints[n].limit.lower or 0), abs(ctx.robot.joints[n].limit.upper or 0))
-                          - lim) < 1e-9), b.steering[0])
+    joint = D.steering_stop(ctx.robot, b)
     for d in D.declared(ctx.robot):
         t, p = d.term, d.owner
         if t.what != "steer_limit" or t.value <= lim + 0.01:

@@ -1000,15 +1000,27 @@ def _spread(values) -> float | None:
     return max(vals) - min(vals) if len(vals) > 1 else None
 
 
-def _limit(robot, names) -> float | None:
-    """The smallest steering lock (rad each way) of the joints; None when they turn freely."""
-    locks = []
+def _locks(robot, names) -> list[tuple[float, str]]:
+    """(steering lock in rad each way, joint) of the joints that do not turn freely."""
+    out = []
     for n in names:
         j = robot.joints[n]
         if _free(j) or j.limit is None or j.limit.lower is None or j.limit.upper is None:
             continue
-        locks.append(min(abs(j.limit.lower), abs(j.limit.upper)))
-    return min(locks) if locks else None
+        out.append((min(abs(j.limit.lower), abs(j.limit.upper)), n))
+    return out
+
+
+def _limit(robot, names) -> float | None:
+    """The smallest steering lock (rad each way) of the joints; None when they turn freely."""
+    locks = _locks(robot, names)
+    return min(locks)[0] if locks else None
+
+
+def steering_stop(robot, b: "Base") -> str | None:
+    """The steering joint whose limit is the base's steering lock (the first to stop)."""
+    locks = _locks(robot, b.steering)
+    return min(locks)[1] if locks else None
 
 
 def plugin_kind(p) -> str | None:
@@ -1155,8 +1167,8 @@ def wheel_contact(robot, link: str, T=None) -> Contact:
             vec = ode.vector("fdir1", n=3)
             frame = next((v for k, v in f.attrs if k.rsplit("}", 1)[-1] == "expressed_in"), None) if f else None
             R = T[frame][0] if frame in T else _collision_rotation(robot, link, T)
-            return Contact(link, ode.number("mu", default=FRICTION_DEFAULT), ode.number("mu2", default=FRICTION_DEFAULT),
-                           _unit(rotate(R, vec)) if vec else None, "sdf")
+            mu, mu2 = (ode.number(k, default=FRICTION_DEFAULT) for k in ("mu", "mu2"))
+            return Contact(link, mu, mu2, _unit(rotate(R, vec)) if vec else None, "sdf")
         v = g.values
         if "mu1" in v or "mu2" in v:
             vec = v.get("fdir1")
@@ -1200,7 +1212,7 @@ def roller_response(robot) -> RollerResponse | None:
         b = base(robot)
         if b is None or b.kind != "mecanum" or len(b.wheels) != 4:
             return None
-        if b.controller is None and plugin_kind(b.plugin or _NoPlugin) != "mecanum":
+        if b.controller is None and (b.plugin is None or plugin_kind(b.plugin) != "mecanum"):
             return None
         T = link_transforms(robot)
         ws = [wheel(robot, n, T, read_meshes=False) for n in b.wheels]
@@ -1244,7 +1256,3 @@ def roller_response(robot) -> RollerResponse | None:
             return None         # the contacts do not hold the base (frictionless wheels)
         return RollerResponse(contacts, *got)
     return robot.derive("drive.roller_response", build)
-
-
-class _NoPlugin:
-    library = name = ""

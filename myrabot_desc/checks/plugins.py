@@ -447,6 +447,12 @@ def _effect(b, what: str, value: float, urdf: float) -> str:
     if b.kind in ("mecanum", "omni") and what in ("track", "wheelbase") and b.wheelbase and b.track:
         other = b.wheelbase if what == "track" else b.track     # the wheels turn with (track + wheelbase)/2
         return f"the robot turns at {(value + other) / (urdf + other):.3g}× the commanded rate"
+    if b.kind == "swerve" and what in ("track", "wheelbase") and b.wheelbase and b.track:
+        # modules steered for rotation about the wrong corners: the least-squares body rate is
+        # ω (wb·wb' + tr·tr') / (wb² + tr²), the modules scrubbing the rest
+        other = b.wheelbase if what == "track" else b.track
+        ratio = (urdf * value + other * other) / (urdf * urdf + other * other)
+        return f"the robot turns at {ratio:.3g}× the commanded rate, its modules scrubbing"
     if b.kind == "ackermann" and what == "track":
         return (f"in a curve the driven wheels' speeds differ by {value / urdf:.3g}× what the URDF's track needs "
                 "(they slip against each other)")
@@ -478,7 +484,8 @@ def controller_geometry(ctx):
     speeds with its own numbers: a track 0.4 m on wheels 0.3 m apart turns 1.33× too fast, a
     radius too large drives too slowly, a wheelbase off makes a car-like base curve too much or
     too little. The effect is worked out per kind (model/drive.base): a mecanum base turns with
-    (wheelbase + track) / 2. A difference that the controller's multiplier alone makes (the
+    (wheelbase + track) / 2, a swerve base steered for the wrong corners at the least-squares
+    rate (wb·wb' + tr·tr') / (wb² + tr²). A difference that the controller's multiplier alone makes (the
     number itself matches the URDF) is a calibration: on a skid-steer base the separation
     multiplier stands for the wheels' sideways slip (ROSbot XL: 0.248 m × 1.3, "ICR
     coefficient ... 1.3 looked approximately alright" on their floor), so it is information;

@@ -6,6 +6,7 @@ from collections import defaultdict
 
 from myrabot_desc.checks.inertia_geometry import Solid, inertia_line, solids, tensor_fix
 from myrabot_desc.checks.rule import Finding, Fix, FixInfo, InsertInto, SetValue, rule
+from myrabot_desc.model import drive as D
 from myrabot_desc.model.inertia import principal_moments
 
 TRIANGLE_TOL = 1e-3      # relative: a + b >= c (1 - tol); URDF files round to ~6 digits
@@ -51,14 +52,26 @@ def moving_link_mass(ctx):
     Gazebo's URDF→SDF conversion drops a massless moving link together with everything
     attached below it; MuJoCo refuses it (mjMINVAL); Pinocchio's dynamics turn NaN when
     nothing below the joint has mass. Fix: an `<inertial>` with the part's real mass and
-    inertia (`check --inertia --suggest` computes the tensor from the geometry).
+    inertia (`check --inertia --suggest` computes the tensor from the geometry). A virtual
+    joint's link (other joints mimic the joint, its link has a visual and no collision: a
+    bicycle model's steering and traction joints, model/drive.virtual_joints) is no physical
+    body and is reported as a warning, with what Gazebo does to it.
     """
     r = ctx.robot
+    virtual = D.virtual_joints(r)
     for head, m in ctx.body_mass.items():
         pj = r.parent_joint(head)
         if pj is None or pj.type == "fixed" or m > 0:
             continue
         geo = _has_geometry(ctx, head)
+        if geo and pj.name in virtual and not any(r.links[n].collisions for n in geo):
+            # a kinematic model's joint drawn for show: no body to weigh, but Gazebo still drops it
+            yield Finding(f"link {head} moves (joint {pj.name}, {pj.type}) and has a visual but no mass: a virtual "
+                          f"joint ({', '.join(virtual[pj.name])} mimic it), not a physical body, but Gazebo's "
+                          "URDF→SDF conversion drops a massless moving link with its joint", r.links[head].loc,
+                          {"link": head, "joint": pj.name, "virtual": True, "mimicked_by": list(virtual[pj.name])},
+                          severity="warning")
+            continue
         if geo:
             yield Finding(f"link {head} moves (joint {pj.name}, {pj.type}) and has geometry but no mass"
                           + (f" (nor do the links fixed to it: {', '.join(g for g in geo if g != head)})"

@@ -241,7 +241,9 @@ def dynamics_finite(ctx):
 
     A joint whose subtree has no mass (or no inertia about the joint) makes the mass
     matrix singular: ABA returns NaN and every simulator struggles. The finding points at
-    the first such joint. Fix: give the links below that joint a mass and inertia.
+    the first such joint. Fix: give the links below that joint a mass and inertia. When every
+    such joint is a virtual one (other joints mimic it and its link is no body:
+    model/drive.virtual_joints, a bicycle model's), the model is kinematic by design: a warning.
     """
     if not ctx.tree_ok or not ctx.robot.joints or _dynamics_surely_finite(ctx.robot):
         return
@@ -278,10 +280,16 @@ def dynamics_finite(ctx):
             sub_mass[model.parents[i]] += sub_mass[i]
     massless = [model.names[i] for i in range(1, model.njoints) if sub_mass[i] <= 0]
     first = ctx.robot.joints.get(massless[0]) if massless else None
+    virtual = D.virtual_joints(ctx.robot)
+    kinematic = bool(massless) and all(n in virtual for n in massless)
     yield Finding(f"{bad} returns NaN at a random configuration"
                   + (f": nothing below joint(s) {', '.join(massless[:6])} has mass" if massless else
-                     ": the mass matrix is singular"), (first.loc if first else None) or ctx.robot.loc,
-                  {"algorithm": bad, "massless_joints": massless})
+                     ": the mass matrix is singular")
+                  + (" (virtual joints that other joints mimic: a kinematic model's, which a dynamics simulator "
+                     "cannot integrate)" if kinematic else ""),
+                  (first.loc if first else None) or ctx.robot.loc,
+                  {"algorithm": bad, "massless_joints": massless, "virtual": kinematic},
+                  severity="warning" if kinematic else None)
 
 
 def _dynamics_surely_finite(robot) -> bool:

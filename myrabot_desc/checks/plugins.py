@@ -3,8 +3,10 @@
 from __future__ import annotations
 
 import difflib
+import math
 
-from myrabot_desc.checks.examples import ELECTRIC_IMU, MODERN_IMU
+from myrabot_desc.checks.examples import ELECTRIC_IMU, MODERN_IMU, ackermann_example, controllers_yaml, \
+    mecanum_example, ros2_control_example
 from myrabot_desc.checks.examples import drive_example as _drive
 from myrabot_desc.checks.rule import Finding, Fix, FixInfo, InsertInto, RemoveElement, RenameTag, SetValue, rule
 from myrabot_desc.checks.urdf_syntax import local, suggest
@@ -168,9 +170,13 @@ def drive_joints_continuous(ctx):
     A fixed wheel joint is merged away by the URDF→SDF conversion so the plugin cannot
     find it; a revolute one stops turning at its limit (warning). Joints named as
     casters by the Create/Roomba plugin are reported as a warning when fixed: the plugin
-    publishes zeros for them. Fix: `type="continuous"`.
+    publishes zeros for them. Wheels that ros_control or ros2_control commands in velocity are
+    judged the same way (model/drive.ros_wheel_joints), with the distance a revolute wheel
+    rolls before its stop; a range of a million radians or more is taken as unlimited. Fix:
+    `type="continuous"`.
     """
     r = ctx.robot
+    yield from _ros_wheel_types(r)
     for p, d in drives(ctx):
         spec = d.spec
         for key in (*spec.left, *spec.right, *spec.fixed_ok):
@@ -191,6 +197,38 @@ def drive_joints_continuous(ctx):
                               {"plugin": p.name, "joint": name, "type": j.type}, severity=sev)
 
 
+UNLIMITED = 1e6         # rad: a revolute range this wide never stops a wheel (MPO-700 writes ±1e16)
+
+
+def _ros_wheel_types(r):
+    """G004 for the wheels ros_control/ros2_control commands in velocity."""
+    names, source = D.ros_wheel_joints(r)
+    label = f"{source} velocity wheels"
+    for name in names:
+        j = r.joints[name]
+        if j.type == "continuous":
+            continue
+        if j.type == "revolute":
+            lim = j.limit
+            # urdfdom reads a missing lower or upper as 0: such a wheel cannot turn that way at all
+            lo, hi = (lim.lower or 0.0, lim.upper or 0.0) if lim is not None else (0.0, 0.0)
+            if min(-lo, hi) >= UNLIMITED:
+                continue
+            w = D.wheel(r, name)
+            rad = w.radius if w is not None else None
+            reach = min(abs(lo), abs(hi))
+            roll = f", {reach * rad:.3g} m of travel" if rad else ""
+            yield Finding(f"{label}: joint {name} is revolute ({lo:.3g} to {hi:.3g} rad): a revolute wheel stops at "
+                          f"its limits, after {reach / (2 * math.pi):.2g} turn from the zero pose{roll}", j.loc,
+                          {"joint": name, "type": j.type, "lower": lo, "upper": hi, "radius": rad,
+                           "travel": reach * rad if rad else None, "source": source}, severity="warning")
+        else:
+            why = ("fixed joints are merged away in URDF→SDF conversion, so the controller cannot find it"
+                   if j.type == "fixed" else f"a {j.type} joint cannot roll a wheel")
+            yield Finding(f"{label}: joint {name} is {j.type}: {why}", j.loc,
+                          {"joint": name, "type": j.type, "source": source}, severity="error")
+
+
 @rule("G005", "drive-axis-across-travel", "error",
       bad=_drive(axis="0 0 1"),
       message="gazebo_ros_diff_drive (ROS 1): left wheel joint left_wheel_joint turns about (0 0 1) in base_link: "
@@ -204,24 +242,36 @@ def drive_axis(ctx):
     swaps the turning direction (warning); for ros_control/ros2_control wheels, whose
     sides the controller's configuration gives (outside the URDF), a wheel joint named
     "left" on the right side (or "right" on the left) is reported the same way
-    (ros2_control_demos' DiffBot). Fix: `<axis xyz="0 1 0"/>` (in the wheel joint's frame)
-    and the left wheel at +y.
+    (ros2_control_demos' DiffBot); when every such wheel sits on one side (a wheel mirrored to
+    the wrong side) there is no drive at all, an error. Fix: `<axis xyz="0 1 0"/>` (in the wheel
+    joint's frame) and the left wheel at +y.
     """
     import re
 
-    for d in D.find(ctx.robot):
-        if d.source not in ("ros_control", "ros2_control"):
-            continue
-        for w in D.measure(ctx.robot, d).wheels:
-            words = set(re.split(r"[^a-z]+", w.joint.lower()))
-            y = w.origin[1]
-            named = "left" if "left" in words and "right" not in words else \
-                "right" if "right" in words and "left" not in words else None
-            if (named == "left" and y < -1e-3) or (named == "right" and y > 1e-3):
-                yield Finding(f"{d.label}: wheel joint {w.joint} is named {named} but sits at y {y:.3g} (the "
-                              f"{'right' if y < 0 else 'left'} side; +y is left, REP-103): a controller given it as "
-                              f"the {named} wheel turns the robot the wrong way", ctx.robot.joints[w.joint].loc,
-                              {"joint": w.joint, "y": float(y), "named": named}, severity="warning")
+    names, source = D.ros_wheel_joints(ctx.robot)
+    label = f"{source} velocity wheels"
+    T = D.link_transforms(ctx.robot)
+    ws = [w for w in (D.wheel(ctx.robot, n, T, read_meshes=False) for n in names) if w is not None]
+    for w in ws:
+        words = set(re.split(r"[^a-z]+", w.joint.lower()))
+        y = w.origin[1]
+        named = "left" if "left" in words and "right" not in words else \
+            "right" if "right" in words and "left" not in words else None
+        if (named == "left" and y < -1e-3) or (named == "right" and y > 1e-3):
+            yield Finding(f"{label}: wheel joint {w.joint} is named {named} but sits at y {y:.3g} (the "
+                          f"{'right' if y < 0 else 'left'} side; +y is left, REP-103): a controller given it as "
+                          f"the {named} wheel turns the robot the wrong way", ctx.robot.joints[w.joint].loc,
+                          {"joint": w.joint, "y": float(y), "named": named}, severity="warning")
+    lateral = [w for w in ws if abs(w.axis[1]) >= D.LATERAL and abs(w.origin[1]) >= 1e-4]
+    sides = {w.origin[1] > 0 for w in lateral}
+    if len(lateral) >= 2 and len(sides) == 1 and not any(d.source == source for d in D.find(ctx.robot)):
+        side = "left" if sides == {True} else "right"
+        where = ", ".join(f"{w.joint} {w.origin[1]:.3g}" for w in lateral)
+        yield Finding(f"{label}: every wheel sits on the {side} side (y: {where}; +y is left, REP-103): with no "
+                      "wheel on the other side nothing drives this base (a wheel moved or mirrored to the wrong "
+                      "side)", ctx.robot.joints[lateral[0].joint].loc,
+                      {"joints": [w.joint for w in lateral], "y": [float(w.origin[1]) for w in lateral],
+                       "side": side})
     r = ctx.robot
     for p, d in drives(ctx):
         spec = d.spec
@@ -372,6 +422,237 @@ def drive_kind(ctx):
                    "min_turn_radius": b.min_turn_radius, "controller": b.controller and b.controller.type,
                    "controller_wheelbase": b.ctrl_wheelbase, "controller_track": b.ctrl_track,
                    "controller_radius": b.ctrl_radius})
+
+
+_WORDS = {"track": "track", "wheelbase": "wheelbase", "radius": "wheel radius", "kingpin": "steering axes' spread",
+          "half_sum": "half wheelbase + half track"}
+
+
+def _close(what: str, value: float, urdf: float) -> bool:
+    if what == "radius":
+        return abs(value - urdf) <= max(0.001, 0.02 * urdf)
+    return abs(value - urdf) <= max(0.002, 0.02 * urdf)
+
+
+def _effect(b, what: str, value: float, urdf: float) -> str:
+    """What driving with ``value`` where the URDF measures ``urdf`` does to the robot, in numbers
+    (each number alone, the others as the URDF has them)."""
+    sideways = " and sideways" if b.holonomic else ""
+    if what == "radius":
+        return f"the robot drives{sideways} at {urdf / value:.3g}× the commanded speed"
+    if what == "half_sum" or (b.kind == "ackermann" and what == "wheelbase") or \
+            (b.kind in ("differential", "skid_steer") and what == "track"):
+        # ω_wheels ∝ ω·value; an Ackermann base steers tan φ = value·κ, so it curves at value/urdf
+        return f"the robot turns at {value / urdf:.3g}× the commanded rate"
+    if b.kind in ("mecanum", "omni") and what in ("track", "wheelbase") and b.wheelbase and b.track:
+        other = b.wheelbase if what == "track" else b.track     # the wheels turn with (track + wheelbase)/2
+        return f"the robot turns at {(value + other) / (urdf + other):.3g}× the commanded rate"
+    if b.kind == "swerve" and what in ("track", "wheelbase") and b.wheelbase and b.track:
+        # modules steered for rotation about the wrong corners: the least-squares body rate is
+        # ω (wb·wb' + tr·tr') / (wb² + tr²), the modules scrubbing the rest
+        other = b.wheelbase if what == "track" else b.track
+        ratio = (urdf * value + other * other) / (urdf * urdf + other * other)
+        return f"the robot turns at {ratio:.3g}× the commanded rate, its modules scrubbing"
+    if b.kind == "ackermann" and what == "track":
+        return (f"in a curve the driven wheels' speeds differ by {value / urdf:.3g}× what the URDF's track needs "
+                "(they slip against each other)")
+    if b.kind == "ackermann" and what == "kingpin" and b.wheelbase and b.steer_limit:
+        L = b.wheelbase
+        R = L / math.tan(min(b.steer_limit, math.pi / 2 - 1e-6))    # the rear axle's centre at full lock
+        off = math.atan(L / (R - value / 2)) - math.atan(L / (R - urdf / 2))
+        return (f"at full lock (±{b.steer_limit:.3g} rad) the inner wheel steers {abs(math.degrees(off)):.2g}° off "
+                "the angle the URDF's geometry needs (the steered wheels scrub)")
+    return f"the wheels are commanded for a {value:.4g} m {_WORDS.get(what, what)}: they scrub in every turn"
+
+
+@rule("G016", "drive-controller-geometry", "error",
+      bad=ros2_control_example(),
+      message="controllers.yaml, diff_drive_base_controller: wheel_separation 0.4 m, but the URDF's track is 0.3 m: "
+              "the robot turns at 1.33× the commanded rate",
+      good=ros2_control_example("fixed.yaml"),
+      files={**controllers_yaml(sep="0.4"), **controllers_yaml(name="fixed.yaml")},
+      note="controllers.yaml (wheel_separation 0.4) and fixed.yaml (0.3), next to the model, hold the "
+           "controller's parameters",
+      fix=FixInfo("never", "safe", "the number is in the controller's YAML, outside the URDF: the message names "
+                  "the file and the key to change (the URDF's geometry is the robot's; the YAML follows it)."))
+def controller_geometry(ctx):
+    """A ros2_control drive controller's geometry (after its multipliers) must match the URDF.
+
+    The controller YAML a `<parameters>` names (diff_drive_controller `wheel_separation`,
+    `wheel_radius`; mecanum `wheel_separation_x/y` or `kinematics.*`; the steering controllers'
+    `wheelbase`, `traction_track_width`, `traction_wheels_radius`...) turns a twist into wheel
+    speeds with its own numbers: a track 0.4 m on wheels 0.3 m apart turns 1.33× too fast, a
+    radius too large drives too slowly, a wheelbase off makes a car-like base curve too much or
+    too little. The effect is worked out per kind (model/drive.base): a mecanum base turns with
+    (wheelbase + track) / 2, a swerve base steered for the wrong corners at the least-squares
+    rate (wb·wb' + tr·tr') / (wb² + tr²). A difference that the controller's multiplier alone makes (the
+    number itself matches the URDF) is a calibration: on a skid-steer base the separation
+    multiplier stands for the wheels' sideways slip (ROSbot XL: 0.248 m × 1.3, "ICR
+    coefficient ... 1.3 looked approximately alright" on their floor), so it is information;
+    on other kinds a warning (a real robot's calibration that the simulated one, whose geometry
+    is exact, does not need). Fix: the YAML's key named in the message.
+    """
+    b = D.base(ctx.robot)
+    if b is None:
+        return
+    for d in D.declared(ctx.robot):
+        if d.source != "controller":
+            continue
+        t, c = d.term, d.owner
+        if _close(t.what, t.value, d.urdf):
+            continue
+        file = c.file.replace("\\", "/").rsplit("/", 1)[-1]
+        said = f"{t.key} {t.raw:.4g} m"
+        sev = None
+        if t.multiplier is not None and t.multiplier != 1.0:
+            said += f" × {t.multiplier_key} {t.multiplier:.4g} = {t.value:.4g} m"
+            if _close(t.what, t.raw, d.urdf):
+                skid = b.kind == "skid_steer" and t.what == "track"
+                sev = "info" if skid else "warning"
+        msg = (f"{file}, {c.name}: {said}, but the URDF's {_WORDS.get(t.what, t.what)} is {d.urdf:.4g} m: "
+               + _effect(b, t.what, t.value, d.urdf))
+        if sev == "info":
+            msg += (" on wheels that do not slip; on a skid-steer base the multiplier stands for the wheels' "
+                    "sideways slip (a calibration)")
+        elif sev == "warning":
+            msg += " (the multiplier alone makes the difference: a calibration of the real robot)"
+        yield Finding(msg, c.loc or b.loc,
+                      {"file": c.file, "controller": c.name, "key": t.key, "value": t.raw, "multiplier": t.multiplier,
+                       "multiplier_key": t.multiplier_key, "effective": t.value, "urdf": d.urdf, "what": t.what,
+                       "kind": b.kind}, severity=sev)
+
+
+@rule("G017", "drive-plugin-geometry", "error",
+      bad=ackermann_example(base="0.65"),
+      message="gz::sim::systems::AckermannSteering: wheel_base 0.65 m, but the URDF's wheelbase is 0.5 m: "
+              "the robot turns at 1.3× the commanded rate",
+      good=ackermann_example(),
+      fix=FixInfo("sometimes", "safe", "the system's parameter becomes the URDF's number when the parameter is "
+                  "written (a default is not inserted). Safe for the reason G001 gives."))
+def plugin_geometry(ctx):
+    """A mecanum or Ackermann plugin's geometry must match the URDF.
+
+    gz-sim's MecanumDrive (`wheel_separation`, `wheelbase`, `wheel_radius`) and
+    AckermannSteering (`wheel_base`, `wheel_separation`, `kingpin_width`, `wheel_radius`)
+    compute wheel speeds and steering angles from their own numbers, and use defaults (1 m,
+    1 m, 0.8 m, 0.2 m) when a parameter is missing. A wheelbase off by 30 % makes a car-like
+    base curve 1.3× as tightly as commanded; a mecanum base turns with (wheelbase + track) / 2;
+    a kingpin width off sets the inner and outer wheels for different turning centres (the
+    angle error at full lock is given). Gazebo classic's gazebo_ros_ackermann_drive measures
+    its geometry on the model (only its steering limit is compared, by G018). Fix: the URDF's
+    number, given.
+    """
+    b = D.base(ctx.robot)
+    if b is None:
+        return
+    for d in D.declared(ctx.robot):
+        t, p = d.term, d.owner
+        if d.source != "plugin" or t.what == "steer_limit" or _close(t.what, t.value, d.urdf):
+            continue
+        said = f"{t.key} not given: it uses its default {t.value:.4g} m" if t.default else f"{t.key} {t.value:.4g} m"
+        yield Finding(f"{p.name or p.library}: {said}, but the URDF's {_WORDS.get(t.what, t.what)} is "
+                      f"{d.urdf:.4g} m: " + _effect(b, t.what, t.value, d.urdf), p.loc,
+                      {"plugin": p.name, "param": t.key, "value": t.value, "default": t.default, "urdf": d.urdf,
+                       "what": t.what, "kind": b.kind, "fix": round(d.urdf, 6)},
+                      fix=None if t.default else _param_fix(p, t.key, round(d.urdf, 6)))
+
+
+@rule("G018", "drive-steering-limit", "warning",
+      bad=ackermann_example(limit="0.8"),
+      message="gz::sim::systems::AckermannSteering: steering_limit 0.8 rad, but the steering joints stop at "
+              "±0.5 rad (left_steering_joint): minimum turning radius 0.9152 m instead of 0.4856 m",
+      good=ackermann_example(),
+      fix=FixInfo("sometimes", "safe", "the plugin's limit becomes the steering joints' limit when the parameter "
+                  "is written: it then steers only as far as the joints go (the joint limit is the robot's)."))
+def steering_limit(ctx):
+    """A plugin's steering limit must not exceed the steering joints' limit in the URDF.
+
+    gz-sim's AckermannSteering (`steering_limit`, default 0.5 rad) and Gazebo classic's
+    gazebo_ros_ackermann_drive (`max_steer`, default 0.6 rad) steer up to their own limit;
+    the joint stops at its URDF limit first, so the tightest turn is wheelbase / tan(joint
+    limit), wider than the plugin commands, and the plugin's wheel speeds assume a curve the
+    robot does not drive. A limit below the joint's is a choice (the plugin steers less) and
+    not reported. ros2_control's steering controllers have no steering limit parameter
+    (the joint's limits apply). Fix: the joint's limit, given.
+    """
+    b = D.base(ctx.robot)
+    if b is None or b.steer_limit is None or not b.wheelbase:
+        return
+    lim = b.steer_limit
+    joint = D.steering_stop(ctx.robot, b)
+    for d in D.declared(ctx.robot):
+        t, p = d.term, d.owner
+        if t.what != "steer_limit" or t.value <= lim + 0.01:
+            continue
+        turn = lambda a: b.wheelbase / math.tan(min(a, math.pi / 2 - 1e-6))    # noqa: E731
+        said = f"{t.key} not given: it uses its default {t.value:.3g} rad" if t.default else \
+            f"{t.key} {t.value:.3g} rad"
+        yield Finding(f"{p.name or p.library}: {said}, but the steering joints stop at ±{lim:.3g} rad ({joint}): "
+                      f"minimum turning radius {turn(lim):.4g} m instead of {turn(t.value):.4g} m", p.loc,
+                      {"plugin": p.name, "param": t.key, "value": t.value, "default": t.default, "urdf": lim,
+                       "joint": joint, "min_turn_radius": turn(lim), "plugin_min_turn_radius": turn(t.value),
+                       "fix": round(lim, 6)},
+                      fix=None if t.default else _param_fix(p, t.key, round(lim, 6)))
+
+
+def _ratio(x: float) -> str:
+    return f"{x:.2g}×" if abs(x) >= 0.005 else "0×"
+
+
+@rule("G019", "mecanum-roller-friction", "error",
+      bad=mecanum_example(rollers=False),
+      message="mecanum base (plugin gz-sim-mecanum-drive-system) without modelled rollers: with its wheels' "
+              "contact friction (every wheel mu 1, mu2 1, no fdir1) a sideways command drives sideways at 0×; a "
+              "mecanum wheel's contact needs mu2 0 across an fdir1 at 45° to its axle, front-left and rear-right "
+              "along one diagonal, front-right and rear-left along the other",
+      good=mecanum_example())
+def mecanum_rollers(ctx):
+    """A mecanum base driven wheel by wheel must be able to roll sideways in simulation.
+
+    Unless its rollers are links of their own, a mecanum wheel is a plain cylinder to the
+    simulator; what makes it mecanum is its contact friction: `mu` along an `fdir1` at 45° to
+    the axle and `mu2` 0 across it (gz-sim's mecanum example, ROSbot XL), so the contact
+    pushes only along that diagonal, front-left and rear-right along one, front-right and
+    rear-left along the other. model/drive.roller_response measures the twist the four
+    contacts give for a unit sideways and turning command (the least-squares body motion under
+    each wheel's constraint, the wheel speeds from the mecanum kinematics): plain wheels
+    (isotropic friction, the default) drive sideways at 0×; the diagonals the wrong way round
+    drive sideways backwards (-1×) and turn 4.4× too fast on ROSbot XL. A base moved by a
+    body-force plugin (Ridgeback) is not judged: its wheels carry no load sideways by design.
+    Fix: the friction set-up above in each wheel's `<gazebo reference>` block.
+    """
+    r = ctx.robot
+    rr = D.roller_response(r)
+    if rr is None:
+        return
+    b = D.base(r)
+    vx, vy, wz = rr.sideways
+    turn = rr.turn[2]
+    if abs(vy - 1) <= 0.15 and abs(vx) <= 0.15 and abs(wz) <= 0.15 and abs(turn - 1) <= 0.15:
+        return
+    desc = {(c.mu, c.mu2, c.fdir1 and (round(c.fdir1[0], 2), round(c.fdir1[1], 2))) for c in rr.contacts}
+    if len(desc) == 1:
+        c = rr.contacts[0]
+        said = f"every wheel mu {c.mu:g}, mu2 {c.mu2:g}, " + (
+            f"fdir1 ({c.fdir1[0]:.2g} {c.fdir1[1]:.2g})" if c.fdir1 else "no fdir1")
+    else:
+        said = "; ".join(f"{c.link} mu {c.mu:g}, mu2 {c.mu2:g}, "
+                         + (f"fdir1 ({c.fdir1[0]:.2g} {c.fdir1[1]:.2g})" if c.fdir1 else "no fdir1")
+                         for c in rr.contacts)
+    effect = [f"a sideways command drives sideways at {_ratio(vy)}"]
+    if abs(vx) > 0.15:
+        effect.append(f"forward at {_ratio(vx)}")
+    if abs(wz) > 0.15:
+        effect.append(f"turning {wz:.2g} rad/s per m/s")
+    msg = f"mecanum base ({b.why}) without modelled rollers: with its wheels' contact friction ({said}) " + \
+        ", ".join(effect)
+    if abs(turn - 1) > 0.15:
+        msg += f", and it turns at {_ratio(turn)} the commanded rate"
+    yield Finding(msg + "; a mecanum wheel's contact needs mu2 0 across an fdir1 at 45° to its axle, front-left and "
+                  "rear-right along one diagonal, front-right and rear-left along the other", b.loc,
+                  {"sideways": list(rr.sideways), "turn": list(rr.turn), "forward": list(rr.forward),
+                   "contacts": [{"link": c.link, "mu": c.mu, "mu2": c.mu2, "fdir1": c.fdir1 and list(c.fdir1),
+                                 "written": c.written} for c in rr.contacts]})
 
 
 @rule("G007", "plugin-unknown-parameter", "warning",

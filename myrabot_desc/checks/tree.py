@@ -236,9 +236,14 @@ def limits_ordered(ctx):
 def limits_positive(ctx):
     """Effort and velocity limits should be positive.
 
-    An effort of 0 means no actuator can move the joint in Gazebo (and ros2_control);
-    a negative value is meaningless. A velocity of 0 freezes it in controllers that
-    honour limits. Fix: the actuator's rated torque/force and speed. An effort of 0 on a
+    An effort of 0 means no actuator can move the joint in Gazebo (and ros2_control). A
+    velocity of 0 freezes it in controllers that honour limits. A negative value is what
+    SDF writes for "no limit" (its default effort and velocity are -1, "not enforced if
+    negative"): urdfdom reads it as it is, sdformat's URDF→SDF conversion copies it, so
+    Gazebo enforces no limit, and `convert` (SDF controllers, MJCF actuators) reads it the
+    same way; a ROS controller that clamps commands to ±limit gets an empty range, so it is a
+    warning (Audibot writes -1 on every joint). Fix: the actuator's rated torque/force and
+    speed. An effort of 0 on a
     passive joint (a suspension that no transmission, ros2_control block or drive
     commands, in a model that declares its actuators) says just that: not reported.
     """
@@ -254,9 +259,11 @@ def limits_positive(ctx):
             if commanded and j.name not in commanded:
                 del bad["effort"]
         if bad:
-            yield Finding(f"joint {j.name}: " + ", ".join(f"{k} {v:g}" for k, v in bad.items()) + " (must be > 0)",
-                          j.loc, {"joint": j.name, **bad},
-                          severity="error" if any(v < 0 for v in bad.values()) else None)
+            neg = all(v < 0 for v in bad.values())
+            why = ("negative: SDF's \"no limit\", which Gazebo and convert read it as; a ROS controller that "
+                   "clamps commands to ±limit gets an empty range" if neg else "must be > 0")
+            yield Finding(f"joint {j.name}: " + ", ".join(f"{k} {v:g}" for k, v in bad.items()) + f" ({why})",
+                          j.loc, {"joint": j.name, **bad, "no_limit": neg})
 
 
 @rule("T012", "mimic-target", "error",

@@ -382,7 +382,7 @@ class Systems:
             el = etree.Element("plugin", filename=VELOCITY[0], name=VELOCITY[1])
             sub(el, "joint_name", name)
             sub(el, "topic", f"/model/{self.model_name}/joint/{name}/cmd_vel")
-            if j.limit and j.limit.effort:
+            if j.limit and j.limit.effort and j.limit.effort > 0:     # negative: SDF's "no limit"
                 sub(el, "cmd_max", j.limit.effort)
                 sub(el, "cmd_min", -j.limit.effort)
             self.elements.append(("plugin", el))
@@ -416,7 +416,7 @@ class Systems:
             el = etree.Element("plugin", filename=POSITION[0], name=POSITION[1])
             sub(el, "joint_name", name)
             sub(el, "topic", f"/model/{self.model_name}/joint/{name}/0/cmd_pos")
-            effort = j.limit.effort if j.limit and j.limit.effort else None
+            effort = j.limit.effort if j.limit and j.limit.effort and j.limit.effort > 0 else None
             if effort:
                 # full effort at 0.1 rad (or m) of error; damping a tenth of that
                 sub(el, "p_gain", effort / 0.1)

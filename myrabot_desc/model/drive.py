@@ -361,6 +361,52 @@ def velocity_joints(robot) -> tuple[list[str], str | None]:
     return out, source
 
 
+def ros_wheel_joints(robot) -> tuple[list[str], str | None]:
+    """The joints ros_control/ros2_control commands in velocity that are wheels, in file order, and
+    where they were declared: those named like a wheel (whatever their type: a fixed or revolute
+    wheel is still the wheel the controller drives) and moving ones that carry a round shape about
+    a lateral axis (an arm's pitch joint commanded in velocity is neither). Unlike
+    ``from_velocity_joints`` they need not stand on both sides: check judges them even when a
+    wheel moved to the other side leaves no left/right pair."""
+    names, source = velocity_joints(robot)
+    T = link_transforms(robot)
+    out = []
+    for n in names:
+        j = robot.joints.get(n)
+        if j is None:
+            continue
+        low = n.lower()
+        if ("wheel" in low or "wheel" in j.child.lower()) and "caster" not in low and "castor" not in low:
+            out.append(n)
+            continue
+        if j.type in ("continuous", "revolute"):
+            w = wheel(robot, n, T, read_meshes=False)
+            if w is not None and w.round and abs(w.axis[1]) >= LATERAL:
+                out.append(n)
+    return out, source
+
+
+def virtual_joints(robot) -> dict[str, tuple[str, ...]]:
+    """Moving joints that stand for others: other moving joints mimic them, and their child link has
+    no collision and no mass (a bicycle model's virtual steering and traction joints, CarlikeBot's
+    ``virtual_front_wheel_joint``): joint -> the joints that mimic it. Their links may be drawn but
+    are no physical body; the joints that mimic them move the real wheels. Built once per robot."""
+    def build():
+        followers: dict[str, list[str]] = {}
+        for j in robot.joints.values():
+            if j.mimic is not None and j.type != "fixed":
+                followers.setdefault(j.mimic.joint, []).append(j.name)
+        out = {}
+        for name, fs in followers.items():
+            j = robot.joints.get(name)
+            link = robot.links.get(j.child) if j is not None else None
+            if j is None or j.type == "fixed" or link is None or link.collisions or link.mass > 0:
+                continue
+            out[name] = tuple(fs)
+        return out
+    return dict(robot.derive("drive.virtual_joints", build))
+
+
 def commanded_joints(robot) -> set[str]:
     """Joints something commands: named in a transmission or with a command interface in a
     ``<ros2_control>`` block, or turned by a declared drive. Empty when the model says nothing of
@@ -652,6 +698,15 @@ class Controller(NamedTuple):
     type: str
     params: dict
     file: str                         # the YAML as written in <parameters>
+    plugin: object = None             # the plugin whose <parameters> names it (for locations)
+
+    @property
+    def loc(self):
+        p = self.plugin
+        if p is None:
+            return None
+        node = p.param("parameters")
+        return (node.loc if node is not None else None) or p.loc
 
 
 class Base(NamedTuple):
@@ -721,10 +776,20 @@ def controllers(robot) -> list[Controller]:
             for text in p.values("parameters"):
                 doc = _controller_yaml(robot, text)
                 cm = _ros_params(doc, "controller_manager") or {}
+                named = []
                 for name, v in cm.items():
                     ctype = v.get("type") if isinstance(v, dict) else None
                     if isinstance(ctype, str) and _controller_kind(ctype):
-                        out.append(Controller(str(name), ctype, _ros_params(doc, str(name)) or {}, text.strip()))
+                        named.append((str(name), ctype))
+                # a controller may give its type among its own parameters (ros2_control_demos'
+                # example 11: the spawner reads it from the controller's section)
+                for key in (doc if isinstance(doc, dict) else {}):
+                    name = str(key).rsplit("/", 1)[-1]
+                    own = _ros_params(doc, name) or {}
+                    ctype = own.get("type")
+                    if isinstance(ctype, str) and _controller_kind(ctype) and name not in {n for n, _ in named}:
+                        named.append((name, ctype))
+                out += [Controller(n, t, _ros_params(doc, n) or {}, text.strip(), p) for n, t in named]
         return tuple(out)
     return list(robot.derive("drive.controllers", build))
 
@@ -747,19 +812,134 @@ def _times(v, m):
     return None if v is None else v * (m if m is not None else 1.0)
 
 
-def controller_numbers(c: Controller) -> tuple[float | None, float | None, float | None]:
-    """(wheelbase, track, wheel radius) the controller turns with, its multipliers applied (the
-    parameter names of ros2_controllers' diff_drive / mecanum_drive / steering controllers)."""
-    p = c.params
+class Term(NamedTuple):
+    """One geometric number a controller or plugin drives with: what it is, the key as written,
+    the value before and after its multiplier (controllers) or the plugin's default when the key is
+    not written."""
+
+    what: str                         # 'track' | 'wheelbase' | 'radius' | 'kingpin' | 'half_sum' | 'steer_limit'
+    key: str
+    raw: float
+    multiplier: float | None = None
+    multiplier_key: str | None = None
+    default: bool = False             # the plugin's own default (the key is not written)
+
+    @property
+    def value(self) -> float:
+        return self.raw * (self.multiplier if self.multiplier is not None else 1.0)
+
+
+def _term(params: dict, what: str, keys, mult_keys=()):
+    key = next((k for k in keys if _num(params, k) is not None), None)
+    if key is None:
+        return None
+    mkey = next((k for k in mult_keys if _num(params, k) is not None), None)
+    return Term(what, key, _num(params, key), _num(params, mkey) if mkey else None, mkey)
+
+
+# Parameter names of ros2_controllers' diff_drive_controller, mecanum_drive_controller (its
+# ``kinematics.*`` and Husarion's/ROS 1's ``wheel_separation_x/y``) and the steering controllers
+# (ackermann, bicycle, tricycle: current ``traction_*``/``steering_*`` names, then the deprecated
+# ``rear_*``/``front_*`` ones; front steering, the default, makes the rear wheels the traction ones).
+RADIUS_KEYS = ("wheel_radius", "traction_wheels_radius", "traction_wheel_radius", "rear_wheels_radius",
+               "rear_wheel_radius", "kinematics.wheels_radius")
+RADIUS_MULT = ("wheel_radius_multiplier", "left_wheel_radius_multiplier")
+
+
+def controller_terms(c: Controller) -> list[Term]:
+    """The geometric numbers a drive controller turns with, each with its multiplier."""
+    p = dict(c.params)
+    kin = p.get("kinematics")
+    if isinstance(kin, dict):       # ros2_controllers' mecanum_drive_controller nests them
+        p.update({f"kinematics.{k}": v for k, v in kin.items()})
     kind = _controller_kind(c.type)
-    radius = _times(_num(p, "wheel_radius", "traction_wheel_radius", "front_wheel_radius", "rear_wheel_radius"),
-                    _num(p, "wheel_radius_multiplier", "left_wheel_radius_multiplier"))
+    out = [_term(p, "radius", RADIUS_KEYS, RADIUS_MULT)]
     if kind == "differential":
-        return None, _times(_num(p, "wheel_separation"), _num(p, "wheel_separation_multiplier")), radius
-    base = _times(_num(p, "wheel_separation_x", "wheelbase", "wheel_base"), _num(p, "wheel_separation_multiplier_x"))
-    track = _times(_num(p, "wheel_separation_y", "traction_track_width", "wheel_track", "track_width"),
-                   _num(p, "wheel_separation_multiplier_y"))
-    return base, track, radius
+        out.append(_term(p, "track", ("wheel_separation",), ("wheel_separation_multiplier",)))
+    else:
+        out.append(_term(p, "wheelbase", ("wheel_separation_x", "wheelbase", "wheel_base"),
+                         ("wheel_separation_multiplier_x", "wheel_separation_multiplier")))
+        out.append(_term(p, "track", ("wheel_separation_y", "traction_track_width", "rear_wheel_track", "wheel_track",
+                                      "track_width"),
+                         ("wheel_separation_multiplier_y", "wheel_separation_multiplier")))
+        out.append(_term(p, "kingpin", ("steering_track_width", "front_wheel_track")))
+        out.append(_term(p, "half_sum", ("kinematics.sum_of_robot_center_projection_on_X_Y_axis",)))
+    return [t for t in out if t is not None]
+
+
+def controller_numbers(c: Controller) -> tuple[float | None, float | None, float | None]:
+    """(wheelbase, track, wheel radius) the controller turns with, its multipliers applied."""
+    got = {t.what: t.value for t in controller_terms(c)}
+    return got.get("wheelbase"), got.get("track"), got.get("radius")
+
+
+# gz-sim MecanumDrive / AckermannSteering and Gazebo classic gazebo_ros_ackermann_drive: each
+# geometric parameter with the default the system uses when it is not written (read from gz-sim's
+# MecanumDrive.cc, AckermannSteering.cc and gazebo_ros_pkgs' gazebo_ros_ackermann_drive.cpp; the
+# classic plugin measures its wheelbase, track and radius on the model itself).
+PLUGIN_TERMS = {
+    ("gz", "mecanum"): (("track", "wheel_separation", 1.0), ("wheelbase", "wheelbase", 1.0),
+                        ("radius", "wheel_radius", 0.2)),
+    ("gz", "ackermann"): (("wheelbase", "wheel_base", 1.0), ("track", "wheel_separation", 1.0),
+                          ("kingpin", "kingpin_width", 0.8), ("radius", "wheel_radius", 0.2),
+                          ("steer_limit", "steering_limit", 0.5)),
+    ("classic", "ackermann"): (("steer_limit", "max_steer", 0.6),),
+}
+
+
+def plugin_terms(p) -> list[Term]:
+    """The geometric numbers a mecanum or Ackermann plugin drives with (its defaults where a key
+    is not written); [] for any other plugin."""
+    kind = plugin_kind(p)
+    table = PLUGIN_TERMS.get(("gz" if p.dialect == "gz" else "classic", kind or ""), ())
+    steering_only = kind == "ackermann" and V.boolean(p.text("steering_only"), False)
+    out = []
+    for what, key, default in table:
+        if steering_only and what in ("radius", "kingpin"):
+            continue          # AckermannSteering reads them only when it drives the wheels
+        v, ok = number(p, key)
+        if not ok:
+            continue          # not a number: the plugin fails on it, nothing to compare
+        out.append(Term(what, key, default, default=True) if v is None else Term(what, key, v))
+    return out
+
+
+class Declared(NamedTuple):
+    """A number a drive's controller or plugin declares about the base, beside the URDF's."""
+
+    term: Term
+    urdf: float                       # the same quantity measured on the URDF
+    owner: object                     # the Controller or the Plugin
+    source: str                       # 'controller' | 'plugin'
+
+
+def kingpin_width(robot, b: "Base") -> float | None:
+    """The distance between the steering axes (left to right) on the URDF, in the root frame."""
+    if not b.steering:
+        return None
+    T = link_transforms(robot)
+    return _spread(_axis_and_origin(robot, robot.joints[n], T)[1][1] for n in b.steering)
+
+
+def declared(robot) -> list[Declared]:
+    """Every geometric number the base's controllers and mecanum/Ackermann plugins drive with, with
+    its URDF counterpart (``base``'s wheelbase, track, wheel radius and steering lock, the steering
+    axes' spread): what check's G016-G018 compare. Numbers with no URDF counterpart are left out."""
+    def build():
+        b = base(robot)
+        if b is None:
+            return ()
+        urdf = {"wheelbase": b.wheelbase, "track": b.track, "radius": b.radius, "steer_limit": b.steer_limit,
+                "kingpin": kingpin_width(robot, b),
+                "half_sum": (b.wheelbase + b.track) / 2 if b.wheelbase and b.track else None}
+        out = []
+        for c in controllers(robot):
+            out += [Declared(t, urdf[t.what], c, "controller") for t in controller_terms(c)
+                    if urdf.get(t.what)]
+        for p in robot.plugins():
+            out += [Declared(t, urdf[t.what], p, "plugin") for t in plugin_terms(p) if urdf.get(t.what)]
+        return tuple(out)
+    return list(robot.derive("drive.declared", build))
 
 
 def _axis_and_origin(robot, j, T):
@@ -828,15 +1008,27 @@ def _spread(values) -> float | None:
     return max(vals) - min(vals) if len(vals) > 1 else None
 
 
-def _limit(robot, names) -> float | None:
-    """The smallest steering lock (rad each way) of the joints; None when they turn freely."""
-    locks = []
+def _locks(robot, names) -> list[tuple[float, str]]:
+    """(steering lock in rad each way, joint) of the joints that do not turn freely."""
+    out = []
     for n in names:
         j = robot.joints[n]
         if _free(j) or j.limit is None or j.limit.lower is None or j.limit.upper is None:
             continue
-        locks.append(min(abs(j.limit.lower), abs(j.limit.upper)))
-    return min(locks) if locks else None
+        out.append((min(abs(j.limit.lower), abs(j.limit.upper)), n))
+    return out
+
+
+def _limit(robot, names) -> float | None:
+    """The smallest steering lock (rad each way) of the joints; None when they turn freely."""
+    locks = _locks(robot, names)
+    return min(locks)[0] if locks else None
+
+
+def steering_stop(robot, b: "Base") -> str | None:
+    """The steering joint whose limit is the base's steering lock (the first to stop)."""
+    locks = _locks(robot, b.steering)
+    return min(locks)[1] if locks else None
 
 
 def plugin_kind(p) -> str | None:
@@ -939,3 +1131,136 @@ def _base(robot) -> Base | None:
                 _limit(robot, steering) if steering else None,
                 declared if kind in ("differential", "skid_steer", "mecanum", "omni") else None,
                 plugin, ctrl, cb, ct, cr, loc)
+
+
+# ------------------------------------------------------------------ mecanum wheels' contact
+# A simulator has no rollers unless the URDF models them as links: a mecanum wheel is a plain
+# cylinder whose contact friction is made anisotropic (gz-sim's mecanum example, ROSbot XL): ``mu``
+# along ``fdir1`` at 45° to the axle, ``mu2`` 0 across it, so the contact pushes only along fdir1,
+# as a wheel whose rollers turn freely across that direction. The twist such contacts give for a
+# commanded one is measurable on the URDF: the least-squares body twist under each wheel's
+# constraints (surface speeds from the mecanum inverse kinematics).
+FRICTION_DEFAULT = 1.0      # sdformat's <ode><mu>/<mu2> and Gazebo classic's mu1/mu2 when not written
+
+
+class Contact(NamedTuple):
+    """A wheel link's friction as the simulator reads it: ``mu`` along ``fdir1`` (root frame, unit,
+    None when not given: then both coefficients act in every direction), ``mu2`` across it."""
+
+    link: str
+    mu: float
+    mu2: float
+    fdir1: tuple[float, float, float] | None
+    written: str                      # 'sdf' (<collision><surface>...), 'classic' (mu1/mu2/fdir1) or 'default'
+
+
+def _collision_rotation(robot, link: str, T):
+    R, _ = T.get(link, IDENTITY)
+    cols = robot.links[link].collisions if link in robot.links else ()
+    return compose((R, (0.0, 0.0, 0.0)), pose_T(cols[0].origin))[0] if cols else R
+
+
+def wheel_contact(robot, link: str, T=None) -> Contact:
+    """The contact friction of a wheel link: a ``<gazebo reference>`` block's SDF
+    ``<collision><surface><friction><ode>`` (``fdir1`` in the collision frame, or the frame its
+    ``expressed_in`` names), else its classic ``mu1``/``mu2``/``fdir1`` (collision frame), else the
+    defaults (1, 1, no direction)."""
+    T = T if T is not None else link_transforms(robot)
+    for g in robot.gazebo:
+        if g.reference != link:
+            continue
+        ode = g.node.find("collision", "surface", "friction", "ode")
+        if ode is not None and (ode.child("mu") is not None or ode.child("mu2") is not None):
+            f = ode.child("fdir1")
+            vec = ode.vector("fdir1", n=3)
+            frame = next((v for k, v in f.attrs if k.rsplit("}", 1)[-1] == "expressed_in"), None) if f else None
+            R = T[frame][0] if frame in T else _collision_rotation(robot, link, T)
+            mu, mu2 = (ode.number(k, default=FRICTION_DEFAULT) for k in ("mu", "mu2"))
+            return Contact(link, mu, mu2, _unit(rotate(R, vec)) if vec else None, "sdf")
+        v = g.values
+        if "mu1" in v or "mu2" in v:
+            vec = v.get("fdir1")
+            R = _collision_rotation(robot, link, T)
+            return Contact(link, float(v.get("mu1", FRICTION_DEFAULT)), float(v.get("mu2", FRICTION_DEFAULT)),
+                           _unit(rotate(R, vec)) if vec else None, "classic")
+    return Contact(link, FRICTION_DEFAULT, FRICTION_DEFAULT, None, "default")
+
+
+class RollerResponse(NamedTuple):
+    """What a mecanum base driven by its wheels does for unit commands, given its wheels' contact:
+    achieved (vx, vy, ωz) for a forward (vx 1), a sideways (vy 1) and a turning (ωz 1) command."""
+
+    contacts: tuple[Contact, ...]
+    forward: tuple[float, float, float]
+    sideways: tuple[float, float, float]
+    turn: tuple[float, float, float]
+
+
+def _solve3(A, b):
+    """x of the 3×3 system A x = b (Cramer), None when singular."""
+    def det(M):
+        return (M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) - M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0])
+                + M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]))
+    d = det(A)
+    if abs(d) < 1e-12:
+        return None
+    out = []
+    for k in range(3):
+        M = [list(r) for r in A]
+        for i in range(3):
+            M[i][k] = b[i]
+        out.append(det(M) / d)
+    return tuple(out)
+
+
+def roller_response(robot) -> RollerResponse | None:
+    """The twist the wheels' contacts give a mecanum base driven wheel by wheel (a mecanum
+    controller or plugin; a body-force plugin moves the body itself: None), for unit commands."""
+    def build():
+        b = base(robot)
+        if b is None or b.kind != "mecanum" or len(b.wheels) != 4:
+            return None
+        if b.controller is None and (b.plugin is None or plugin_kind(b.plugin) != "mecanum"):
+            return None
+        T = link_transforms(robot)
+        ws = [wheel(robot, n, T, read_meshes=False) for n in b.wheels]
+        if any(w is None for w in ws) or len({(w.origin[0] > 0, w.origin[1] > 0) for w in ws}) != 4:
+            return None         # four wheels, one at each corner
+        children = robot.joints_by_parent()
+        if any(c.type != "fixed" for w in ws for c in children.get(robot.joints[w.joint].child, [])):
+            return None         # rollers modelled as links: the physics rolls them
+        cx = sum(w.origin[0] for w in ws) / 4
+        cy = sum(w.origin[1] for w in ws) / 4
+        L = (_spread(w.origin[0] for w in ws) + _spread(w.origin[1] for w in ws)) / 2
+        contacts = tuple(wheel_contact(robot, robot.joints[w.joint].child, T) for w in ws)
+        rows = []       # (direction in the plane, wheel index)
+        for i, c in enumerate(contacts):
+            if c.mu > 0 and c.mu2 > 0 or c.fdir1 is None:
+                if c.mu > 0 or c.mu2 > 0:
+                    rows += [((1.0, 0.0), i), ((0.0, 1.0), i)]
+            else:
+                f = c.fdir1 if c.mu > 0 else (-c.fdir1[1], c.fdir1[0], 0.0)   # the direction that grips
+                d = _unit((f[0], f[1], 0.0))
+                if d is not None:
+                    rows.append(((d[0], d[1]), i))
+
+        def achieved(cmd):
+            vx, vy, wz = cmd
+            A = [[0.0] * 3 for _ in range(3)]
+            rhs = [0.0] * 3
+            for (dx, dy), i in rows:
+                x, y = ws[i].origin[0] - cx, ws[i].origin[1] - cy
+                s = vx - math.copysign(1.0, x * y) * vy - math.copysign(1.0, y) * L * wz   # surface speed
+                row = (dx, dy, -y * dx + x * dy)
+                target = s * dx                   # the wheel's surface moves along x
+                for p in range(3):
+                    rhs[p] += row[p] * target
+                    for q in range(3):
+                        A[p][q] += row[p] * row[q]
+            return _solve3(A, rhs)
+
+        got = [achieved(c) for c in ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))]
+        if any(g is None for g in got):
+            return None         # the contacts do not hold the base (frictionless wheels)
+        return RollerResponse(contacts, *got)
+    return robot.derive("drive.roller_response", build)

@@ -63,7 +63,8 @@ def test_joint_axis_limits_mimic_type(tmp_path):
     assert "has no <limit>" in diag(r, "T009").message
     assert "lower 1 > upper -1" in diag(r, "T015").message
     t11 = diag(r, "T011")
-    assert t11.severity == "error" and "effort -2" in t11.message
+    # negative is SDF's "no limit" (Gazebo and convert read it so): a warning that says so
+    assert t11.severity == "warning" and "effort -2 (negative: SDF's \"no limit\"" in t11.message
     assert "mimics 'j9'" in diag(r, "T012").message
     assert "did you mean revolute?" in diag(r, "T016").message
 
@@ -263,3 +264,27 @@ def test_mesh_missing_scale_watertight_inverted(tmp_path):
     assert diag(r, "M003", meshes=True).data["link"] == "c"
     assert "not watertight" in [d for d in run_checks(r, CheckOptions(inertia=True)) if d.code == "I011"
                                 and d.data["link"] == "c"][0].message
+
+
+def test_g016_swerve_controller_wheelbase(tmp_path):
+    """A swerve base (four steered modules at x ±0.2, y ±0.15) whose controller YAML says wheelbase
+    0.5: steered for rotation about the wrong corners, it turns at the least-squares rate
+    (0.4·0.5 + 0.3²)/(0.4² + 0.3²) = 1.16× the commanded one."""
+    parts = [link("base_link")]
+    for n, x, y in (("fl", 0.2, 0.15), ("fr", 0.2, -0.15), ("rl", -0.2, 0.15), ("rr", -0.2, -0.15)):
+        parts.append(link(f"{n}_module") + joint(f"{n}_steering_joint", "base_link", f"{n}_module", "revolute",
+                     f'<origin xyz="{x} {y} 0"/><axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="10" velocity="5"/>'))
+        parts.append(link(f"{n}_wheel", INERT + '<collision><origin rpy="1.5708 0 0"/><geometry><cylinder radius="0.05" '
+                                                'length="0.03"/></geometry></collision>')
+                     + joint(f"{n}_wheel_joint", f"{n}_module", f"{n}_wheel", "continuous",
+                             '<origin xyz="0 0 -0.05"/><axis xyz="0 1 0"/>'))
+    parts.append('<gazebo><plugin filename="gz_ros2_control-system" name="gz_ros2_control::GazeboSimROS2ControlPlugin">'
+                 "<parameters>c.yaml</parameters></plugin></gazebo>")
+    (tmp_path / "c.yaml").write_text("controller_manager:\n  ros__parameters:\n    swerve:\n"
+                                     "      type: swerve_drive_controller/SwerveDriveController\n"
+                                     "swerve:\n  ros__parameters:\n    wheelbase: 0.5\n    track_width: 0.3\n"
+                                     "    wheel_radius: 0.05\n")
+    g = diag(robot(tmp_path, "\n".join(parts)), "G016")
+    assert g.message == ("c.yaml, swerve: wheelbase 0.5 m, but the URDF's wheelbase is 0.4 m: the robot turns at "
+                         "1.16× the commanded rate, its modules scrubbing")
+    assert (0.4 * 0.5 + 0.3 ** 2) / (0.4 ** 2 + 0.3 ** 2) == pytest.approx(1.16)

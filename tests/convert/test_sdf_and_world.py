@@ -548,3 +548,28 @@ def test_corpus_keeps_what_ign_keeps(tmp_path, robot):
         assert len(gz) == 15 and sum(e["fate"] == "kept" for e in gz) == 13
         assert {e["name"] for e in gz if e["fate"] == "translated"} == {"r_gripper_joint", "l_gripper_joint"}
         assert {"r_gripper_joint_gazebo", "l_gripper_joint_gazebo", "torso_lift_screw_torso_lift_joint"} <= set(our_joints)
+
+
+def test_negative_effort_is_no_limit_for_the_joint_controllers(tmp_path):
+    """effort="-1" (Audibot's, SDF's "no limit"): the velocity controller gets no cmd_max -1 /
+    cmd_min 1 and the position controller no p_gain -10, as the MJCF writer reads it (no limit)."""
+    inertial = '<inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>'
+    f = tmp_path / "arm.urdf"
+    f.write_text(f'''<robot name="arm"><link name="base_link">{inertial}</link><link name="arm">{inertial}</link>
+      <link name="wheel">{inertial}</link>
+      <joint name="shoulder" type="revolute"><parent link="base_link"/><child link="arm"/><axis xyz="0 0 1"/>
+        <limit lower="-1" upper="1" effort="-1" velocity="-1"/></joint>
+      <joint name="spinner" type="continuous"><parent link="base_link"/><child link="wheel"/><axis xyz="0 0 1"/>
+        <limit effort="-1" velocity="-1"/></joint>
+      <ros2_control name="arm" type="system"><hardware><plugin>gz_ros2_control/GazeboSimSystem</plugin></hardware>
+        <joint name="shoulder"><command_interface name="position"/></joint>
+        <joint name="spinner"><command_interface name="velocity"/></joint></ros2_control></robot>''')
+    out = tmp_path / "arm.sdf"
+    res = CliRunner().invoke(main, ["convert", str(f), "--to", "sdf", "-o", str(out)])
+    assert res.exit_code == 0, res.output[-1500:]
+    root = etree.parse(str(out)).getroot()
+    plugins = {p.findtext("joint_name"): p for p in root.iter("plugin") if p.findtext("joint_name")}
+    assert set(plugins) == {"shoulder", "spinner"}
+    assert plugins["spinner"].find("cmd_max") is None and plugins["spinner"].find("cmd_min") is None
+    assert (plugins["shoulder"].findtext("p_gain"), plugins["shoulder"].findtext("d_gain")) == ("1", "0.1")
+    assert plugins["shoulder"].find("cmd_max") is None

@@ -266,3 +266,127 @@ def test_p002_counts_wheels_recognised_by_shape(tmp_path):
     p002 = [d for d in _check_json(urdf) if d["code"] == "P002"]
     assert len(p002) == 1 and p002[0]["data"]["min_z"] == pytest.approx(-0.300007, abs=1e-6)
     assert "300 mm into the ground" in p002[0]["message"]
+
+
+# ------------------------------------------------------------------ 5. recall: ros_control wheels planted
+def test_g004_a_ros_control_wheel_made_revolute(tmp_path):
+    """Husky (ros_control velocity transmissions) with front_left_wheel made revolute ±π: G004 says
+    it stops after half a turn, 0.519 m of travel on its 0.1651 m wheel; the unplanted Husky is quiet."""
+    urdf = _built("husky", tmp_path)
+    text = urdf.read_text()
+    assert not [d for d in _check_json(urdf) if d["code"] == "G004"]
+    old = '<joint name="front_left_wheel" type="continuous">'
+    assert text.count(old) == 1
+    text = text.replace(old, '<joint name="front_left_wheel" type="revolute">\n    '
+                             '<limit lower="-3.14159" upper="3.14159" effort="10" velocity="10"/>')
+    urdf.write_text(text)
+    g004 = [d for d in _check_json(urdf) if d["code"] == "G004"]
+    assert len(g004) == 1 and g004[0]["severity"] == "warning"
+    assert g004[0]["data"]["joint"] == "front_left_wheel" and g004[0]["data"]["source"] == "ros_control"
+    assert g004[0]["data"]["travel"] == pytest.approx(3.14159 * 0.1651, abs=1e-3)
+    assert "after 0.5 turn from the zero pose, 0.519 m of travel" in g004[0]["message"]
+
+
+def test_g004_a_ros2_control_wheel_made_revolute_without_limits(tmp_path):
+    """PMB2 (ros2_control velocity wheels) with wheel_right_joint made revolute, its <limit> giving
+    no lower or upper: urdfdom reads both as 0, so the wheel cannot turn at all."""
+    urdf = _built("pmb2", tmp_path)
+    text = urdf.read_text()
+    old = '<joint name="wheel_right_joint" type="continuous">'
+    assert text.count(old) == 1
+    urdf.write_text(text.replace(old, '<joint name="wheel_right_joint" type="revolute">'))
+    g004 = [d for d in _check_json(urdf) if d["code"] == "G004"]
+    assert len(g004) == 1 and g004[0]["data"]["source"] == "ros2_control"
+    assert (g004[0]["data"]["lower"], g004[0]["data"]["upper"], g004[0]["data"]["travel"]) == (0, 0, 0)
+
+
+def test_g005_a_ros2_control_wheel_mirrored_to_the_other_side(tmp_path):
+    """PMB2 with its left wheel's origin y negated (0.2022 -> -0.2022): both velocity wheels on the
+    right, so no left/right drive is recognised; G005 says so (error) and names the left wheel on
+    the right side, where the report used to lose the drive without a word."""
+    urdf = _built("pmb2", tmp_path)
+    text = urdf.read_text()
+    assert not [d for d in _check_json(urdf) if d["code"] == "G005"]
+    old = '<origin rpy="-1.5707963267948966 0 0" xyz="0 0.2022 0.0"/>'
+    assert text.count(old) == 1
+    urdf.write_text(text.replace(old, old.replace("0.2022", "-0.2022")))
+    diags = _check_json(urdf)
+    assert not [d for d in diags if d["code"] == "G014"]       # the drive is gone...
+    g005 = sorted((d for d in diags if d["code"] == "G005"), key=lambda d: d["severity"])
+    assert [d["severity"] for d in g005] == ["error", "warning"]  # ...and G005 says why
+    assert g005[0]["data"]["side"] == "right"
+    assert g005[0]["data"]["y"] == pytest.approx([-0.2022, -0.2022], abs=1e-4)
+    assert g005[1]["data"] == {"joint": "wheel_left_joint", "y": pytest.approx(-0.2022, abs=1e-4), "named": "left"}
+
+
+def test_g005_a_ros_control_wheel_renamed_to_the_other_side(tmp_path):
+    """Husky with front_left_wheel renamed front_right_wheel2 (still at y +0.2854, its transmission
+    renamed with it): G005 names the right wheel on the left side."""
+    urdf = _built("husky", tmp_path)
+    text = urdf.read_text()
+    assert text.count('"front_left_wheel"') == 2
+    urdf.write_text(text.replace('"front_left_wheel"', '"front_right_wheel2"'))
+    g005 = [d for d in _check_json(urdf) if d["code"] == "G005"]
+    assert len(g005) == 1 and g005[0]["severity"] == "warning"
+    assert g005[0]["data"] == {"joint": "front_right_wheel2", "y": pytest.approx(0.2854, abs=1e-4), "named": "right"}
+
+
+# ------------------------------------------------------------------ 5. CarlikeBot's virtual links, Audibot's -1
+def test_carlikebot_virtual_links_are_warnings_that_keep_the_truth(tmp_path):
+    """CarlikeBot's bicycle model: virtual_front/rear_wheel are drawn (a visual, no collision) but
+    massless, and the real wheels mimic their joints. I001 and P003 say so as warnings, with what
+    Gazebo does (drops the link with its joint); given a collision, the link is a body again and
+    I001 an error."""
+    args = [*_drive_args(DRIVES["carlikebot"]), "--format", "json"]
+    import json
+
+    res = CliRunner().invoke(main, ["check", *args])
+    diags = json.loads(res.stdout)["files"][0]["diagnostics"]
+    i001 = {d["data"]["link"]: d for d in diags if d["code"] == "I001"}
+    assert set(i001) == {"virtual_front_wheel", "virtual_rear_wheel"}
+    assert all(d["severity"] == "warning" and d["data"]["virtual"] for d in i001.values())
+    assert sorted(i001["virtual_rear_wheel"]["data"]["mimicked_by"]) == ["rear_left_wheel_joint", "rear_right_wheel_joint"]
+    assert "Gazebo's URDF→SDF conversion drops a massless moving link with its joint" in i001["virtual_rear_wheel"]["message"]
+    (p003,) = [d for d in diags if d["code"] == "P003"]
+    assert p003["severity"] == "warning" and p003["data"]["virtual"]
+    assert not [d for d in diags if d["severity"] == "error"]
+    # a collision on the virtual rear wheel: a physical body without mass, the error it always was
+    out = tmp_path / "carlikebot.urdf"
+    assert CliRunner().invoke(main, ["build", *_drive_args(DRIVES["carlikebot"]), "-o", str(out)]).exit_code == 0
+    text = out.read_text()
+    i = text.index('<link name="virtual_rear_wheel">')
+    j = text.index("</link>", i)
+    out.write_text(text[:j] + '<collision><geometry><sphere radius="0.05"/></geometry></collision>' + text[j:])
+    i001 = [d for d in _check_json(out) if d["code"] == "I001"]
+    assert {(d["data"]["link"], d["severity"]) for d in i001} == {("virtual_rear_wheel", "error"),
+                                                                   ("virtual_front_wheel", "warning")}
+
+
+def test_audibot_negative_limits_are_warnings_that_say_no_limit():
+    """Audibot writes effort="-1" velocity="-1" on its six joints: SDF's "no limit" (its default,
+    "not enforced if negative"), which sdformat's URDF→SDF copies and Gazebo does not enforce, and
+    the MJCF writer reads as no limit. check says that as a warning (convert's side:
+    tests/convert/test_sdf_and_world.py)."""
+    import json
+
+    res = CliRunner().invoke(main, ["check", *_drive_args(DRIVES["audibot"]), "--format", "json"])
+    t011 = [d for d in json.loads(res.stdout)["files"][0]["diagnostics"] if d["code"] == "T011"]
+    assert len(t011) == 6 and all(d["severity"] == "warning" and d["data"]["no_limit"] for d in t011)
+    assert all(d["data"]["effort"] == -1 and d["data"]["velocity"] == -1 for d in t011)
+    assert "effort -1, velocity -1 (negative: SDF's \"no limit\"" in t011[0]["message"]
+
+
+def test_g004_leaves_an_arm_commanded_in_velocity_alone():
+    """Panda with Gazebo's hand (ros_control velocity interfaces on its arm joints, several about a
+    lateral axis at rest): no wheel among them, so no G004 or G005."""
+    from helpers import corpus_model
+
+    from myrabot_desc.model import drive as D
+
+    robot = corpus_robot("panda_gazebo_hand")
+    assert D.ros_wheel_joints(corpus_model(robot)) == ([], "ros_control")
+    res = CliRunner().invoke(main, ["check", *corpus_args(robot), "--format", "json"], env=corpus_env(robot))
+    import json
+
+    codes = {d["code"] for d in json.loads(res.stdout)["files"][0]["diagnostics"]}
+    assert not codes & {"G004", "G005"}

@@ -1181,7 +1181,9 @@ def wheel_contact(robot, link: str, T=None) -> Contact:
         if "mu1" in v or "mu2" in v:
             vec = v.get("fdir1")
             R = _collision_rotation(robot, link, T)
-            return Contact(link, float(v.get("mu1", FRICTION_DEFAULT)), float(v.get("mu2", FRICTION_DEFAULT)),
+            # an unreadable value is the value rules' finding; the simulator then uses its default
+            mu1, mu2 = (float(v[k]) if isinstance(v.get(k), (int, float)) else FRICTION_DEFAULT for k in ("mu1", "mu2"))
+            return Contact(link, mu1, mu2,
                            _unit(rotate(R, vec)) if vec else None, "classic")
     return Contact(link, FRICTION_DEFAULT, FRICTION_DEFAULT, None, "default")
 
@@ -1197,13 +1199,17 @@ class RollerResponse(NamedTuple):
 
 
 def _solve3(A, b):
-    """x of the 3×3 system A x = b (Cramer), None when singular."""
+    """x of the 3×3 normal equations A x = b (Cramer), None when A is zero."""
     def det(M):
         return (M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) - M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0])
                 + M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]))
-    d = det(A)
-    if abs(d) < 1e-12:
+    scale = (abs(A[0][0]) + abs(A[1][1]) + abs(A[2][2])) / 3
+    if scale == 0:
         return None
+    # a tiny ridge: a direction no contact holds gets 0 (the minimum-norm least-squares answer: the
+    # wheels do not move the base that way) instead of a division by a rounding error
+    A = [[A[i][k] + (1e-9 * scale if i == k else 0.0) for k in range(3)] for i in range(3)]
+    d = det(A)
     out = []
     for k in range(3):
         M = [list(r) for r in A]

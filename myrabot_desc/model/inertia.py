@@ -37,6 +37,11 @@ def eigh3(A) -> tuple[list[float], list[list[float]]]:
     reach machine precision for 3x3.
     """
     a = [list(map(float, r)) for r in A]
+    if a[0][1] == 0.0 and a[0][2] == 0.0 and a[1][2] == 0.0 and a[1][0] == 0.0 and a[2][0] == 0.0 \
+            and a[2][1] == 0.0:
+        # already diagonal (most URDF inertias): the sweeps below would stop before the first rotation
+        order = sorted(range(3), key=lambda i: a[i][i])
+        return [a[i][i] for i in order], [[1.0 if k == i else 0.0 for i in order] for k in range(3)]
     V = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
     scale = max(abs(x) for r in a for x in r) or 1.0
     for _ in range(50):

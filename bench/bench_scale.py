@@ -11,6 +11,10 @@ grows without bound fails its row instead of the machine. The machine's `python 
 `python -c "import numpy"` are timed in the same run.
 
     .venv/bin/python bench/bench_scale.py [--repeat N] [--only check,sdf,mjcf] [--kinds star,chain]
+                                          [--before DIR]
+
+--before DIR: also run each command with the package of DIR first on PYTHONPATH (a checkout or
+`git archive` of earlier code, with its xacro/ and meshes/), interleaved with the rest.
 """
 
 from __future__ import annotations
@@ -34,12 +38,12 @@ TARGETS = {("star", "check"): (5.0, 3.0), ("star", "sdf"): (4.0, None), ("star",
            ("chain", "check"): (3.0, 1.5), ("chain", "sdf"): (3.0, None), ("chain", "mjcf"): (3.0, None)}
 
 
-def interleaved(cmds: dict, n: int) -> dict:
+def interleaved(cmds: dict, n: int, envs: dict | None = None) -> dict:
     """name -> (best wall, best cpu, exit code of the first run, last stderr line of a failure)."""
     runs = {k: [] for k in cmds}
     for _ in range(n):
         for name, argv in cmds.items():
-            runs[name].append(run_once(argv, env=bench_env()))
+            runs[name].append(run_once(argv, env=(envs or {}).get(name) or bench_env()))
     out = {}
     for name, rs in runs.items():
         rc = rs[0][2]
@@ -55,6 +59,7 @@ def main() -> int:
     ap.add_argument("--kinds", default="star,chain", help="trees: star,chain")
     ap.add_argument("--mem-gb", type=float, default=4.0, help="address-space cap of each child (GB)")
     ap.add_argument("--timeout", type=int, default=120, help="CPU seconds allowed to each child")
+    ap.add_argument("--before", default="", help="folder with earlier code, timed beside (see above)")
     args = ap.parse_args()
     only, kinds = set(args.only.split(",")), set(args.kinds.split(","))
     py = sys.executable
@@ -76,17 +81,25 @@ def main() -> int:
         cmds = {}
         if peer:
             cmds["check_urdf"] = [peer, str(src)]
+        envs = {}
         for name, argv in [("check", ["check", "--no-cache", str(src), "-o", "/dev/null"]),
                            ("sdf", ["convert", "--to", "sdf", str(src), "-o", str(work / "o.sdf")]),
                            ("mjcf", ["convert", "--to", "mjcf", str(src), "-o", str(work / "m" / "o.xml")])]:
             if name in only:
                 cmds[name] = [exe, *argv]
-        res = interleaved(cmds, args.repeat)
+                if args.before:
+                    cmds[f"{name} (before)"] = [exe, *argv]
+                    envs[f"{name} (before)"] = {**bench_env(), "PYTHONPATH": args.before}
+        res = interleaved(cmds, args.repeat, envs)
         ref = res.get("check_urdf")
         for name, (wall, cpu, rc, why) in res.items():
             data[f"{kind}_{name}"] = {"wall": wall, "cpu": cpu, "exit": rc}
             if name == "check_urdf":
                 rows.append(f"| {kind} {n:,} | check_urdf (C++, the peer) | {wall:.2f} | {cpu:.2f} | {rc} | — | | |")
+                continue
+            if name.endswith(" (before)"):
+                note = f"{cpu / ref[1]:.1f}x check_urdf" if ref is not None and name.startswith("check") else ""
+                rows.append(f"| {kind} {n:,} | {name} | {wall:.2f} | {cpu:.2f} | {rc} | — | | {note} |")
                 continue
             limit, times = TARGETS[(kind, name)]
             crashed = rc < 0 or rc > 2

@@ -8,7 +8,10 @@ each), and no result cache for check (`--no-cache`: what a pre-commit run pays a
 changed; the warm-cache figure is bench_lint.py's). CPU is the child's user+sys; wall is beside it.
 The machine's `python -c pass` and `python -c "import numpy"` are timed in the same run.
 
-    .venv/bin/python bench/bench_check_vs_build.py [--repeat N] [--only ID,ID] [--no-corpus]
+    .venv/bin/python bench/bench_check_vs_build.py [--repeat N] [--only ID,ID] [--no-corpus] [--before DIR]
+
+--before DIR: also time check with the package of DIR first on PYTHONPATH (a checkout or `git archive`
+of earlier code, with its xacro/ and meshes/), interleaved with the pair.
 """
 
 from __future__ import annotations
@@ -18,18 +21,31 @@ import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _timing import BIN, ROOT, bench_env, best_of, fmt_s, machine, save, table  # noqa: E402
+from _timing import BIN, ROOT, bench_env, best_of, fmt_s, machine, run_once, save, table  # noqa: E402
 
 CORPUS = ROOT / "tests" / "corpus"
 BUNDLED, EACH = 1.5, 1.8
 
 
-def pair(inputs: list[str], repeat: int, env: dict) -> dict:
+def pair(inputs: list[str], repeat: int, env: dict, before: str = "") -> dict:
     cli = str(BIN / "myrabot-desc")
     cmds = {"build": [cli, "build", *inputs, "-o", "/dev/null"],
             "check": [cli, "check", "--no-cache", *inputs, "-o", "/dev/null"]}
-    # check exits 1 with findings and 2 with error findings; a refused input fails the bench
-    return best_of(cmds, repeat, env=env, ok=(0, 1, 2))
+    envs = {"build": env, "check": env}
+    if before:
+        cmds["check (before)"] = cmds["check"]
+        envs["check (before)"] = {**env, "PYTHONPATH": before}
+    res = {k: {"wall": [], "cpu": []} for k in cmds}
+    for k in range(repeat + 1):             # the first round warms the page and bytecode caches
+        for name, argv in cmds.items():
+            wall, cpu, rc, err = run_once(argv, env=envs[name])
+            # check exits 1 with findings and 2 with error findings; an input build refuses fails
+            if rc not in (0, 1, 2) or (name == "build" and rc == 2):
+                raise SystemExit(f"{name} exited {rc}: {err.decode(errors='replace')[-200:]}")
+            if k:
+                res[name]["wall"].append(wall)
+                res[name]["cpu"].append(cpu)
+    return {k: {"wall": min(v["wall"]), "cpu": min(v["cpu"]), "n": repeat} for k, v in res.items()}
 
 
 def main(argv=None) -> int:
@@ -39,6 +55,7 @@ def main(argv=None) -> int:
     ap.add_argument("--repeat", type=int, default=5, help="runs per command (best is kept) [5]")
     ap.add_argument("--only", default="", help="comma-separated corpus ids (default: all)")
     ap.add_argument("--no-corpus", action="store_true", help="the bundled robot only")
+    ap.add_argument("--before", default="", help="folder with earlier code, its check timed beside")
     a = ap.parse_args(argv)
     env = bench_env()
     py = sys.executable
@@ -56,20 +73,25 @@ def main(argv=None) -> int:
     rows, res, met = [], {}, 0
     for name, inputs, extra, limit in todo:
         try:
-            t = pair(inputs, a.repeat, {**env, **extra})
+            t = pair(inputs, a.repeat, {**env, **extra}, a.before)
         except SystemExit as exc:       # an input build or check refuses: listed, not timed
-            rows.append([name, "—", "—", "—", "—", "—", f"not timed: {str(exc)[:80]}"])
+            rows.append([name, "—", "—", "—", "—", "—", "—", f"not timed: {str(exc)[:80]}"])
             continue
         b, c = t["build"], t["check"]
         ratio = c["cpu"] / b["cpu"]
         ok = ratio <= limit
         met += ok
         res[name] = {"build": b, "check": c, "cpu_ratio": ratio, "limit": limit, "met": ok}
+        was = ""
+        if "check (before)" in t:
+            res[name]["check_before"] = t["check (before)"]
+            was = f"{t['check (before)']['cpu'] / b['cpu']:.2f}× ({fmt_s(t['check (before)']['cpu'])})"
         rows.append([name, fmt_s(b["cpu"]), fmt_s(c["cpu"]), fmt_s(b["wall"]), fmt_s(c["wall"]), f"{ratio:.2f}×",
-                     f"≤ {limit}×: " + ("yes" if ok else "NO")])
+                     was or "—", f"≤ {limit}×: " + ("yes" if ok else "NO")])
     m = machine()
     print(f"check --no-cache vs build, fresh processes, interleaved, best of {a.repeat}")
-    print(table(rows, ["robot", "build cpu", "check cpu", "build wall", "check wall", "cpu ratio", "target"]))
+    print(table(rows, ["robot", "build cpu", "check cpu", "build wall", "check wall", "cpu ratio",
+                       "before: ratio (cpu)", "target"]))
     print(f"{met} of {len(res)} timed robots meet the target")
     print(f"this machine: `python -c pass` {fmt_s(base['python -c pass']['cpu'])} CPU "
           f"({fmt_s(base['python -c pass']['wall'])} wall), `python -c \"import numpy\"` "

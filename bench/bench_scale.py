@@ -119,8 +119,8 @@ def main() -> int:
     print("| tree | command | wall s | CPU s | exit | target (CPU) | met | note |\n|---|---|---|---|---|---|---|---|")
     print("\n".join(rows))
     b = data["baseline"]
-    print(f"\nbest of {args.repeat}, interleaved; this machine: `python -c pass` {b['python -c pass']['cpu']:.3f} s CPU "
-          f"({b['python -c pass']['wall']:.3f} s wall), `python -c \"import numpy\"` {b['import numpy']['cpu']:.3f} s "
+    print(f"\nbest of {args.repeat}, interleaved; this machine: `python -c pass` {b['python -c pass']['cpu']:.3f} s "
+          f"CPU ({b['python -c pass']['wall']:.3f} s wall), `python -c \"import numpy\"` {b['import numpy']['cpu']:.3f} s "
           f"CPU ({b['import numpy']['wall']:.3f} s wall); {m['cores']} cores, {m['cpu']}, Python {m['python']}, "
           f"{m['date']}, load average {m['load']:.1f}")
     print("all targets met" if ok else "targets missed: see the NO rows")

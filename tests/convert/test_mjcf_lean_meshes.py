@@ -31,9 +31,9 @@ def test_lean_reader_leaves_other_formats_and_broken_files_to_trimesh(tmp_path):
 
 
 def test_convert_mjcf_of_a_dae_robot_imports_no_trimesh(tmp_path):
-    args = corpus_args(corpus_robot("ur5e"))
+    argv = ["convert", "--to", "mjcf", *corpus_args(corpus_robot("ur5e")), "-o", str(tmp_path / "o" / "u.xml")]
     code = ("import sys; from click.testing import CliRunner; from myrabot_desc.commands.main import main;"
-            f"r = CliRunner().invoke(main, ['convert', '--to', 'mjcf', *{args!r}, '-o', {str(tmp_path / 'o' / 'u.xml')!r}]);"
+            f"r = CliRunner().invoke(main, {argv!r});"
             "print(r.exit_code, sorted(m for m in ('trimesh', 'scipy', 'networkx') if m in sys.modules))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.split(None, 1) == ["0", "[]\n"]

@@ -118,10 +118,10 @@ def main() -> int:
     m = machine()
     print("| tree | command | wall s | CPU s | exit | target (CPU) | met | note |\n|---|---|---|---|---|---|---|---|")
     print("\n".join(rows))
-    b = data["baseline"]
-    print(f"\nbest of {args.repeat}, interleaved; this machine: `python -c pass` {b['python -c pass']['cpu']:.3f} s "
-          f"CPU ({b['python -c pass']['wall']:.3f} s wall), `python -c \"import numpy\"` {b['import numpy']['cpu']:.3f} s "
-          f"CPU ({b['import numpy']['wall']:.3f} s wall); {m['cores']} cores, {m['cpu']}, Python {m['python']}, "
+    b, n = data["baseline"]["python -c pass"], data["baseline"]["import numpy"]
+    print(f"\nbest of {args.repeat}, interleaved; this machine: `python -c pass` {b['cpu']:.3f} s CPU ({b['wall']:.3f} s "
+          f"wall), `python -c \"import numpy\"` {n['cpu']:.3f} s CPU ({n['wall']:.3f} s wall); {m['cores']} cores, "
+          f"{m['cpu']}, Python {m['python']}, "
           f"{m['date']}, load average {m['load']:.1f}")
     print("all targets met" if ok else "targets missed: see the NO rows")
     save("scale", data)

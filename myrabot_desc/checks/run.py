@@ -96,8 +96,7 @@ def check_one(task: Task):
         if cached is not None:
             return cached
         with cache.Recorder() if task.cache_dir else nullcontext() as read:
-            # most checks never ask where a value was written (P006 does for its findings)
-            robot = load_robot(path, **{"sources": False, **task.build})
+            robot = load_robot(path, **task.build)
             diags, ctx = check_robot(robot, task.options, task.select, task.ignore, unused=False)
         res.diagnostics = diags
         res.suppressions_seen, res.suppressions_used = ctx.suppressions_seen, ctx.suppressions_used

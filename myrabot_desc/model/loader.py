@@ -87,9 +87,7 @@ def is_xacro(path: Path, data: bytes | None = None) -> bool:
 
 
 def load_robot(path=None, **build_options) -> Robot:
-    """Build (xacro: see is_xacro) or read (plain URDF) ``path`` into a Robot. None = bundled MYRAbot.
-    ``sources=False``: the build records no source map (a quarter of a small robot's build); the
-    first ask of ``Robot.sources`` builds again to record it."""
+    """Build (xacro: see is_xacro) or read (plain URDF) ``path`` into a Robot. None = bundled MYRAbot."""
     src = Path(path) if path is not None else bundled_path()
     if not src.exists():
         raise InputError(f"no such file: {src}")
@@ -109,30 +107,16 @@ def load_robot(path=None, **build_options) -> Robot:
             raise InputError(f"{src} is {size} bytes, over the {limit}-byte limit")
         data = read_input(src, limit)       # bounded: /dev/zero or an endless pipe stops at the limit
     if data is None or is_xacro(src, data):
-        mappings = build_options.pop("mappings", None)
-        result = build_file(src, mappings, **build_options)
-        robot = read_urdf_text(result.text, src, locations=result.locations, package_roots=result.package_roots,
-                               root=result.root, source_map=result.source_map,
-                               build_warnings=result.diagnostics, from_xacro=True,
-                               packages=build_options.get("packages"),
-                               package_paths=build_options.get("package_paths", ()),
-                               allow_paths=build_options.get("allow_paths") or ())
-        if result.source_map is None:
-            robot.source_map_later = lambda: _source_map(src, mappings, build_options, result.text)
-        return robot
+        result = build_file(src, build_options.pop("mappings", None), **build_options)
+        return read_urdf_text(result.text, src, locations=result.locations, package_roots=result.package_roots,
+                              root=result.root, source_map=result.source_map,
+                              build_warnings=result.diagnostics, from_xacro=True,
+                              packages=build_options.get("packages"),
+                              package_paths=build_options.get("package_paths", ()),
+                              allow_paths=build_options.get("allow_paths") or ())
     return read_urdf_bytes(data, src, packages=build_options.get("packages"),
                            package_paths=build_options.get("package_paths", ()),
                            allow_paths=build_options.get("allow_paths") or ())
-
-
-def _source_map(src: Path, mappings, build_options: dict, text: str):
-    """The source map of a build made without one (``sources=False``): the same build again,
-    recording; None when it no longer gives the same text (a file changed in between)."""
-    try:
-        again = build_file(src, mappings, **{**build_options, "sources": True})
-    except InputError:
-        return None
-    return again.source_map if again.text == text else None
 
 
 def read_urdf_bytes(data: bytes, src: Path, packages=None, package_paths=(), allow_paths=()) -> Robot:

@@ -452,9 +452,6 @@ class Robot:
     # URDF read from one file its bytes: Robot.sources reads spans from them when asked.
     source_map: Any = field(default=None, repr=False, compare=False)
     source_bytes: bytes | None = field(default=None, repr=False, compare=False)
-    # A build that did not record where values came from (check: most runs never ask) leaves the
-    # way to record it here: called once, the first time Robot.sources is asked, for the source map.
-    source_map_later: Any = field(default=None, repr=False, compare=False)
     # Facts derived from the robot, built once by whoever needs them first (``derive``); the robot
     # is not modified after loading, so they stay true for its lifetime.
     derived: dict = field(default_factory=dict, repr=False, compare=False)
@@ -505,12 +502,9 @@ class Robot:
         """Where each value was written (model/sources.Sources): ``robot.sources.origin(part.ref, attr)``."""
         def build():
             plain = None
-            source_map = self.source_map
-            if source_map is None and self.source_map_later is not None:
-                source_map = self.source_map_later()
-            if source_map is None and self.source_bytes is not None:
+            if self.source_map is None and self.source_bytes is not None:
                 plain = (str(self.loc.file) if self.loc else str(self.source), self.source, self.source_bytes)
-            return Sources(self.root_element, source_map, plain)
+            return Sources(self.root_element, self.source_map, plain)
         return self.derive("sources", build)
 
     def origin(self, part, field: str):

@@ -99,6 +99,8 @@ class GazeboProps:
 
     # ------------------------------------------------------------ link level
     def apply_link(self, link_el, ref) -> None:
+        if ref not in self.typed and ref not in self.decay:
+            return          # no <gazebo> block names it (most links): nothing to write
         p = self.values(ref)
         gravity_off = p.get("turnGravityOff")
         if gravity_off is not None:
@@ -122,6 +124,8 @@ class GazeboProps:
 
     # ------------------------------------------------------------ collisions
     def apply_collision(self, coll_el, ref) -> None:
+        if ref not in self.typed and ref not in self.by_ref and ref not in self.blobs:
+            return
         p = self.values(ref)
         laser = p.get("laserRetro")
         if laser is not None:
@@ -153,6 +157,8 @@ class GazeboProps:
                 _merge(coll_el, child)
 
     def apply_visual(self, vis_el, ref) -> None:
+        if ref not in self.blobs:
+            return
         for child in self.blob_children(ref, "visual"):
             if child.tag == "material":   # the resolved explicit material wins
                 continue
@@ -171,6 +177,8 @@ class GazeboProps:
 
     # ------------------------------------------------------------ joints
     def apply_joint(self, joint_el, axis_el, ref) -> None:
+        if ref not in self.typed:
+            return
         p = self.values(ref)
         if axis_el is not None:
             sr, ss = p.get("springReference"), p.get("springStiffness")

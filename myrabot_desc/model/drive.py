@@ -972,6 +972,8 @@ def _spins(robot, j, T) -> bool:
 def _steering(robot, T, wheels: set, commanded_pos: set) -> list[str]:
     """Joints about a vertical axis that carry a wheel, or that ros2_control commands in position
     beside velocity wheels (a virtual bicycle joint), and the joints that mimic those."""
+    if not wheels:
+        return []       # both reasons need a wheel: no joint's frame is worth computing
     children = robot.joints_by_parent()
     out = []
     for j in robot.joints.values():

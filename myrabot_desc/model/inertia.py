@@ -36,6 +36,12 @@ def eigh3(A) -> tuple[list[float], list[list[float]]]:
     Cyclic Jacobi rotations: each zeroes one off-diagonal term; a handful of sweeps
     reach machine precision for 3x3.
     """
+    r0, r1, r2 = A
+    if r0[1] == 0.0 and r0[2] == 0.0 and r1[2] == 0.0 and r1[0] == 0.0 and r2[0] == 0.0 and r2[1] == 0.0:
+        # already diagonal (most URDF inertias): the sweeps below would stop before the first rotation
+        d = (float(r0[0]), float(r1[1]), float(r2[2]))
+        order = sorted(range(3), key=d.__getitem__)
+        return [d[i] for i in order], [[1.0 if k == i else 0.0 for i in order] for k in range(3)]
     a = [list(map(float, r)) for r in A]
     V = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
     scale = max(abs(x) for r in a for x in r) or 1.0

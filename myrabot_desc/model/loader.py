@@ -161,6 +161,10 @@ class _Reader:
         self.src = src
         self.allow_roots: tuple = ()        # --allow-path folders (meshes may come from them)
         self.issues: list[Diagnostic] = []
+        # text -> value of the numbers read at the usual limit: a model repeats the same few texts
+        # ("0", "1e-4", "0 0 1") in every link, and each parse is a float() and its checks
+        self._numbers: dict[str, float] = {}
+        self._vectors: dict[str, tuple] = {}
         elements = [el for el in root.iter() if isinstance(el.tag, str)] if locations is not None else ()
         if locations is not None and len(locations) == len(elements):
             self.loc_of: dict[int, Loc] | SourceLines = {}
@@ -194,21 +198,35 @@ class _Reader:
         raw = el.get(attr)
         if raw is None:
             return default
+        usual = limit is MAX_MAGNITUDE
+        if usual:
+            v = self._numbers.get(raw)
+            if v is not None:
+                return v
         try:
-            return V.parse_number(raw, limit)
+            v = V.parse_number(raw, limit)
         except V.ValueProblem as exc:
             self.issue(el, V.problem(el.tag, raw, exc.reason, attr))
             return default
+        if usual:
+            self._numbers[raw] = v
+        return v
 
     def vec(self, el, attr: str, default=(0.0, 0.0, 0.0), n: int = 3) -> tuple:
         raw = el.get(attr) if el is not None else None
         if raw is None:
             return default
+        v = self._vectors.get(raw) if n == 3 else None
+        if v is not None:
+            return v
         try:
-            return V.parse_vector(raw, n, MAX_MAGNITUDE)
+            v = V.parse_vector(raw, n, MAX_MAGNITUDE)
         except V.ValueProblem as exc:
             self.issue(el, V.problem(el.tag, raw, exc.reason, attr))
             return default
+        if n == 3:
+            self._vectors[raw] = v
+        return v
 
     def pose(self, el, kids: dict | None = None) -> Pose:
         """The <origin> of ``el``; ``kids``: _kids(el) when the caller has it."""

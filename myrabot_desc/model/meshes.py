@@ -589,6 +589,21 @@ def triangles(path: Path, notes=None):
     return np.asarray(m.vertices), np.asarray(m.faces)
 
 
+def lean_triangles(path: Path):
+    """(vertices, faces) of a COLLADA file by the lean reader, without importing trimesh; None when
+    the file is another format or one the reader leaves to trimesh, or when it fails (trimesh then
+    reads it and words the error). Its triangles are ``load(path, process=False)``'s, corner for
+    corner (convert's MJCF assets; tests/convert/test_mjcf_lean_meshes.py)."""
+    if path.suffix.lower() != ".dae":
+        return None
+    try:
+        precheck(path)
+        max_bytes, max_tris = limits()
+        return _concatenate(path, _named(path, _dae_parts, _read(path, max_bytes)), max_tris)
+    except (_NotLean, MeshError, OSError):
+        return None
+
+
 def _triangles(path: Path, ext: str):
     import numpy as np
 

@@ -22,7 +22,7 @@ from __future__ import annotations
 import math
 from typing import NamedTuple
 
-from myrabot_desc.model.kinematics import axis_angle, pose_matrix, world_transforms
+from myrabot_desc.model.kinematics import _norms, axis_angle, pose_matrix, pose_stack, world_transforms
 
 SAMPLES = 13             # values per joint range: 15 degrees apart on a half-turn range
 MOVING = ("revolute", "continuous", "prismatic")
@@ -108,7 +108,7 @@ def gravity_needs(robot, samples: int = SAMPLES, joints=None) -> list[Need]:
     if links:
         k = np.array([pos[link.name] for link in links])
         own_m[k] = [link.inertial.mass for link in links]
-        c = np.array([(W[link.name] @ pose_matrix(link.inertial.origin))[:3, 3] for link in links]).reshape(-1, 3)
+        c = (np.array([W[link.name] for link in links]) @ pose_stack(link.inertial.origin for link in links))[:, :3, 3]
         own_mc[k] = own_m[k][:, None] * c
     Mtot = _subtree_sums(own_m, parent, levels)
     Qtot = _subtree_sums(own_mc, parent, levels)
@@ -147,7 +147,14 @@ def gravity_needs(robot, samples: int = SAMPLES, joints=None) -> list[Need]:
                            np.array([vals[j.name] for j in turned])
                            - np.array([rest.get(j.name, 0.0) for j in turned])[:, None])
         R_of = {j.name: k for k, j in enumerate(turned)}
+    alone = _alone(robot, movers, names, pos, parent, end, R_of)
+    if alone:
+        _turn_alone(np, robot, alone, names, vals, frames, pos, R_all, R_of, Qtot, Mtot, prism, t_rest, r_rest,
+                    A, best, where)
+    alone = set(alone)
     for j in movers:
+        if j.name in alone:
+            continue
         values = vals[j.name]
         cj = pos[j.child]
         if end[cj] > cj + 1:
@@ -201,6 +208,53 @@ def gravity_needs(robot, samples: int = SAMPLES, joints=None) -> list[Need]:
         out.append(Need(n, float(best[k]), float(t_rest[k]), where[k][0], float(where[k][1]), effort_of(j),
                         "N" if j.type == "prismatic" else "N·m"))
     return out
+
+
+def _alone(robot, movers, names, pos, parent, end, R_of) -> list[str]:
+    """The turned joints whose torques no other joint changes and that change no other joint's: a
+    leaf link's joint with no moving joint above it (a star's spokes, wheels on a fixed base). Their
+    turns commute with every other, so they are taken together (_turn_alone)."""
+    asked = set(names)
+    mover_at = set()
+    for m in movers:
+        mover_at.add(pos[m.child])
+    above = [False] * len(parent)            # a moving joint somewhere above this place (preorder: parents first)
+    for place in range(len(parent)):
+        up = int(parent[place])
+        above[place] = up >= 0 and (above[up] or up in mover_at)
+    out = []
+    for j in movers:
+        cj = pos[j.child]
+        if j.name in asked and j.name in R_of and end[cj] == cj + 1 and not above[cj]:
+            out.append(j.name)
+    return out
+
+
+def _turn_alone(np, robot, alone, names, vals, frames, pos, R_all, R_of, Qtot, Mtot, prism, t_rest, r_rest, A,
+                best, where) -> None:
+    """gravity_needs' turn of each joint of ``alone`` over its samples, all at once: the same products
+    as one joint at a time (the torque of the joint itself only), the same worst pose kept."""
+    k_of = {n: k for k, n in enumerate(names)}
+    K = np.array([k_of[n] for n in alone])
+    cj = np.array([pos[robot.joints[n].child] for n in alone])
+    R = R_all[[R_of[n] for n in alone]]                                    # (J, samples, 3, 3)
+    p0 = np.array([frames[n][0] for n in alone])
+    t = p0[:, None, :] - (R @ p0[:, None, :, None])[..., 0]
+    shift = ((Qtot[cj][:, None, None, :] @ np.swapaxes(R, -1, -2))[:, :, 0, :] + Mtot[cj][:, None, None] * t
+             - Qtot[cj][:, None, :])
+    T = np.abs(np.where(prism[K][:, None], t_rest[K][:, None],
+                        r_rest[K][:, None] + GRAVITY * (shift[:, :, 0] * A[K, 1][:, None]
+                                                        - shift[:, :, 1] * A[K, 0][:, None])))
+    b = best[K]
+    gain = T.max(axis=1) > b + 1e-9 * (1 + b)
+    bg = b.copy()
+    for v in range(T.shape[1]):
+        t_v = T[:, v]
+        better = (t_v > bg + 1e-9 * (1 + bg)) & gain
+        for i in np.flatnonzero(better):
+            where[K[i]] = (alone[i], vals[alone[i]][v])
+        bg = np.maximum(bg, t_v)
+    best[K] = np.maximum(b, T.max(axis=1))
 
 
 def _rotations(axes, angles):
@@ -259,13 +313,15 @@ def _preorder(robot, W):
 
 def _joint_frames(np, robot, W, names) -> dict:
     """joint -> (its origin, its unit axis) in the world, from the link poses ``W``."""
+    if not names:
+        return {}
+    # every joint's products at once: stacked products give each joint's numbers to the bit
+    joints = [robot.joints[n] for n in names]
+    F = np.array([W[j.parent] for j in joints]) @ pose_stack(j.origin for j in joints)
+    axes = (F[:, :3, :3] @ np.array([j.axis for j in joints], dtype=float).reshape(-1, 3, 1))[:, :, 0]
     frames = {}
-    for n in names:
-        j = robot.joints[n]
-        F = W[j.parent] @ pose_matrix(j.origin)
-        a = F[:3, :3] @ np.asarray(j.axis, dtype=float)
-        norm = np.linalg.norm(a)
-        frames[n] = (F[:3, 3], a / norm if norm > 0 else a)
+    for n, Fj, a, norm in zip(names, F, axes, _norms(axes.tolist())):
+        frames[n] = (Fj[:3, 3], a / norm if norm > 0 else a)
     return frames
 
 

@@ -21,13 +21,27 @@ IDENTITY: Tf = (EYE3, (0.0, 0.0, 0.0))
 
 def transform(xyz=(0.0, 0.0, 0.0), rpy=(0.0, 0.0, 0.0)) -> Tf:
     """The transform of an origin, URDF convention R = Rz(yaw) Ry(pitch) Rx(roll)."""
-    r, p, y = (float(v) for v in rpy)
+    r, p, y = rpy
+    r, p, y = float(r), float(p), float(y)
+    if r == 0.0 and p == 0.0 and y == 0.0:
+        # most origins have no rotation: the matrix of three +0.0 angles, computed once (a -0.0
+        # angle leaves other signed zeros, which rpy_of reads)
+        R = _NO_ROTATION if (math.copysign(1.0, r) > 0 and math.copysign(1.0, p) > 0
+                             and math.copysign(1.0, y) > 0) else _rotation(r, p, y)
+    else:
+        R = _rotation(r, p, y)
+    x, yy, z = xyz
+    return R, (float(x), float(yy), float(z))
+
+
+def _rotation(r: float, p: float, y: float) -> Mat3:
     cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
-    R = ((cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr),
-         (sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr),
-         (-sp, cp * sr, cp * cr))
-    x, yy, z = (float(v) for v in xyz)
-    return R, (x, yy, z)
+    return ((cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr),
+            (sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr),
+            (-sp, cp * sr, cp * cr))
+
+
+_NO_ROTATION = _rotation(0.0, 0.0, 0.0)
 
 
 def pose_T(pose) -> Tf:

@@ -27,7 +27,7 @@ class MeshPlan:
     def __init__(self, notes):
         self.notes = notes
         self.files: dict[Path, str | None] = {}      # resolved source -> file name in the mesh folder (None: unusable)
-        self.loaded: dict[Path, object] = {}         # converted meshes (trimesh), by source
+        self.loaded: dict[Path, object] = {}         # converted meshes (Triangles or trimesh), by source
         self.why: dict[Path, str] = {}               # source -> why it cannot be used
         self.assets: dict[tuple, str] = {}           # (source, scale) -> mesh asset name
         self.missing: list[str] = []
@@ -75,13 +75,20 @@ class MeshPlan:
         except meshio.MeshError as exc:
             return self._unusable(src, str(exc), warn=True)
         if ext not in MUJOCO_MESH_EXT or (ext == ".stl" and not binary_stl_ok(src)):
-            try:
-                mesh = meshio.load(src, process=False)
-            except meshio.MeshError as exc:  # unreadable: leave the geometry out, say which file and why
-                mesh = meshio.lenient_dae(src, self.notes) if ext == ".dae" and "holds no triangles" in str(exc) \
-                    else None
-                if mesh is None:
-                    return self._unusable(src, str(exc), warn=True)
+            # the lean COLLADA reader gives trimesh's triangles without its import (~1 s with
+            # scipy); trimesh reads the other formats, the files the lean reader leaves to it,
+            # and the meshes too big for STL (MSH keeps trimesh's own vertex list)
+            lean = meshio.lean_triangles(src)
+            if lean is not None and 0 < len(lean[1]) <= STL_MAX_FACES:
+                mesh = Triangles(*lean)
+            else:
+                try:
+                    mesh = meshio.load(src, process=False)
+                except meshio.MeshError as exc:  # unreadable: leave the geometry out, say which file and why
+                    mesh = meshio.lenient_dae(src, self.notes) \
+                        if ext == ".dae" and "holds no triangles" in str(exc) else None
+                    if mesh is None:
+                        return self._unusable(src, str(exc), warn=True)
             if mesh is None or mesh.is_empty or len(mesh.faces) == 0:
                 self.empty.append(src.name)
                 return self._unusable(src, "holds no triangles")
@@ -142,6 +149,44 @@ class MeshPlan:
                 write_msh(dest, mesh)
             else:
                 mesh.export(str(dest), file_type="stl")
+
+
+class Triangles:
+    """A mesh read by the lean readers, with the parts of trimesh's Trimesh this module uses."""
+
+    def __init__(self, vertices, faces):
+        self.vertices, self.faces = vertices, faces
+
+    @property
+    def is_empty(self) -> bool:
+        return len(self.faces) == 0
+
+    def export(self, dest: str, file_type: str = "stl") -> None:
+        if file_type != "stl":
+            raise ValueError(f"cannot write {file_type}")
+        Path(dest).write_bytes(stl_bytes(self.vertices, self.faces))
+
+
+def stl_bytes(vertices, faces) -> bytes:
+    """Binary STL as trimesh's export writes it: an 80-byte zero header, the face count, and per
+    face its unit normal (cross product of the edges v1 - v0 and v2 - v1; zero for a face whose
+    cross product is below 100 float64 resolutions), its corners as float32, and a zero attribute."""
+    import numpy as np
+
+    tri = np.asarray(vertices, dtype=np.float64)[np.asarray(faces)]
+    edges = tri[:, 1:, :] - tri[:, :2, :]
+    cross = np.cross(edges[:, 0], edges[:, 1])
+    norm = np.sqrt(np.dot(cross * cross, [1.0, 1.0, 1.0]))
+    valid = norm > float(np.finfo(np.float64).resolution * 100)
+    norm[valid] **= -1
+    unit = cross * norm.reshape((-1, 1))
+    normals = np.zeros((len(tri), 3), dtype=np.float64)
+    normals[valid] = unit[valid]
+    packed = np.zeros(len(tri), dtype=np.dtype([("normals", "<f4", (3)), ("vertices", "<f4", (3, 3)),
+                                                ("attributes", "<u2")]))
+    packed["normals"] = normals
+    packed["vertices"] = tri
+    return bytes(80) + len(tri).to_bytes(4, "little") + packed.tobytes()
 
 
 def write_msh(dest: Path, mesh) -> None:

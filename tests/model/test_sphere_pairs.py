@@ -1,0 +1,39 @@
+"""Self-collision's candidate pairs (model/collisions._sphere_pairs, sweep and prune along x) are the
+dense distance matrix's (_sphere_pairs_dense): the same pairs in the same order, the same refusal."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from myrabot_desc.model.collisions import TooManyPairs, _sphere_pairs, _sphere_pairs_dense
+
+
+class _Item:
+    def __init__(self, centre, radius):
+        self.centre, self.radius = centre, radius
+
+
+def _pairs(fn, items, min_depth):
+    try:
+        return fn(np, items, min_depth)
+    except TooManyPairs:
+        return "refused"
+
+
+def test_sweep_equals_dense_on_random_scenes():
+    rng = np.random.default_rng(1)
+    for trial in range(200):
+        n = int(rng.integers(0, 250))
+        C = rng.normal(size=(n, 3)) * float(rng.choice([0.01, 0.1, 1.0, 10.0]))
+        if trial % 3 == 0:
+            C[:, 0] = np.round(C[:, 0], 1)          # many shapes at one x: long sweeps
+        R = rng.uniform(0, 0.3, size=n) * float(rng.choice([0.1, 1.0, 3.0]))
+        items = [_Item(tuple(c), float(r)) for c, r in zip(C, R)]
+        md = float(rng.choice([0.001, 0.0, -0.01]))
+        assert _pairs(_sphere_pairs, items, md) == _pairs(_sphere_pairs_dense, items, md), trial
+
+
+def test_refused_past_the_limit_like_the_dense_form(monkeypatch):
+    monkeypatch.setenv("MYRABOT_DESC_MAX_COLLISION_PAIRS", "50")
+    items = [_Item((0.0, 0.0, 0.001 * k), 0.1) for k in range(20)]      # 190 pairs, all at one place
+    assert _pairs(_sphere_pairs, items, 0.001) == _pairs(_sphere_pairs_dense, items, 0.001) == "refused"

@@ -5,7 +5,28 @@ from __future__ import annotations
 
 import numpy as np
 
-from myrabot_desc.model.collisions import TooManyPairs, _sphere_pairs, _sphere_pairs_dense
+from myrabot_desc.model.collisions import TooManyPairs, _sphere_pairs
+from myrabot_desc.safety import limit
+
+
+def _sphere_pairs_dense(np, items, min_depth: float) -> list:
+    """_sphere_pairs by the whole distance matrix, a block of rows at a time: the reference."""
+    C = np.array([i.centre for i in items])
+    R = np.array([i.radius for i in items])
+    most = limit("max_collision_pairs")
+    out: list = []
+    block = 128
+    for s in range(0, len(items), block):
+        d = np.linalg.norm(C[s:s + block, None, :] - C[None, :, :], axis=2)
+        ii, jj = np.nonzero(d < R[s:s + block, None] + R[None, :] - min_depth)
+        ii = ii + s
+        keep = jj > ii
+        out.extend(zip(ii[keep].tolist(), jj[keep].tolist()))
+        if len(out) > most:
+            raise TooManyPairs(f"self-collision: over {most} pairs of collision shapes meet at this pose (the links "
+                               "are probably all at one place); not tested pair by pair "
+                               "(MYRABOT_DESC_MAX_COLLISION_PAIRS)")
+    return out
 
 
 class _Item:

@@ -14,6 +14,7 @@ it). So they, and only they outside model/, read the robot's raw XML (``Robot.ro
 from __future__ import annotations
 
 import difflib
+import functools
 
 from myrabot_desc.checks.rule import Finding, Fix, FixInfo, RemoveAttribute, RenameAttribute, RenameTag, rule
 
@@ -78,14 +79,22 @@ def local(tag) -> str | None:
 
 
 def suggest(word: str, choices) -> str | None:
-    m = difflib.get_close_matches(word, sorted(choices), n=1, cutoff=0.6)
+    m = _close(word, tuple(sorted(choices)), 1, 0.6)
     return m[0] if m else None
 
 
 def only_candidate(word: str, choices) -> str | None:
     """The one known name ``word`` is a near miss of, or None when there are none or several."""
-    m = difflib.get_close_matches(word, sorted(choices), n=2, cutoff=0.75)
+    m = _close(word, tuple(sorted(choices)), 2, 0.75)
     return m[0] if len(m) == 1 else None
+
+
+@functools.lru_cache(maxsize=256)
+def _close(word: str, choices: tuple, n: int, cutoff: float) -> tuple:
+    """difflib's near misses, kept by content: a misspelt name is looked up against the same names
+    again (both sides of a ``diff``, every file of a ``check -r`` of one robot's variants), and each
+    lookup is a few ms against a large robot's links and joints."""
+    return tuple(difflib.get_close_matches(word, choices, n=n, cutoff=cutoff))
 
 
 def _walk(ctx) -> list:

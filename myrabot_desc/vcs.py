@@ -66,6 +66,12 @@ def changed_files(top: Path, rev: str) -> set[Path]:
     return {(top / n).resolve() for n in names}
 
 
+def load_export() -> None:
+    """Import what ``export`` reads a revision with (a caller exporting two revisions in two
+    processes, ``diff``, imports it once, before forking)."""
+    import tarfile  # noqa: F401
+
+
 def export(top: Path, rev: str, dest: Path) -> None:
     """The files of revision ``rev`` unpacked into ``dest`` (an empty folder of ours)."""
     import io

@@ -28,10 +28,10 @@ from myrabot_desc.diff.attribution import changed_lines, refine
 from myrabot_desc.diagnostics import Diagnostic
 from myrabot_desc.diff.compare import STRUCTURAL, Item, compare
 from myrabot_desc.errors import InputError, UsageProblem
-from myrabot_desc.expand.driver import build_file
+from myrabot_desc.expand.driver import build_file, load_engine
 from myrabot_desc.model.loader import is_xacro, load_robot, read_urdf_text
 from myrabot_desc.safety import display
-from myrabot_desc.vcs import export, repo_top
+from myrabot_desc.vcs import export, load_export, repo_top
 
 
 class DiffResult(NamedTuple):
@@ -276,6 +276,9 @@ def diff_models(old_path, new_path, build: dict, old_tree=None, new_tree=None, c
     """Build both models and compare them (InputError when one cannot be built). The trees' revisions
     are exported here (the old side's export and build run beside the new side's)."""
     ob, nb = _build_options(build, old_tree), _build_options(build, new_tree)
+    load_engine()
+    if old_tree is not None or new_tree is not None:
+        load_export()
     other = _Side(lambda: _prebuild(old_tree, old_path, ob))
     new_built = _prebuild(new_tree, new_path, nb)
     old_built = other.get()

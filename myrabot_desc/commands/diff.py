@@ -16,8 +16,6 @@ from myrabot_desc.diff.report import markdown, text, to_json
 from myrabot_desc.diff.run import diff_paths, diff_revisions
 from myrabot_desc.errors import UsageProblem
 from myrabot_desc.output import write_output
-from myrabot_desc.render import Layers, choose_gl, png_bytes, render_image
-from myrabot_desc.view.scene import build_scene
 
 
 @click.command("diff")
@@ -107,6 +105,11 @@ def _codes(values) -> tuple:
 def _picture(res, path: str) -> None:
     """The two robots at their rest pose, iso view, side by side (before | after), into ``path``."""
     from PIL import ImageDraw
+
+    # the renderer and the scene (with lxml, convert's appearance and the viewer's facts) load only
+    # for --picture: a tenth of a small robot's diff otherwise
+    from myrabot_desc.render import Layers, choose_gl, png_bytes, render_image
+    from myrabot_desc.view.scene import build_scene
 
     choose_gl()
     tiles = []

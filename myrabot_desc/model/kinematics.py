@@ -221,7 +221,7 @@ def world_transforms_from(robot: Robot, W: dict, q0: dict, q: dict) -> tuple[dic
     out = dict(W)
     if not changed:
         return out, set()
-    order, via, kids = _walk(robot, robot.joints_by_parent())
+    order, via, kids = robot.derive("kinematics.walk", lambda: _walk(robot, robot.joints_by_parent()))
     dirty: set[str] = set()
     level = [link for link in order if via[link] is None]
     while level:

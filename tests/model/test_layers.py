@@ -28,12 +28,13 @@ LINT_IMPORTS = Path(sys.executable).with_name("lint-imports")
 
 # module -> our modules it may import inside a function, and why (start-up, bench/bench_start.py)
 LAZY_OWN = {
-    # the console script picks the click-free plain build or the click group: neither pays for the other
-    "myrabot_desc.commands.entry": {"myrabot_desc.commands.fastbuild", "myrabot_desc.commands.main"},
+    # the console script picks the click-free plain build or diff, or the click group: none pays for another
+    "myrabot_desc.commands.entry": {"myrabot_desc.commands.fastbuild", "myrabot_desc.commands.fastdiff",
+                                    "myrabot_desc.commands.main"},
     # `build --help` and click's usage errors do not load the build engine
     "myrabot_desc.commands.build": {"myrabot_desc.commands.fastbuild"},
-    # `diff` loads the renderer and the scene for --picture only (a tenth of a small robot's diff)
-    "myrabot_desc.commands.diff": {"myrabot_desc.render", "myrabot_desc.view.scene"},
+    # `diff` loads the renderer and the scene for --picture only (~10 ms of a small robot's ~300 ms diff)
+    "myrabot_desc.commands.fastdiff": {"myrabot_desc.render", "myrabot_desc.view.scene"},
 }
 HEAVY = {"numpy", "scipy", "trimesh", "pinocchio", "mujoco", "yourdfpy", "viser", "matplotlib", "PIL", "coal",
          "collada", "networkx", "yaml", "xacro", "lxml", "click"}

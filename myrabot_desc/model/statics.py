@@ -395,6 +395,7 @@ class _FullTree:
         self.P = np.array([self._frame(robot.joints[n], W)[0] for n in names]).reshape(-1, 3)
         self.A = np.array([self._frame(robot.joints[n], W)[1] for n in names]).reshape(-1, 3)
         self.ci = [pos[robot.joints[n].child] for n in names]
+        self._rows: dict = {}
 
     @staticmethod
     def _moment(link, W):
@@ -413,14 +414,16 @@ class _FullTree:
         q = dict(self.rest)
         q[name] = x
         W, moved = world_transforms_from(self.robot, self.W, self.rest, q)
+        rows = self._rows.get(moved)
+        if rows is None:         # the links and joint frames that move: the same for every sample of a joint
+            rows = self._rows[moved] = ([link for link in self.links if link.name in moved],
+                                        [(k, self.robot.joints[n]) for k, n in enumerate(self.names)
+                                         if self.robot.joints[n].parent in moved])
         own_mc, P, A = self.own_mc.copy(), self.P.copy(), self.A.copy()
-        for link in self.links:
-            if link.name in moved:
-                own_mc[self.pos[link.name]] = self._moment(link, W)
-        for k, n in enumerate(self.names):
-            j = self.robot.joints[n]
-            if j.parent in moved:
-                P[k], A[k] = self._frame(j, W)
+        for link in rows[0]:
+            own_mc[self.pos[link.name]] = self._moment(link, W)
+        for k, j in rows[1]:
+            P[k], A[k] = self._frame(j, W)
         Qtot = _subtree_sums(own_mc, self.parent, self.levels)
         return torques(Qtot[self.ci], P, A, self.M, self.prism)
 

@@ -57,10 +57,11 @@ class _Tree:
             self.dir = Path(tempfile.mkdtemp(prefix="myrabot-desc-rev-")).resolve()
         return self
 
-    def export(self) -> None:
-        """The revision's files into the folder (InputError for an unknown revision)."""
+    def export(self, like=None) -> None:
+        """The revision's files into the folder (InputError for an unknown revision); ``like``: the
+        other side's tree, whose files with the same bytes are linked, not written again."""
         if self.rev is not None:
-            export(self.top, self.rev, self.dir)
+            export(self.top, self.rev, self.dir, getattr(like, "dir", None))
 
     def __exit__(self, *exc):
         if self.dir is not None:
@@ -121,12 +122,13 @@ def _load(path: str, build: dict, built=None):
                           package_paths=build.get("package_paths", ()))
 
 
-def _prebuild(tree, path: str, build: dict):
-    """Export the revision (when ``tree`` has one) and expand a xacro ``path``: the BuildResult, None
-    for a plain URDF (read by the loader), or the InputError."""
+def _prebuild(tree, path: str, build: dict, like=None):
+    """Export the revision (when ``tree`` has one; ``like``: the other side's, already exported) and
+    expand a xacro ``path``: the BuildResult, None for a plain URDF (read by the loader), or the
+    InputError."""
     try:
         if tree is not None:
-            tree.export()
+            tree.export(like)
         src = Path(path)
         if not src.is_file() or not is_xacro(src, src.read_bytes() if not src.name.endswith(".xacro") else None):
             return None
@@ -277,10 +279,18 @@ def diff_models(old_path, new_path, build: dict, old_tree=None, new_tree=None, c
     are exported here (the old side's export and build run beside the new side's)."""
     ob, nb = _build_options(build, old_tree), _build_options(build, new_tree)
     load_engine()
+    old_err = None
     if old_tree is not None or new_tree is not None:
         load_export()
-    other = _Side(lambda: _prebuild(old_tree, old_path, ob))
-    new_built = _prebuild(new_tree, new_path, nb)
+        # the old side is exported here, before the fork, so that the new side links the files the
+        # two revisions share instead of writing them again
+        try:
+            if old_tree is not None:
+                old_tree.export()
+        except InputError as exc:
+            old_err = exc
+    other = _Side(lambda: old_err if old_err is not None else _prebuild(None, old_path, ob))
+    new_built = _prebuild(new_tree, new_path, nb, like=old_tree if old_err is None else None)
     old_built = other.get()
     if isinstance(new_built, InputError):
         raise new_built
@@ -345,8 +355,8 @@ class _Missing:
     def __getattr__(self, name):
         return getattr(self.tree, name)
 
-    def export(self) -> None:
-        self.tree.export()
+    def export(self, like=None) -> None:
+        self.tree.export(like)
         rel = (Path.cwd() / self.path).resolve().relative_to(self.tree.top) if self.tree.dir is not None else None
         if rel is not None and not (self.tree.dir / rel).is_file():
             raise InputError(f"{self.path}: no such file at revision {self.rev}")

@@ -306,3 +306,18 @@ def test_the_second_revision_links_the_files_the_first_holds(tmp_path):
     assert (b / "urdf" / "changed.xacro").stat().st_ino != (a / "urdf" / "changed.xacro").stat().st_ino
     assert (b / "urdf" / "new.xacro").read_text() == "<robot/>\n" and not (a / "urdf" / "new.xacro").exists()
     assert (b / "urdf" / "link.xacro").is_symlink() and (b / "urdf" / "link.xacro").read_text() == "<robot/>\n"
+
+
+def test_the_same_report_with_the_second_build_forked_or_not(tmp_path, monkeypatch):
+    """diff builds the other side in a forked process when a core is idle, else in this one."""
+    from myrabot_desc.diff import run
+
+    bot(tmp_path / "old.urdf")
+    bot(tmp_path / "new.urdf", mass=2.5, x=0.125, yaw=0.5)
+    out = []
+    for idle in (True, False):
+        monkeypatch.setattr(run, "_idle_core", lambda idle=idle: idle)
+        r = invoke("diff", tmp_path / "old.urdf", tmp_path / "new.urdf", "--format", "json")
+        assert r.exit_code == 1
+        out.append(json.loads(r.output)["changes"])
+    assert out[0] == out[1] and out[0]

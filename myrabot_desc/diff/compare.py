@@ -352,8 +352,9 @@ class _Builder:
                              (raw,) if raw is not None else ())
             if d:
                 ch["limit"] = d
+        na, nb = so.robot.node(a), sn.robot.node(b)          # each joint's markup read once for the three
         for k in ("mimic", "dynamics", "safety_controller"):
-            va, vb = _extra(so.robot, a, k), _extra(sn.robot, b, k)
+            va, vb = _extra(na, k), _extra(nb, k)
             if differs(sorted((va or {}).items()), sorted((vb or {}).items())):
                 ch[k] = {"old": va, "new": vb}
                 field = None
@@ -569,9 +570,8 @@ def _limit_view(j):
     return out
 
 
-def _extra(robot, j, k):
-    """mimic / dynamics / safety_controller of a joint as {attribute: number or text}."""
-    n = robot.node(j)
+def _extra(n, k):
+    """mimic / dynamics / safety_controller of a joint (its Node ``n``) as {attribute: number or text}."""
     c = n.child(k) if n is not None else None
     if c is None:
         return None
@@ -713,9 +713,9 @@ def _canon_val(s, side: Side):
 
 def canon(el, side: Side):
     """A Node (model/nodes.py) as nested tuples, numbers rounded and paths normalised."""
+    els = el.elements
     return (el.tag, tuple(sorted((k, _canon_val(v, side)) for k, v in el.attrs)),
-            _canon_val(el.text or "", side) if not el.elements else "",
-            tuple(canon(c, side) for c in el.elements))
+            _canon_val(el.text or "", side) if not els else "", tuple(canon(c, side) for c in els))
 
 
 def key_of(el) -> str:

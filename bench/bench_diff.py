@@ -13,9 +13,9 @@ pr2_description, the largest corpus robot, 83 files) with one property changed (
 Target (issue 26): the default diff (with check) <= 2x the two builds, in CPU time (user + sys of
 the process and its children): the figure to read on a shared machine, and the exit code judges
 it. Wall time is given too (diff builds its two sides in two processes at once when a core is
-idle, diff/run._idle_core, so its wall time is below its CPU time on a quiet machine). `python -c pass` and `import numpy` (one BLAS thread, as
-the CLI runs it) are timed in the same run to scale the figures to another machine: diff pays
-numpy's import, the two builds do not.
+idle, diff/run._idle_core, so its wall time is below its CPU time on a quiet machine).
+`python -c pass` and `import numpy` (one BLAS thread, as the CLI runs it) are timed in the same
+run to scale the figures to another machine: diff pays numpy's import, the two builds do not.
 """
 
 from __future__ import annotations

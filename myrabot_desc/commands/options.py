@@ -16,8 +16,8 @@ from collections import namedtuple
 from myrabot_desc.errors import UsageProblem
 from myrabot_desc.safety import LIMITS
 
-__all__ = ["BUILD_OPTS", "DIFF_OPTS", "INPUT_OPTS", "Inputs", "Opt", "UsageProblem", "input_options", "make_inputs", "parse_plain",
-           "usage_error"]
+__all__ = ["BUILD_OPTS", "DIFF_OPTS", "INPUT_OPTS", "Inputs", "Opt", "UsageProblem", "input_options", "make_inputs",
+           "parse_plain", "usage_error"]
 
 
 class Opt(namedtuple("Opt", "decls dest kind help metavar choices default", defaults=(None,))):

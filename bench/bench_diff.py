@@ -5,11 +5,17 @@
 Two corpus robots' real revisions (tests/fixtures/model_history: Husky's track narrowed, the
 UR10e's dynamics update) are committed into a git repository each, and the PR2 (tests/corpus'
 pr2_description, the largest corpus robot, 83 files) with one property changed (caster_offset_x
-0.2246 -> 0.23) as a second commit. Timed, interleaved, best of N, as fresh processes: `diff --rev HEAD~1..HEAD` (git
-archive of both revisions, two builds, two loads, the comparison, `check` on both sides),
-`diff --no-check`, and the two revisions built one after the other by `build` (two processes).
-Target: diff <= 2x the two builds. CPU time (user + sys of the process and its children) is the
-figure to read on a shared machine; wall time is given too.
+0.2246 -> 0.23) as a second commit. Timed as fresh processes, interleaved, best of N:
+`diff --rev HEAD~1..HEAD` (git archive of both revisions, two builds, two loads, the comparison,
+`check` on both sides), `diff --no-check`, and the two revisions built one after the other by
+`build` (two processes, `sh -c 'build A && build B'`).
+
+Target (issue 26): the default diff (with check) <= 2x the two builds, in CPU time (user + sys of
+the process and its children): the figure to read on a shared machine, and the exit code judges
+it. Wall time is given too (diff builds its two sides in two processes at once when a core is
+idle, diff/run._idle_core, so its wall time is below its CPU time on a quiet machine).
+`python -c pass` and `import numpy` (one BLAS thread, as the CLI runs it) are timed in the same
+run to scale the figures to another machine: diff pays numpy's import, the two builds do not.
 """
 
 from __future__ import annotations
@@ -95,12 +101,18 @@ def main(argv=None) -> int:
                 r = res[name]
                 rows.append([case, name, fmt_s(r["wall"]), fmt_s(r["cpu"]),
                              f"{r['wall'] / base['wall']:.2f}×", f"{r['cpu'] / base['cpu']:.2f}×"])
+        py = str(BIN / "python")
+        env = dict(bench_env(), OPENBLAS_NUM_THREADS="1")
+        ref = best_of({"python -c pass": [py, "-c", "pass"], "python -c 'import numpy'": [py, "-c", "import numpy"]},
+                      a.repeat, env=env)
     print(table(rows, ["revisions", "command", "wall", "cpu", "wall / two builds", "cpu / two builds"]))
+    print("this machine: " + "; ".join(f"{k} {fmt_s(v['cpu'])} cpu, {fmt_s(v['wall'])} wall" for k, v in ref.items()))
     worst = max(out[c]["diff"]["wall"] / out[c]["two builds"]["wall"] for c in out)
     worst_cpu = max(out[c]["diff"]["cpu"] / out[c]["two builds"]["cpu"] for c in out)
-    print(f"target: diff <= 2x two builds; worst {worst:.2f}x wall, {worst_cpu:.2f}x cpu")
-    save("diff", {"results": out, "worst_wall_ratio": worst, "worst_cpu_ratio": worst_cpu})
-    return 0 if worst <= 2.0 else 1
+    print(f"target: diff <= 2x two builds in CPU time; worst {worst_cpu:.2f}x cpu "
+          f"({'met' if worst_cpu <= 2.0 else 'not met'}), {worst:.2f}x wall")
+    save("diff", {"results": out, "reference": ref, "worst_wall_ratio": worst, "worst_cpu_ratio": worst_cpu})
+    return 0 if worst_cpu <= 2.0 else 1
 
 
 if __name__ == "__main__":

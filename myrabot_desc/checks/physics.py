@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 from myrabot_desc.checks.examples import drive_example as _drive
 from myrabot_desc.checks.rule import Finding, Fix, FixInfo, InsertAfter, SetValue, rule
 from myrabot_desc.errors import InputError
@@ -9,8 +11,10 @@ from myrabot_desc.model import drive as D
 from myrabot_desc.model.inertia import eigh3, tensor
 from myrabot_desc.model.kinematics import center_of_mass, pose_matrix
 from myrabot_desc.model.parts import JOINT_TYPES
+from myrabot_desc.model.pin_model import MAX_DOF
 from myrabot_desc.model.shapes import surface_points
 from myrabot_desc.model.support import lowest, placed_collisions, signed_distance, stance
+from myrabot_desc.model.tree import MAX_TREE_DEPTH, depth
 
 _FINGER = """<link name="finger">{inertial}</link>
 <joint name="finger_joint" type="revolute">
@@ -247,6 +251,12 @@ def dynamics_finite(ctx):
     """
     if not ctx.tree_ok or not ctx.robot.joints or _dynamics_surely_finite(ctx.robot):
         return
+    massless = _massless_leaf(ctx.robot)
+    if massless:
+        first = ctx.robot.joints[massless[0]]
+        yield Finding(f"ABA returns NaN at a random configuration: nothing below joint(s) {', '.join(massless[:6])} "
+                      "has mass", first.loc or ctx.robot.loc, {"algorithm": "ABA", "massless_joints": massless})
+        return
     import numpy as np
 
     try:
@@ -321,6 +331,61 @@ def _dynamics_surely_finite(robot) -> bool:
         if not positive and (ine.mass < 0 or w[0] < 0):
             return False
     return True
+
+
+def _massless_leaf(robot) -> list[str] | None:
+    """P003's finding without loading Pinocchio, when it surely fires: the joints Pinocchio would
+    name, in its order, or None to ask Pinocchio. Sure when urdfdom accepts the model, every number
+    is finite, every mass non-negative, every joint fixed, revolute, continuous or prismatic, and
+    some moving joint has nothing below it but links without mass and inertia: its articulated
+    inertia is zero, so ABA divides by zero there and returns NaN at every configuration, while
+    RNEA (no division) stays finite. The joints named are those whose subtree weighs nothing, in
+    the order Pinocchio numbers them: depth first from the root, a link's child joints by name
+    (urdfdom keeps its joints in a std::map). PR2's gripper joints are such: this saves loading
+    Pinocchio for them (a third of check's time)."""
+    if robot.load_issues or len(robot.roots) != 1 or depth(robot) > MAX_TREE_DEPTH:
+        return None
+    moving = ("revolute", "continuous", "prismatic")
+    fin = math.isfinite
+    for j in robot.joints.values():
+        if j.type not in moving and j.type != "fixed":
+            return None
+        if j.type in ("revolute", "prismatic") and (j.limit is None or j.limit.effort is None
+                                                    or j.limit.velocity is None):
+            return None
+        if not all(fin(v) for v in (*j.origin.xyz, *j.origin.rpy, *j.axis)):
+            return None
+    for link in robot.links.values():
+        ine = link.inertial
+        if ine is not None and not (all(fin(v) for v in (ine.mass, ine.ixx, ine.ixy, ine.ixz, ine.iyy, ine.iyz,
+                                                          ine.izz, *ine.origin.xyz, *ine.origin.rpy))
+                                    and ine.mass >= 0):
+            return None
+    if sum(j.type in moving for j in robot.joints.values()) > MAX_DOF:
+        return None
+    children = robot.joints_by_parent()
+    order, seen, stack = [], set(), [(robot.root, None)]
+    while stack:                                   # depth first; children by joint name
+        link, j = stack.pop()
+        if link in seen or link not in robot.links:
+            return None
+        seen.add(link)
+        order.append((link, j))
+        stack.extend((c.child, c) for c in sorted(children.get(link, ()), key=lambda c: c.name)[::-1])
+    if len(seen) != len(robot.links):
+        return None
+    heavy, inert = {}, {}                  # per link: something below weighs; something below has inertia
+    for link, _j in reversed(order):
+        ine = robot.links[link].inertial
+        h = ine is not None and ine.mass > 0
+        i = ine is not None and (ine.mass != 0 or any((ine.ixx, ine.ixy, ine.ixz, ine.iyy, ine.iyz, ine.izz)))
+        for c in children.get(link, ()):
+            h, i = h or heavy[c.child], i or inert[c.child]
+        heavy[link], inert[link] = h, i
+    joints = [j for _link, j in order if j is not None and j.type in moving]
+    if not any(not inert[j.child] for j in joints):
+        return None
+    return [j.name for j in joints if not heavy[j.child]]
 
 
 @rule("P004", "mass-summary", "info",

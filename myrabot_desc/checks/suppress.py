@@ -73,15 +73,17 @@ class Suppression(NamedTuple):
     whole_file: bool
 
 
-_cache: dict = {}        # (resolved path, mtime_ns, size) -> [Suppression] (one read per file per process)
+_cache: dict = {}        # (device, inode, mtime_ns, ctime_ns, size) -> [Suppression] (one read per file per process)
 
 
 def suppressions_in(file: str) -> list[Suppression]:
-    """Every suppression comment of one source file (cached per file version)."""
+    """Every suppression comment of one source file (cached per file version: the file itself, by
+    device and inode, whatever name it is read by; the two revisions ``diff --rev`` exports share
+    the files they have in common)."""
     p = Path(file)
     try:
         st = p.stat()
-        key = (str(p.resolve()), st.st_mtime_ns, st.st_size)
+        key = (st.st_dev, st.st_ino, st.st_mtime_ns, st.st_ctime_ns, st.st_size)
     except OSError:
         return []
     if key in _cache:

@@ -1,4 +1,5 @@
-"""``myrabot-desc diff``: what a change does to the built robot (diff/run.py)."""
+"""``myrabot-desc diff``: what a change does to the built robot (diff/run.py). The click command
+of commands/fastdiff.py's run_diff, its options from the one table (options.DIFF_OPTS)."""
 
 from __future__ import annotations
 
@@ -6,37 +7,22 @@ import sys
 
 import click
 
-from myrabot_desc import __version__
 from myrabot_desc.commands.common import input_options
-from myrabot_desc.commands.console import guarded
-from myrabot_desc.commands.options import usage_error
-from myrabot_desc.diff.report import markdown, text, to_json
-from myrabot_desc.diff.run import diff_paths, diff_revisions
+from myrabot_desc.commands.fastdiff import run_diff
+from myrabot_desc.commands.options import DIFF_OPTS, usage_error
 from myrabot_desc.errors import UsageProblem
-from myrabot_desc.output import write_output
-from myrabot_desc.render import Layers, choose_gl, png_bytes, render_image
-from myrabot_desc.view.scene import build_scene
+
+
+def _diff_options(f):
+    for o in reversed(DIFF_OPTS):
+        f = o.click_option()(f)
+    return f
 
 
 @click.command("diff")
 @input_options(multiple=True)
-@click.option("--rev", "rev", metavar="A..B | A",
-              help="Compare FILE at git revision A with revision B (A..B) or with the work tree (A). The revisions "
-                   "are read with git into a temporary folder; the work tree is not touched.")
-@click.option("--format", "fmt", type=click.Choice(["text", "json", "markdown"]), default="text", show_default=True,
-              help="Report format (markdown: a pull-request comment).")
-@click.option("--no-check", is_flag=True, help="Do not compare the findings of `check` (faster).")
-@click.option("--select", "select", multiple=True, metavar="CODES", help="Only these check codes or prefixes.")
-@click.option("--ignore", "ignore", multiple=True, metavar="CODES", help="Skip these check codes or prefixes.")
-@click.option("--image", metavar="URL", help="Markdown: show this before/after picture (e.g. --picture's, uploaded).")
-@click.option("--picture", metavar="PNG", help="Render the robot before and after, side by side, into this PNG "
-              "(MuJoCo offscreen, as `render`).")
-@click.option("--limit", type=click.IntRange(min=1), default=25, show_default=True,
-              help="Markdown: rows in the table (the largest changes).")
-@click.option("-o", "--output", type=click.Path(dir_okay=False), default="-", show_default=True,
-              help="Write the report to a file instead of stdout.")
-@click.option("--exit-zero", is_flag=True, help="Exit 0 when there are changes too (a report, not a gate).")
-def diff_cmd(inputs, rev, fmt, no_check, select, ignore, image, picture, limit, output, exit_zero):
+@_diff_options
+def diff_cmd(inputs, **values):
     """Show what changed in the built robot between two models, or one model at two git revisions.
 
     Links, joints and sensors added, removed or renamed; frames moved (mm, deg) at the zero and
@@ -58,57 +44,8 @@ def diff_cmd(inputs, rev, fmt, no_check, select, ignore, image, picture, limit, 
     Exit codes (as `git diff --exit-code`): 0 no change; 1 changes; 2 a model could not be
     built or the command line is wrong.
     """
-    with guarded():
-        files = inputs.files
-        try:
-            if rev is not None:
-                if len(files) != 1:
-                    raise UsageProblem(f"--rev takes one FILE, got {len(files)}")
-            elif len(files) != 2:
-                raise UsageProblem(f"expected OLD NEW (two files) or FILE --rev A..B, got {len(files)} file(s)")
-            build = inputs.build_options()
-            kw = dict(checks=not no_check, select=_codes(select), ignore=_codes(ignore),
-                      while_open=(lambda res: _picture(res, picture)) if picture else None)
-            if rev is not None:
-                res = diff_revisions(files[0], rev, build, **kw)
-            else:
-                res = diff_paths(files[0], files[1], build, **kw)
-        except UsageProblem as exc:
-            raise usage_error(exc) from None
-        if fmt == "json":
-            out = to_json(res, __version__)
-        elif fmt == "markdown":
-            out = markdown(res, limit=limit, image=image or picture)
-        else:
-            out = text(res)
-        if output == "-":
-            click.echo(out, nl=False)
-        else:
-            write_output(output, out)
-    sys.exit(1 if res.items and not exit_zero else 0)
-
-
-def _codes(values) -> tuple:
-    out = []
-    for v in values:
-        out += [c.strip() for c in v.split(",") if c.strip()]
-    return tuple(out)
-
-
-def _picture(res, path: str) -> None:
-    """The two robots at their rest pose, iso view, side by side (before | after), into ``path``."""
-    from PIL import ImageDraw
-
-    choose_gl()
-    tiles = []
-    for robot in (res.old, res.new):
-        scene = build_scene(robot)
-        tiles.append(render_image(scene, robot.rest_pose(), ("iso",), (600, 450), Layers()))
-    img = tiles[0].resize((1200, 450))
-    img.paste(tiles[0], (0, 0))
-    img.paste(tiles[1], (600, 0))
-    draw = ImageDraw.Draw(img)
-    draw.line([(600, 0), (600, 450)], fill=(160, 160, 160), width=2)
-    for x, label in ((12, "before"), (612, "after")):
-        draw.text((x, 10), label, fill=(0, 0, 0))
-    write_output(path, png_bytes(img))
+    try:
+        code = run_diff(inputs, **values)
+    except UsageProblem as exc:
+        raise usage_error(exc) from None
+    sys.exit(code)

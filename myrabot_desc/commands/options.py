@@ -10,20 +10,21 @@ and ``build --help`` import this module and must start fast (bench/bench_start.p
 
 from __future__ import annotations
 
+import os
 from collections import namedtuple
 
 from myrabot_desc.errors import UsageProblem
 from myrabot_desc.safety import LIMITS
 
-__all__ = ["BUILD_OPTS", "INPUT_OPTS", "Inputs", "Opt", "UsageProblem", "input_options", "make_inputs", "parse_plain",
-           "usage_error"]
+__all__ = ["BUILD_OPTS", "DIFF_OPTS", "INPUT_OPTS", "Inputs", "Opt", "UsageProblem", "input_options", "make_inputs",
+           "parse_plain", "usage_error"]
 
 
-class Opt(namedtuple("Opt", "decls dest kind help metavar choices")):
+class Opt(namedtuple("Opt", "decls dest kind help metavar choices default", defaults=(None,))):
     """One command-line option, the one definition of it: click's option and the fast parser
-    (parse_plain) both come from it. kind: "flag", "value" (one string, default None),
-    "multi" (repeatable, a tuple), "choice" (default choices[0], shown), "count" (a whole
-    number >= 1, default None)."""
+    (parse_plain) both come from it. kind: "flag", "value" (one string), "multi" (repeatable, a
+    tuple), "choice" (default choices[0], shown), "count" (a whole number >= 1), "file" (a path
+    that is not a folder). ``default``: of "value", "count" and "file" (None; shown when set)."""
 
     __slots__ = ()
 
@@ -37,10 +38,14 @@ class Opt(namedtuple("Opt", "decls dest kind help metavar choices")):
             kw["multiple"] = True
         elif self.kind == "choice":
             kw.update(type=click.Choice(list(self.choices)), default=self.choices[0], show_default=True)
-        elif self.kind == "count":
-            kw.update(type=click.IntRange(min=1), default=None)
         else:
-            kw["default"] = None
+            if self.kind == "count":
+                kw["type"] = click.IntRange(min=1)
+            elif self.kind == "file":
+                kw["type"] = click.Path(dir_okay=False)
+            kw["default"] = self.default
+            if self.default is not None:
+                kw["show_default"] = True
         if self.metavar:
             kw["metavar"] = self.metavar
         return click.option(*self.decls, self.dest, **kw)
@@ -82,6 +87,26 @@ BUILD_OPTS = (
         None, None) for lim in LIMITS if lim.flag)
 
 
+# diff's own options (commands/fastdiff.py runs them; commands/diff.py is their click command).
+DIFF_OPTS = (
+    Opt(("--rev",), "rev", "value", "Compare FILE at git revision A with revision B (A..B) or with the work tree (A). "
+        "The revisions are read with git into a temporary folder; the work tree is not touched.", "A..B | A", None),
+    Opt(("--format",), "fmt", "choice", "Report format (markdown: a pull-request comment).", None,
+        ("text", "json", "markdown")),
+    Opt(("--no-check",), "no_check", "flag", "Do not compare the findings of `check` (faster).", None, None),
+    Opt(("--select",), "select", "multi", "Only these check codes or prefixes.", "CODES", None),
+    Opt(("--ignore",), "ignore", "multi", "Skip these check codes or prefixes.", "CODES", None),
+    Opt(("--image",), "image", "value", "Markdown: show this before/after picture (e.g. --picture's, uploaded).",
+        "URL", None),
+    Opt(("--picture",), "picture", "value", "Render the robot before and after, side by side, into this PNG "
+        "(MuJoCo offscreen, as `render`).", "PNG", None),
+    Opt(("--limit",), "limit", "count", "Markdown: rows in the table (the largest changes).", None, None, 25),
+    Opt(("-o", "--output"), "output", "file", "Write the report to a file instead of stdout.", None, None, "-"),
+    Opt(("--exit-zero",), "exit_zero", "flag", "Exit 0 when there are changes too (a report, not a gate).",
+        None, None),
+)
+
+
 def parse_plain(argv, opts) -> dict | None:
     """``argv`` parsed as click would parse it for these options (values by dest, the
     positionals under "args"), when it uses only plain forms: ``--name VALUE``,
@@ -90,7 +115,7 @@ def parse_plain(argv, opts) -> dict | None:
     ``-``) gives None: click then parses it, with its own messages and exit codes."""
     by_decl = {d: o for o in opts for d in o.decls}
     values = {o.dest: False if o.kind == "flag" else () if o.kind == "multi" else
-              o.choices[0] if o.kind == "choice" else None for o in opts}
+              o.choices[0] if o.kind == "choice" else o.default for o in opts}
     args = []
     i, n = 0, len(argv)
     while i < n:
@@ -123,6 +148,10 @@ def parse_plain(argv, opts) -> dict | None:
             if not (value.isascii() and value.isdigit() and int(value) >= 1):
                 return None
             values[o.dest] = int(value)
+        elif o.kind == "file":
+            if os.path.isdir(value):
+                return None
+            values[o.dest] = value
         else:
             values[o.dest] = value
     values["args"] = tuple(args)

@@ -14,8 +14,9 @@ no change.
 
 from __future__ import annotations
 
-import hashlib
+import filecmp
 import math
+import os
 from typing import Any, NamedTuple
 
 from myrabot_desc.errors import InputError
@@ -162,7 +163,6 @@ class Side:
         self.label = label
         self.placeholders = sorted(placeholders.items(), key=lambda kv: -len(kv[0]))   # path text -> placeholder
         self._frames = {}
-        self._hash: dict = {}
         self._extent: dict = {}
 
     def norm(self, text):
@@ -179,17 +179,6 @@ class Side:
             q = self.robot.rest_pose() if pose == "rest" else None
             f = self._frames[pose] = world_transforms(self.robot, q)
         return f
-
-    def mesh_hash(self, g):
-        if g.path is None:
-            return None
-        key = str(g.path)
-        if key not in self._hash:
-            try:
-                self._hash[key] = hashlib.sha1(g.path.read_bytes()).hexdigest()
-            except OSError:
-                self._hash[key] = None
-        return self._hash[key]
 
     def extent(self, g):
         """The mesh's axis-aligned extents in mm (scale applied), or None when it cannot be read."""
@@ -270,6 +259,23 @@ def geom_text(s: dict) -> str:
     return "no geometry"
 
 
+def _same_bytes(a, b) -> bool:
+    """Two mesh files hold the same bytes (compared, not hashed: most sizes differ or the files
+    match; an unreadable file is the same as another unreadable one)."""
+    def size(p):
+        try:
+            return os.stat(p).st_size if p is not None else None
+        except OSError:
+            return None
+    sa, sb = size(a), size(b)
+    if sa is None or sb is None or sa != sb:
+        return sa is None and sb is None
+    try:
+        return filecmp.cmp(a, b, shallow=False)
+    except OSError:
+        return False
+
+
 def _same_shape(x, y, so: Side, sn: Side) -> bool:
     """Two visuals/collisions are the same: origin, geometry and, for a mesh, the file's content."""
     if differs(x.origin.xyz, y.origin.xyz) or differs(x.origin.rpy, y.origin.rpy):
@@ -278,8 +284,7 @@ def _same_shape(x, y, so: Side, sn: Side) -> bool:
     if gx != gy:
         return False
     if x.geometry is not None and x.geometry.kind == "mesh":
-        hx, hy = so.mesh_hash(x.geometry), sn.mesh_hash(y.geometry)
-        if hx != hy and so.extent(x.geometry) != sn.extent(y.geometry):
+        if not _same_bytes(x.geometry.path, y.geometry.path) and so.extent(x.geometry) != sn.extent(y.geometry):
             return False
     return True
 
@@ -347,8 +352,9 @@ class _Builder:
                              (raw,) if raw is not None else ())
             if d:
                 ch["limit"] = d
+        na, nb = so.robot.node(a), sn.robot.node(b)          # each joint's markup read once for the three
         for k in ("mimic", "dynamics", "safety_controller"):
-            va, vb = _extra(so.robot, a, k), _extra(sn.robot, b, k)
+            va, vb = _extra(na, k), _extra(nb, k)
             if differs(sorted((va or {}).items()), sorted((vb or {}).items())):
                 ch[k] = {"old": va, "new": vb}
                 field = None
@@ -564,9 +570,8 @@ def _limit_view(j):
     return out
 
 
-def _extra(robot, j, k):
-    """mimic / dynamics / safety_controller of a joint as {attribute: number or text}."""
-    n = robot.node(j)
+def _extra(n, k):
+    """mimic / dynamics / safety_controller of a joint (its Node ``n``) as {attribute: number or text}."""
     c = n.child(k) if n is not None else None
     if c is None:
         return None
@@ -708,9 +713,9 @@ def _canon_val(s, side: Side):
 
 def canon(el, side: Side):
     """A Node (model/nodes.py) as nested tuples, numbers rounded and paths normalised."""
+    els = el.elements
     return (el.tag, tuple(sorted((k, _canon_val(v, side)) for k, v in el.attrs)),
-            _canon_val(el.text or "", side) if not el.elements else "",
-            tuple(canon(c, side) for c in el.elements))
+            _canon_val(el.text or "", side) if not els else "", tuple(canon(c, side) for c in els))
 
 
 def key_of(el) -> str:

@@ -716,6 +716,15 @@ def _lazy_xacro_cli() -> None:
     sys.modules["xacro.cli"] = stub
 
 
+def load_engine() -> None:
+    """Import xacro as a build does (lazy PyYAML and command-line module), before building: a
+    caller that forks to build twice (``diff``) imports it once instead of in both processes."""
+    _lazy_yaml()
+    _lazy_xacro_cli()
+    import xacro  # noqa: F401
+    import xacro.substitution_args  # noqa: F401
+
+
 def _lazy_yaml() -> None:
     """Put a lazy PyYAML in sys.modules before xacro imports it (xacro.substitution_args imports
     it at module top, ~15 ms): it loads on first use, which for a build is our own YAML loader

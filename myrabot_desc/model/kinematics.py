@@ -167,10 +167,7 @@ def _walk(robot: Robot, children) -> tuple[list[str], dict, dict]:
 def _world_transforms(robot: Robot, q, root_pose, frozen: bool = False) -> dict[str, np.ndarray]:
     import numpy as np
 
-    q = dict(q or {})
-    for j in robot.joints.values():
-        if j.mimic and j.mimic.joint in q and j.name not in q:
-            q[j.name] = q[j.mimic.joint] * j.mimic.multiplier + j.mimic.offset
+    q = _with_mimic(robot, q)
     children = robot.joints_by_parent()
     base = np.eye(4) if root_pose is None else root_pose
     if frozen:
@@ -200,6 +197,66 @@ def _world_transforms(robot: Robot, q, root_pose, frozen: bool = False) -> dict[
             out[j.child] = T[k]
             level.append(j.child)
     return {link: out[link] for link in order}
+
+
+def _with_mimic(robot: Robot, q) -> dict:
+    """``q`` with each mimic joint following its target (as ``world_transforms`` places them)."""
+    q = dict(q or {})
+    for j in robot.joints.values():
+        if j.mimic and j.mimic.joint in q and j.name not in q:
+            q[j.name] = q[j.mimic.joint] * j.mimic.multiplier + j.mimic.offset
+    return q
+
+
+def world_transforms_from(robot: Robot, W: dict, q0: dict, q: dict) -> tuple[dict, frozenset]:
+    """``world_transforms(robot, q)`` from ``W = world_transforms(robot, q0)``, and the links whose
+    transform was recomputed: only the links below a joint whose position differs between ``q0``
+    and ``q`` (mimic joints included) are, with the same stacked products as ``world_transforms``
+    (so the same bits); the others keep ``W``'s arrays. A sampled pose that moves one joint of a
+    large robot costs the size of that joint's subtree, not of the robot."""
+    import numpy as np
+
+    a, b = _with_mimic(robot, q0), _with_mimic(robot, q)
+    changed = frozenset(j.name for j in robot.joints.values() if a.get(j.name, 0.0) != b.get(j.name, 0.0))
+    out = dict(W)
+    if not changed:
+        return out, frozenset()
+    steps, dirty = _replan(robot, changed)
+    for todo, P, norms in steps:
+        parents = np.array([out[j.parent] for j in todo], dtype=float)
+        flat: list[float] = []
+        for j, n in zip(todo, norms):
+            flat.extend(_motion_flat(j, n, b.get(j.name, 0.0)))
+        T = parents @ P @ np.array(flat, dtype=float).reshape(-1, 4, 4)
+        for k, j in enumerate(todo):
+            out[j.child] = T[k]
+    return out, dirty
+
+
+def _replan(robot: Robot, changed: frozenset) -> tuple[list, frozenset]:
+    """What ``world_transforms_from`` places again when the joints ``changed`` move, level by level
+    from the roots: (the joints, their origins stacked, their axes' norms) per level, and the links
+    placed again. The same for every position of those joints (a sweep samples each joint's range),
+    so it is made once per robot and set of joints."""
+    def build():
+        order, via, kids = robot.derive("kinematics.walk", lambda: _walk(robot, robot.joints_by_parent()))
+        dirty: set[str] = set()
+        steps = []
+        level = [link for link in order if via[link] is None]
+        while level:
+            joints = [j for link in level for j in kids.get(link, ())]
+            if not joints:
+                break
+            todo = [j for j in joints if j.name in changed or j.parent in dirty]
+            if todo:
+                moving = [j for j in todo if j.type in _MOVING]
+                norm = dict(zip(map(id, moving), _norms([j.axis for j in moving])))
+                steps.append((todo, pose_stack(j.origin for j in todo), [norm.get(id(j), 0.0) for j in todo]))
+                dirty.update(j.child for j in todo)
+            level = [j.child for j in joints]
+        return steps, frozenset(dirty)
+
+    return robot.derive(("kinematics.replan", changed), build)
 
 
 def joint_world_transforms(robot: Robot, q: dict[str, float] | None = None) -> dict[str, np.ndarray]:

@@ -22,7 +22,8 @@ from __future__ import annotations
 import math
 from typing import NamedTuple
 
-from myrabot_desc.model.kinematics import _norms, axis_angle, pose_matrix, pose_stack, world_transforms
+from myrabot_desc.model.kinematics import _norms, axis_angle, pose_matrix, pose_stack, world_transforms, \
+    world_transforms_from
 
 SAMPLES = 13             # values per joint range: 15 degrees apart on a half-turn range
 MOVING = ("revolute", "continuous", "prismatic")
@@ -139,6 +140,7 @@ def gravity_needs(robot, samples: int = SAMPLES, joints=None) -> list[Need]:
     by_tin = np.argsort(ci, kind="stable")           # asked joints by their child's place in preorder
     tin_sorted = ci[by_tin]
     up = _asked_above(robot, names, order, pos, parent) if len(levels) <= 64 else None   # shallow: walk up
+    full = None
     vals = {j.name: sample_values(j, samples) for j in movers}
     turned = [j for j in movers if j.type != "prismatic" and j.name not in followers and len(vals[j.name]) == samples]
     R_of = {}
@@ -170,8 +172,9 @@ def gravity_needs(robot, samples: int = SAMPLES, joints=None) -> list[Need]:
         if not len(idx):
             continue
         if j.name in followers:          # a mimic follows it: the whole pose, the slow way
-            T = np.array([_full_tree(robot, rest, j.name, x, names, (links, pos, parent, levels, M, prism),
-                                     torques) for x in values])[:, idx]
+            if full is None:
+                full = _FullTree(robot, rest, W, names, links, pos, parent, levels, M, prism)
+            T = np.array([full.torques(j.name, x, torques) for x in values])[:, idx]
         else:
             p0, a0 = frames[j.name]
             d = np.asarray(values) - rest.get(j.name, 0.0)
@@ -433,28 +436,53 @@ def _gravity_needs_dense(robot, samples: int = SAMPLES, joints=None) -> list[Nee
     return out
 
 
-def _full_tree(robot, rest, name, x, names, tree, torques):
-    """``gravity_needs``' torques with joint ``name`` at ``x`` from the whole pose's transforms
-    (mimic joints follow it)."""
-    import numpy as np
+class _FullTree:
+    """``gravity_needs``' torques with one joint moved and the mimic joints following it, from the
+    pose's transforms. Only the links below the joints that move are placed again
+    (``world_transforms_from``); the rest keep their rest-pose rows, made once by the same products."""
 
-    links, pos, parent, levels, M, prism = tree
-    q = dict(rest)
-    q[name] = x
-    W = world_transforms(robot, q)
-    own_mc = np.zeros((len(pos), 3))
-    for link in links:
-        own_mc[pos[link.name]] = link.inertial.mass * (W[link.name] @ pose_matrix(link.inertial.origin))[:3, 3]
-    Qtot = _subtree_sums(own_mc, parent, levels)
-    P, A = [], []
-    for n in names:
-        j = robot.joints[n]
+    def __init__(self, robot, rest, W, names, links, pos, parent, levels, M, prism):
+        import numpy as np
+
+        self.robot, self.rest, self.W, self.names, self.links = robot, rest, W, names, links
+        self.pos, self.parent, self.levels, self.M, self.prism = pos, parent, levels, M, prism
+        self.own_mc = np.zeros((len(pos), 3))
+        for link in links:
+            self.own_mc[pos[link.name]] = self._moment(link, W)
+        self.P = np.array([self._frame(robot.joints[n], W)[0] for n in names]).reshape(-1, 3)
+        self.A = np.array([self._frame(robot.joints[n], W)[1] for n in names]).reshape(-1, 3)
+        self.ci = [pos[robot.joints[n].child] for n in names]
+        self._rows: dict = {}
+
+    @staticmethod
+    def _moment(link, W):
+        return link.inertial.mass * (W[link.name] @ pose_matrix(link.inertial.origin))[:3, 3]
+
+    @staticmethod
+    def _frame(j, W):
+        import numpy as np
+
         F = W[j.parent] @ pose_matrix(j.origin)
         a = F[:3, :3] @ np.asarray(j.axis, dtype=float)
         norm = np.linalg.norm(a)
-        P.append(F[:3, 3])
-        A.append(a / norm if norm > 0 else a)
-    return torques(Qtot[[pos[robot.joints[n].child] for n in names]], np.array(P), np.array(A), M, prism)
+        return F[:3, 3], (a / norm if norm > 0 else a)
+
+    def torques(self, name, x, torques):
+        q = dict(self.rest)
+        q[name] = x
+        W, moved = world_transforms_from(self.robot, self.W, self.rest, q)
+        rows = self._rows.get(moved)
+        if rows is None:         # the links and joint frames that move: the same for every sample of a joint
+            rows = self._rows[moved] = ([link for link in self.links if link.name in moved],
+                                        [(k, self.robot.joints[n]) for k, n in enumerate(self.names)
+                                         if self.robot.joints[n].parent in moved])
+        own_mc, P, A = self.own_mc.copy(), self.P.copy(), self.A.copy()
+        for link in rows[0]:
+            own_mc[self.pos[link.name]] = self._moment(link, W)
+        for k, j in rows[1]:
+            P[k], A[k] = self._frame(j, W)
+        Qtot = _subtree_sums(own_mc, self.parent, self.levels)
+        return torques(Qtot[self.ci], P, A, self.M, self.prism)
 
 
 def _full(robot, rest, name, x, names, masses, torques):

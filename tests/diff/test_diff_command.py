@@ -277,3 +277,47 @@ def test_before_after_picture(tmp_path):
     fg = np.abs(img - np.array(BACKGROUND)).sum(axis=2) > 6
     left, right = fg[60:, :590], fg[60:, 610:]
     assert left.sum() > 10000 and right.sum() > 10000 and (left != right).sum() > 1000
+
+
+def test_the_second_revision_links_the_files_the_first_holds(tmp_path):
+    """vcs.export(like=...): a file with the same bytes as the other revision's is the same file
+    (linked, not written again); a changed one, a new one and a symbolic link are its own."""
+    from myrabot_desc.vcs import export
+
+    repo = tmp_path / "repo"
+    (repo / "urdf").mkdir(parents=True)
+    git(repo, "init", "-q")
+    (repo / "urdf" / "same.xacro").write_text("<robot/>\n")
+    (repo / "urdf" / "changed.xacro").write_text("<robot name='a'/>\n")
+    (repo / "urdf" / "link.xacro").symlink_to("same.xacro")
+    git(repo, "add", "-A")
+    git(repo, "commit", "-q", "-m", "a")
+    (repo / "urdf" / "changed.xacro").write_text("<robot name='b'/>\n")
+    (repo / "urdf" / "new.xacro").write_text("<robot/>\n")
+    git(repo, "add", "-A")
+    git(repo, "commit", "-q", "-m", "b")
+    a, b = tmp_path / "a", tmp_path / "b"
+    a.mkdir()
+    b.mkdir()
+    export(repo, "HEAD~1", a)
+    export(repo, "HEAD", b, like=a)
+    assert (b / "urdf" / "same.xacro").stat().st_ino == (a / "urdf" / "same.xacro").stat().st_ino
+    assert (b / "urdf" / "changed.xacro").read_text() == "<robot name='b'/>\n"
+    assert (b / "urdf" / "changed.xacro").stat().st_ino != (a / "urdf" / "changed.xacro").stat().st_ino
+    assert (b / "urdf" / "new.xacro").read_text() == "<robot/>\n" and not (a / "urdf" / "new.xacro").exists()
+    assert (b / "urdf" / "link.xacro").is_symlink() and (b / "urdf" / "link.xacro").read_text() == "<robot/>\n"
+
+
+def test_the_same_report_with_the_second_build_forked_or_not(tmp_path, monkeypatch):
+    """diff builds the other side in a forked process when a core is idle, else in this one."""
+    from myrabot_desc.diff import run
+
+    bot(tmp_path / "old.urdf")
+    bot(tmp_path / "new.urdf", mass=2.5, x=0.125, yaw=0.5)
+    out = []
+    for idle in (True, False):
+        monkeypatch.setattr(run, "_idle_core", lambda idle=idle: idle)
+        r = invoke("diff", tmp_path / "old.urdf", tmp_path / "new.urdf", "--format", "json")
+        assert r.exit_code == 1
+        out.append(json.loads(r.output)["changes"])
+    assert out[0] == out[1] and out[0]

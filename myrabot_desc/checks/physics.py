@@ -253,9 +253,7 @@ def dynamics_finite(ctx):
         return
     massless = _massless_leaf(ctx.robot)
     if massless:
-        first = ctx.robot.joints[massless[0]]
-        yield Finding(f"ABA returns NaN at a random configuration: nothing below joint(s) {', '.join(massless[:6])} "
-                      "has mass", first.loc or ctx.robot.loc, {"algorithm": "ABA", "massless_joints": massless})
+        yield _nan_finding(ctx.robot, "ABA", massless)
         return
     import numpy as np
 
@@ -289,17 +287,23 @@ def dynamics_finite(ctx):
         if model.parents[i] > 0:
             sub_mass[model.parents[i]] += sub_mass[i]
     massless = [model.names[i] for i in range(1, model.njoints) if sub_mass[i] <= 0]
-    first = ctx.robot.joints.get(massless[0]) if massless else None
-    virtual = D.virtual_joints(ctx.robot)
+    yield _nan_finding(ctx.robot, bad, massless)
+
+
+def _nan_finding(robot, bad: str, massless: list) -> Finding:
+    """P003's finding: the algorithm that returned NaN and the joints with no mass below them; a
+    warning when all of them are virtual (model/drive.virtual_joints)."""
+    first = robot.joints.get(massless[0]) if massless else None
+    virtual = D.virtual_joints(robot)
     kinematic = bool(massless) and all(n in virtual for n in massless)
-    yield Finding(f"{bad} returns NaN at a random configuration"
-                  + (f": nothing below joint(s) {', '.join(massless[:6])} has mass" if massless else
-                     ": the mass matrix is singular")
-                  + (" (virtual joints that other joints mimic: a kinematic model's, which a dynamics simulator "
-                     "cannot integrate)" if kinematic else ""),
-                  (first.loc if first else None) or ctx.robot.loc,
-                  {"algorithm": bad, "massless_joints": massless, "virtual": kinematic},
-                  severity="warning" if kinematic else None)
+    return Finding(f"{bad} returns NaN at a random configuration"
+                   + (f": nothing below joint(s) {', '.join(massless[:6])} has mass" if massless else
+                      ": the mass matrix is singular")
+                   + (" (virtual joints that other joints mimic: a kinematic model's, which a dynamics simulator "
+                      "cannot integrate)" if kinematic else ""),
+                   (first.loc if first else None) or robot.loc,
+                   {"algorithm": bad, "massless_joints": massless, "virtual": kinematic},
+                   severity="warning" if kinematic else None)
 
 
 def _dynamics_surely_finite(robot) -> bool:

@@ -787,14 +787,22 @@ def _prepare_by_shape(expr: str, shapes: dict):
         return None
 
 
+# Vetted, compiled expressions by their text, shared by the builds of one process (a diff builds two
+# revisions that mostly write the same expressions): what ``prepare`` makes depends on the text alone,
+# the helpers an expression calls are checked against each build's table at every call. Bounded.
+_PREPARED: dict[str, tuple] = {}
+_SHAPES: dict[str, tuple | None] = {}
+MAX_PREPARED = 100_000
+
+
 def make_safe_eval(original_safe_eval, refuse, max_seconds: float = MAX_EVAL_SECONDS):
     """A drop-in for ``xacro.safe_eval`` (for one build); ``refuse(expr, reason)`` raises our error."""
     import xacro
 
     genuine, genuine_ns = _genuine(xacro._global_symbols)
-    cache: dict[str, tuple] = {}
+    cache = _PREPARED
     budget = Budget(max_seconds)
-    shapes: dict[str, tuple | None] = {}
+    shapes = _SHAPES
 
     def prepare(expr):
         """Vet and compile once per expression text; remember which helpers it calls."""
@@ -813,7 +821,9 @@ def make_safe_eval(original_safe_eval, refuse, max_seconds: float = MAX_EVAL_SEC
             if entry is None:
                 if not isinstance(expr, str):
                     raise RefusedExpression(f"not an expression: {type(expr).__name__}")
-                entry = cache[expr] = prepare(expr)
+                entry = prepare(expr)
+                if len(cache) < MAX_PREPARED:
+                    cache[expr] = entry
             code, calls = entry
             for kind, name in calls:
                 if kind == "name":

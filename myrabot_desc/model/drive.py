@@ -1183,7 +1183,7 @@ def wheel_contact(robot, link: str, T=None) -> Contact:
         if "mu1" in v or "mu2" in v:
             vec = v.get("fdir1")
             R = _collision_rotation(robot, link, T)
-            # an unreadable value is the value rules' finding; the simulator then uses its default
+            # an unreadable value is T010 (the loader's); here the default keeps the rest judged
             mu1, mu2 = (float(v[k]) if isinstance(v.get(k), (int, float)) else FRICTION_DEFAULT for k in ("mu1", "mu2"))
             return Contact(link, mu1, mu2,
                            _unit(rotate(R, vec)) if vec else None, "classic")

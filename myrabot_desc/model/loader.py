@@ -22,7 +22,7 @@ from myrabot_desc.expand.packages import (  # noqa: F401  (BUNDLED_ASSEMBLY, bun
     split_package_uri,
 )
 from myrabot_desc.model import values as V
-from myrabot_desc.model.gazebo import typed_properties
+from myrabot_desc.model.gazebo import NUMBERS, VECTORS, typed_properties
 from myrabot_desc.model.nodes import node
 from myrabot_desc.model.parts import (
     Actuator,
@@ -546,10 +546,25 @@ def _gazebo_block(r: _Reader, g) -> GazeboBlock:
             sensors.append(_sensor(r, c, ref))
         elif ns.endswith("#controller") or (not ns and name == "plugin"):
             plugins.append(_plugin(r, c, ref, None))
-        elif len(c) == 0:
-            props.setdefault(name, _text(c))
+        elif len(c) == 0 and name not in props:
+            props[name] = _text(c)
+            _vet_property(r, c, name, props[name])
     return GazeboBlock(ref, node(g, r.loc), props, tuple(plugins), tuple(sensors), r.loc(g), g,
                        typed_properties(props))
+
+
+def _vet_property(r: _Reader, el, name: str, text: str | None) -> None:
+    """T010 for a number or vector property (mu1, kp, fdir1...) whose text sdformat cannot read: its
+    converter (``ign sdf -p``, Gazebo's spawn) aborts with std::invalid_argument from stod."""
+    if text is None or not text.strip() or (name not in NUMBERS and name not in VECTORS):
+        return
+    try:
+        if name in NUMBERS:
+            V.parse_number(text)
+        else:
+            V.parse_vector(text, VECTORS[name])
+    except V.ValueProblem as exc:
+        r.issue(el, V.problem(name, text.strip(), exc.reason) + " (sdformat's URDF converter aborts on it)")
 
 
 # ---------------------------------------------------------------- transmissions, ros2_control

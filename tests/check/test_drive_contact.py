@@ -1,5 +1,5 @@
 """G019 reads a mecanum wheel's contact in Gazebo classic's form too (mu1, mu2, fdir1 in a
-<gazebo reference> block), and a value it cannot read is the simulator's default, not a crash."""
+<gazebo reference> block); a value sdformat cannot read is one T010 at its element, not a crash."""
 
 from __future__ import annotations
 
@@ -53,6 +53,29 @@ def test_classic_plain_or_swapped_wheels_are_found(tmp_path):
     assert "sideways at -1×" in g["message"]
 
 
-def test_an_unreadable_friction_is_the_default_not_a_crash(tmp_path):
-    codes = _codes(_base(tmp_path, mu1="abc"))
-    assert "G017" not in codes and "G019" not in codes      # mu1 1 by default: the diagonals still grip
+def test_an_unreadable_friction_is_one_error_at_its_line_not_a_crash(tmp_path):
+    """`<mu1>abc</mu1>`: sdformat's converter aborts on it (`ign sdf -p`: std::invalid_argument from
+    stod), so it is T010 at the element, once per block; G019 judges the rest with the default."""
+    f = _base(tmp_path, mu1="abc")
+    res = invoke("check", str(f), "--format", "json")
+    assert res.exit_code == 1, res.output[-1500:]
+    diags = json.loads(res.stdout)["files"][0]["diagnostics"]
+    t010 = [d for d in diags if d["code"] == "T010"]
+    assert len(t010) == 4 and all(d["message"] == "<mu1>abc</mu1>: not a number (sdformat's URDF converter aborts "
+                                  "on it)" for d in t010)
+    assert not [d for d in diags if d["code"] in ("G017", "G019")]
+    res = invoke("convert", str(f), "--to", "sdf", "-o", str(tmp_path / "out.sdf"))
+    assert res.exit_code == 2 and not (tmp_path / "out.sdf").exists()
+
+
+def test_a_short_fdir1_is_found(tmp_path):
+    f = _base(tmp_path)
+    f.write_text(f.read_text().replace("<fdir1>1 0 1</fdir1>", "<fdir1>1 0</fdir1>", 1))
+    (d,) = [d for d in _diags(f) if d["code"] == "T010"]
+    assert d["message"].startswith("<fdir1>1 0</fdir1>: ")
+
+
+def _diags(f) -> list:
+    res = invoke("check", str(f), "--format", "json")
+    assert res.exit_code in (0, 1), res.output[-1500:]
+    return json.loads(res.stdout)["files"][0]["diagnostics"]

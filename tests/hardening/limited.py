@@ -8,7 +8,6 @@ The figures are CPU time, so a loaded machine does not fail a test; ``BUDGET_CPU
 from __future__ import annotations
 
 import os
-import resource
 import subprocess
 import sys
 import time
@@ -29,40 +28,54 @@ class Run(NamedTuple):
     wall: float
 
 
+# Runs the command in a grandchild and reports its rusage. Linux carries a process's peak RSS across
+# exec, so a child forked straight from a pytest worker that has grown (models, MuJoCo) would report
+# the worker's peak as its own; a process forked from this small launcher starts its count afresh.
+_LAUNCHER = """
+import os, resource, sys
+lim = int(sys.argv[1])
+pid = os.fork()
+if pid == 0:
+    resource.setrlimit(resource.RLIMIT_CPU, (lim, lim + 1))
+    os.execv(sys.argv[2], sys.argv[2:])
+_, status, u = os.wait4(pid, 0)
+with open(os.environ["_LIMITED_USAGE"], "w") as f:
+    f.write(f"{u.ru_utime + u.ru_stime} {u.ru_maxrss} {status}")
+"""
+
+
 def run(argv, cwd=None, env=None, timeout: float = 60.0, stdin=None) -> Run:
     """``myrabot-desc ARGV`` in a child process, reaped with os.wait4: its own CPU seconds and peak
     resident memory. A CPU limit of twice the budget stops a runaway; ``timeout`` (wall) one that
     blocks."""
+    import signal
     import tempfile
 
     full_env = {**os.environ, "MUJOCO_GL": "disable", **(env or {})}
     full_env.pop("MYRABOT_DESC_DEBUG", None)
-
-    def limits():
-        resource.setrlimit(resource.RLIMIT_CPU, (int(2 * BUDGET_CPU) + 1, int(2 * BUDGET_CPU) + 2))
-
     t0 = time.monotonic()
-    with tempfile.TemporaryFile() as fo, tempfile.TemporaryFile() as fe:
-        p = subprocess.Popen(CLI + [str(a) for a in argv], cwd=cwd, env=full_env,
+    with tempfile.TemporaryFile() as fo, tempfile.TemporaryFile() as fe, \
+            tempfile.TemporaryDirectory() as scratch:
+        usage_file = Path(scratch) / "usage"
+        full_env["_LIMITED_USAGE"] = str(usage_file)
+        p = subprocess.Popen([sys.executable, "-S", "-c", _LAUNCHER, str(int(2 * BUDGET_CPU) + 1), *CLI,
+                              *[str(a) for a in argv]], cwd=cwd, env=full_env,
                              stdin=stdin if stdin is not None else subprocess.DEVNULL,
-                             stdout=fo, stderr=fe, preexec_fn=limits)
-        deadline = time.monotonic() + timeout
-        while True:
-            pid, status, usage = os.wait4(p.pid, os.WNOHANG)
-            if pid:
-                break
-            if time.monotonic() > deadline:
-                p.kill()
-                _pid, status, usage = os.wait4(p.pid, 0)
-                status = None
-                break
-            time.sleep(0.02)
-        p.returncode = -1             # reaped here: Popen must not wait for it again
+                             stdout=fo, stderr=fe, start_new_session=True)
+        try:
+            p.wait(timeout=timeout)
+            killed = False
+        except subprocess.TimeoutExpired:
+            os.killpg(p.pid, signal.SIGKILL)
+            p.wait()
+            killed = True
         fo.seek(0)
         fe.seek(0)
         out, err = fo.read().decode(errors="replace"), fe.read().decode(errors="replace")
+        cpu, rss, status = (usage_file.read_text().split() if usage_file.exists() else ("0", "0", None))
+    status = None if killed or status is None else int(status)
     code = os.WEXITSTATUS(status) if status is not None and os.WIFEXITED(status) else None
-    return Run(code, out, err, usage.ru_utime + usage.ru_stime, usage.ru_maxrss * 1024, time.monotonic() - t0)
+    return Run(code, out, err, float(cpu), int(rss) * 1024, time.monotonic() - t0)
 
 
 def within_budget(r: Run) -> list[str]:

@@ -4,14 +4,14 @@
 Everything goes through the ``git`` command (``git diff``, ``git ls-files``, ``git archive``), run
 with a fixed argument list (no shell) and a time limit; the export is a tar stream unpacked into
 our own folder (folders, files and links that stay inside it; no absolute path, no ``..``). A problem is
-an InputError: one line, exit 2.
+an InputError: one line, exit 2. subprocess is imported where git runs: ``check`` imports this module
+for ``--changed-since`` only.
 """
 
 from __future__ import annotations
 
 import os
 import stat
-import subprocess
 from pathlib import Path
 
 from myrabot_desc.errors import InputError
@@ -20,6 +20,8 @@ TIMEOUT = 120.0
 
 
 def _git(args: list[str], cwd: Path, binary: bool = False, check: bool = True):
+    import subprocess
+
     env = {k: v for k, v in os.environ.items() if not k.startswith("GIT_")}
     env["GIT_TERMINAL_PROMPT"] = "0"
     try:

@@ -32,12 +32,13 @@ are model text like any other: the reports print them through the sanitiser.
 Writing never follows a symlink: the cache folders are opened with O_NOFOLLOW, each entry is
 written to a new temporary file in the folder (O_EXCL | O_NOFOLLOW) and renamed over the entry by
 folder descriptor, and ``.gitignore`` is only ever created, never written through.
+
+hashlib and hmac are imported in the functions that hash: a check without the cache (``--no-cache``,
+no configuration) does not load OpenSSL.
 """
 
 from __future__ import annotations
 
-import hashlib
-import hmac
 import json
 import os
 import re
@@ -170,6 +171,7 @@ def _read_secret(folder_fd: int) -> bytes | None:
 def code_fingerprint(pkg: Path | None = None) -> str:
     """The tool's own code (every module of the package ``pkg``, by content), its version, Python's
     and the libraries' versions: a result from other code is never reused."""
+    import hashlib
     if pkg is None and _fingerprint:
         return _fingerprint[0]
     from importlib import metadata
@@ -196,6 +198,7 @@ def code_fingerprint(pkg: Path | None = None) -> str:
 def file_hash(path: str) -> str | None:
     """sha256 of a regular file's content; None when it does not exist (or is not a regular
     file); raises OSError when it is too big or unreadable (the result is then not cached)."""
+    import hashlib
     if path in _hashes:
         return _hashes[path]
     try:
@@ -213,6 +216,7 @@ def file_hash(path: str) -> str | None:
 def _tree_signature(root: str) -> str | None:
     """Hash of the relative path of every file under ``root`` (what may resolve there); None when
     too big."""
+    import hashlib
     if root in _trees:
         return _trees[root]
     h = hashlib.sha256()
@@ -308,6 +312,7 @@ def _model_files(robot) -> set[str]:
 
 def _env_digest(names, key: bytes) -> dict:
     """name -> keyed hash of its value (None when unset): compared, never revealed."""
+    import hmac
     out = {}
     for name in sorted(names):
         v = os.environ.get(name)
@@ -320,6 +325,7 @@ def _env_digest(names, key: bytes) -> dict:
 def task_key(task) -> str | None:
     """The hash of everything known before the check (see the module docstring); None when the
     input or the configuration cannot be hashed (then no cache)."""
+    import hashlib
     opts = task.options
     src = str(Path(task.path).resolve()) if task.path else str(bundled_path())
     try:
@@ -358,6 +364,7 @@ def _roots(task, robot) -> list[str]:
 
 
 def _mac(key: bytes, entry: dict) -> str:
+    import hmac
     body = json.dumps({k: v for k, v in entry.items() if k != "mac"}, sort_keys=True, ensure_ascii=True)
     return hmac.new(key, body.encode("ascii"), "sha256").hexdigest()
 
@@ -365,6 +372,7 @@ def _mac(key: bytes, entry: dict) -> str:
 # ------------------------------------------------------------------ lookup and store
 def lookup(task):
     """The cached FileResult of ``task``, or None (no entry, foreign, corrupt or stale)."""
+    import hmac
     key = secret()
     name = task_key(task)
     if key is None or name is None or not task.cache_dir:

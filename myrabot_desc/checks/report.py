@@ -9,7 +9,6 @@ from __future__ import annotations
 import functools
 import json
 import os
-import textwrap
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -250,6 +249,8 @@ def _rule_name(code: str) -> str:
 
 def _cleandoc(doc: str) -> str:
     """A docstring without its source indentation (the first line has none; the rest share it)."""
+    import textwrap      # here: only SARIF, JUnit and the rule list show docs
+
     first, _, rest = (doc or "").expandtabs().partition("\n")
     return (first.strip() + "\n" + textwrap.dedent(rest)).strip()
 

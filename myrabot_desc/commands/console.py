@@ -11,30 +11,42 @@ import os
 import re
 import sys
 
-from myrabot_desc.errors import InputError
+from myrabot_desc.errors import InputError, UsageProblem
 from myrabot_desc.sanitize import clean
 
 _ANSI = None            # compiled on first use (a plain build rarely prints a style)
 
 
-def echo(message: str, err: bool = True) -> None:
-    """click.echo of one line, without click: a newline added, ANSI styles stripped when the
-    stream is not a terminal, flushed."""
+def unstyle(text: str) -> str:
+    """``text`` without ANSI styles (click.unstyle)."""
     global _ANSI
-    stream = sys.stderr if err else sys.stdout
+    if "\033" not in text:
+        return text
+    if _ANSI is None:
+        _ANSI = re.compile(r"\033\[[0-?]*[ -/]*[@-~]")   # click's own pattern (click._compat)
+    return _ANSI.sub("", text)
+
+
+def _write(stream, text: str) -> None:
+    """click.echo's writing: ANSI styles stripped when the stream is not a terminal, flushed."""
     if stream is None:
         return
-    out = message + "\n"
     try:
         tty = stream.isatty()
     except Exception:
         tty = False
-    if not tty and "\033" in out:
-        if _ANSI is None:
-            _ANSI = re.compile(r"\033\[[0-?]*[ -/]*[@-~]")   # click's own pattern (click._compat)
-        out = _ANSI.sub("", out)
-    stream.write(out)
+    stream.write(text if tty else unstyle(text))
     stream.flush()
+
+
+def echo(message: str, err: bool = True) -> None:
+    """click.echo of one line, without click: a newline added, on stderr unless ``err`` is False."""
+    _write(sys.stderr if err else sys.stdout, message + "\n")
+
+
+def out(text: str) -> None:
+    """click.echo(text, nl=False) on stdout: a report as it is."""
+    _write(sys.stdout, text)
 
 
 def _is_click_exception(exc) -> bool:
@@ -52,8 +64,8 @@ class guarded:
         return self
 
     def __exit__(self, exc_type, exc, tb):
-        if exc_type is None or issubclass(exc_type, (SystemExit, KeyboardInterrupt)):
-            return False
+        if exc_type is None or issubclass(exc_type, (SystemExit, KeyboardInterrupt, UsageProblem)):
+            return False      # a UsageProblem is the command line's: click reports it
         if issubclass(exc_type, InputError):
             echo(str(exc))
             sys.exit(2)

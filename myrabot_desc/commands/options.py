@@ -16,7 +16,7 @@ from collections import namedtuple
 from myrabot_desc.errors import UsageProblem
 from myrabot_desc.safety import LIMITS
 
-__all__ = ["BUILD_OPTS", "DIFF_OPTS", "INPUT_OPTS", "Inputs", "Opt", "UsageProblem", "input_options", "make_inputs",
+__all__ = ["BUILD_OPTS", "CHECK_OPTS", "DIFF_OPTS", "INPUT_OPTS", "Inputs", "Opt", "UsageProblem", "input_options", "make_inputs",
            "parse_plain", "usage_error"]
 
 
@@ -24,7 +24,8 @@ class Opt(namedtuple("Opt", "decls dest kind help metavar choices default", defa
     """One command-line option, the one definition of it: click's option and the fast parser
     (parse_plain) both come from it. kind: "flag", "value" (one string), "multi" (repeatable, a
     tuple), "choice" (default choices[0], shown), "count" (a whole number >= 1), "file" (a path
-    that is not a folder). ``default``: of "value", "count" and "file" (None; shown when set)."""
+    that is not a folder), "folder" (a path that is not a file). ``default``: of "value", "count",
+    "file" and "folder" (None; shown when set)."""
 
     __slots__ = ()
 
@@ -43,6 +44,8 @@ class Opt(namedtuple("Opt", "decls dest kind help metavar choices default", defa
                 kw["type"] = click.IntRange(min=1)
             elif self.kind == "file":
                 kw["type"] = click.Path(dir_okay=False)
+            elif self.kind == "folder":
+                kw["type"] = click.Path(file_okay=False)
             kw["default"] = self.default
             if self.default is not None:
                 kw["show_default"] = True
@@ -107,6 +110,56 @@ DIFF_OPTS = (
 )
 
 
+# check's own options (commands/fastcheck.py runs them; commands/check.py is their click command).
+CHECK_OPTS = (
+    Opt(("--inertia",), "inertia", "flag",
+        "Load collision meshes and compare every inertia with the solid body of its collision geometry.", None, None),
+    Opt(("--suggest",), "suggest", "flag", "With --inertia: print a ready <inertia .../> line per link.", None, None),
+    Opt(("--meshes",), "meshes", "flag", "Load every mesh (visual too) to check scale, watertightness and normals.",
+        None, None),
+    Opt(("--srdf",), "srdf", "file", "The robot's SRDF: the link pairs its <disable_collisions> lets touch are not "
+        "self-collisions (P005), and an overlap it does not allow is an error.", "FILE", None),
+    Opt(("--format",), "fmt", "choice", "Report format.", None, ("text", "json", "github", "sarif", "junit")),
+    Opt(("--select",), "select", "multi", "Only these codes or prefixes (comma-separated or repeated), e.g. I,G001. "
+        "Replaces the configuration's select.", "CODES", None),
+    Opt(("--ignore",), "ignore", "multi", "Skip these codes or prefixes (added to the configuration's ignore).",
+        "CODES", None),
+    Opt(("--strict",), "strict", "flag", "Warnings fail too (exit 1).", None, None),
+    Opt(("-o", "--output"), "output", "file", "Write the report to a file instead of stdout.", None, None, "-"),
+    Opt(("-r", "--recursive"), "recursive", "flag",
+        "Folders: look for models in their subfolders too (hidden and build folders skipped).", None, None),
+    Opt(("--config",), "config_file", "file", "Use this configuration for every file (pyproject.toml or "
+        "myrabot-desc.toml) instead of the nearest one.", "FILE", None),
+    Opt(("--isolated",), "isolated", "flag", "Ignore every configuration file.", None, None),
+    Opt(("-j", "--jobs"), "jobs", "count",
+        "Worker processes (default: the CPUs available). The report is the same for any N.", "N", None),
+    Opt(("--shard",), "shard_spec", "value",
+        "Check only the K-th of N deterministic parts of the file list (a CI matrix job each).", "K/N", None),
+    Opt(("-q", "--quiet"), "quiet", "flag", "No progress bar; text reports only the findings.", None, None),
+    Opt(("--no-cache",), "no_cache", "flag", "Do not read or write the result cache (a project with a configuration "
+        "file uses it; entries are kept in the user's cache folder, ~/.cache/myrabot-desc, and signed with a per-user "
+        "key).", None, None),
+    Opt(("--cache-dir",), "cache_dir", "folder", "Keep the cache entries in DIR (e.g. a repository-local "
+        ".myrabot-desc-cache) instead of the user's cache folder (or MYRABOT_DESC_CACHE_DIR); entries stay signed "
+        "with the user's key.", "DIR", None),
+    Opt(("--merge-sarif",), "merge_sarif", "flag",
+        "The FILEs are SARIF reports (from --shard jobs): merge them into one report.", None, None),
+    Opt(("--fix",), "fix_", "flag", "Repair the findings whose rule has a safe fix, in the files where the values "
+        "are written (proven by a rebuild and recheck first; all files written together or none).", None, None),
+    Opt(("--unsafe-fixes",), "unsafe_fixes", "flag", "With --fix or --diff: the unsafe fixes too (docs/rules.md "
+        "says which fixes are unsafe and why).", None, None),
+    Opt(("--diff",), "diff_", "flag", "Show the fixes as a unified diff and write nothing (exit 1 when there is "
+        "something to fix).", None, None),
+    Opt(("--baseline",), "baseline", "file", "Findings recorded in FILE are known: only new ones are reported and "
+        "fail. A missing FILE is written with today's findings (matched by code, element and message, not by line).",
+        "FILE", None),
+    Opt(("--update-baseline",), "update_baseline", "flag", "With --baseline: write today's findings to FILE again.",
+        None, None),
+    Opt(("--changed-since",), "since", "value",
+        "Check only the models that read a file (include, YAML, mesh) changed since git revision REV.", "REV", None),
+    Opt(("--list-rules",), "list_rules", "flag", "List every rule code and exit.", None, None),
+)
+
 def parse_plain(argv, opts) -> dict | None:
     """``argv`` parsed as click would parse it for these options (values by dest, the
     positionals under "args"), when it uses only plain forms: ``--name VALUE``,
@@ -148,8 +201,8 @@ def parse_plain(argv, opts) -> dict | None:
             if not (value.isascii() and value.isdigit() and int(value) >= 1):
                 return None
             values[o.dest] = int(value)
-        elif o.kind == "file":
-            if os.path.isdir(value):
+        elif o.kind == "file" or o.kind == "folder":
+            if os.path.isdir(value) if o.kind == "file" else os.path.isfile(value):
                 return None
             values[o.dest] = value
         else:

@@ -28,9 +28,10 @@ LINT_IMPORTS = Path(sys.executable).with_name("lint-imports")
 
 # module -> our modules it may import inside a function, and why (start-up, bench/bench_start.py)
 LAZY_OWN = {
-    # the console script picks the click-free plain build or diff, or the click group: none pays for another
-    "myrabot_desc.commands.entry": {"myrabot_desc.commands.fastbuild", "myrabot_desc.commands.fastdiff",
-                                    "myrabot_desc.commands.main"},
+    # the console script picks the click-free plain build, check or diff, or the click group: none pays for
+    # another
+    "myrabot_desc.commands.entry": {"myrabot_desc.commands.fastbuild", "myrabot_desc.commands.fastcheck",
+                                    "myrabot_desc.commands.fastdiff", "myrabot_desc.commands.main"},
     # `build --help` and click's usage errors do not load the build engine
     "myrabot_desc.commands.build": {"myrabot_desc.commands.fastbuild"},
     # `diff` loads the renderer and the scene for --picture only (~10 ms of a small robot's ~300 ms diff)

@@ -28,7 +28,7 @@ from myrabot_desc.model.statics import effort_of
 from myrabot_desc.sim import drive as kinematic
 from myrabot_desc.sim.diffdrive import find_drive
 from myrabot_desc.physics import kinds
-from myrabot_desc.physics.engine import Engine, Path
+from myrabot_desc.physics.engine import TURNED_OVER, Engine, Path
 from myrabot_desc.physics.result import Cause, PhysicsResult
 from myrabot_desc.sim.result import Check
 
@@ -145,6 +145,9 @@ def run(robot, *, script=kinematic.DEFAULT_SCRIPT, wheels="plugin", left=(), rig
         a, b = seg.get("from"), seg["end"]
         if a is None or b - a < 2:
             continue
+        if path.turned_over is not None and b >= path.turned_over:
+            rows.append({"segment": i + 1, "v_cmd": seg["v"], "w_cmd": seg["w"], "turned_over": True})
+            continue
         T = ts[b] - ts[a]
         dx, dy = np.diff(xs[a:b + 1]), np.diff(ys[a:b + 1])
         heading = np.asarray(yaws[a:b])
@@ -175,6 +178,12 @@ def run(robot, *, script=kinematic.DEFAULT_SCRIPT, wheels="plugin", left=(), rig
         causes = [] if ok else _causes(robot, eng, drv, declared, segments[i], kind, per_wheel)
         res.add(Check(label, ok, float(value), "", f"MuJoCo's ratio / the kinematic one = 1 ±{tolerance:.0%}",
                       f"segment {i + 1}: v {segments[i]['v']:g} m/s, w {segments[i]['w']:g} rad/s"), causes)
+    upright, why = path.upright(segments)
+    tipped = next((seg for seg in segments if not upright and path.turned_over <= seg["end"]), None)
+    res.add(Check("stays upright", upright, round(path.max_tilt, 1), "deg",
+                  f"tilts less than {TURNED_OVER:g} deg from how it settled", why),
+            [] if tipped is None else _causes(robot, eng, drv, declared, tipped, "w" if tipped["w"] else "v",
+                                              per_wheel))
     # what the wheels and the contacts did, for every run
     track = _tracking(segments, per_wheel)
     if track is not None:
@@ -252,8 +261,8 @@ def _causes(robot, eng, drv, declared, seg, kind, per_wheel) -> list:
                          "the rest, "
                          "so the wheels slip", root))
     if drag is not None and abs(drag) > 1e-3:
-        out.append(Cause(f"friction: the contacts that are not wheels drag the base with {drag:.3g} N against its "
-                         "motion", root))
+        out.append(Cause(f"friction: the contacts that are not wheels {'drag' if drag > 0 else 'push'} the base with "
+                         f"{abs(drag):.3g} N {'against' if drag > 0 else 'along'} its motion", root))
     if not out:
         out.append(Cause("slip: the wheels turn as commanded but the base does not follow them", root))
     return out

@@ -34,6 +34,7 @@ FLOOR = "floor"
 # stronger than it says: its actuator may push up to 1.25x the need, and a note says so. Past it the
 # joint sags and the run fails (check P006 uses the same ratio between its warning and its error).
 COUNTERBALANCE_RATIO = 2.0
+TURNED_OVER = 60.0       # degrees of tilt from how a base settled past which it has turned over
 _GEOM_NAME = re.compile(r"^(?P<link>.*)_collision(?:_(?P<k>\d+))?(?:_\d+)?$")
 
 
@@ -395,24 +396,49 @@ class Engine:
 
 
 class Path:
-    """Samples of a point fixed in a body: time, world x and y, and the body's yaw, unwrapped."""
+    """Samples of a point fixed in a body: time, world x and y, and the body's yaw, unwrapped; and
+    how far the body tilts from the way it stood at the first sample (a base that turned over)."""
 
     def __init__(self):
         self.t: list[float] = []
         self.x: list[float] = []
         self.y: list[float] = []
         self.yaw: list[float] = []
+        self.max_tilt = 0.0              # degrees
+        self.turned_over: int | None = None   # the first sample tilted past TURNED_OVER
         self._last = None
+        self._up0 = None
 
     def sample(self, t: float, R, p) -> None:
         """Record the point at world position ``p`` of a body with rotation ``R`` at time ``t``."""
         yaw = math.atan2(R[1, 0], R[0, 0])
         turned = 0.0 if self._last is None else self.yaw[-1] + math.remainder(yaw - self._last, 2 * math.pi)
         self._last = yaw
+        # the world's up in the body frame, against the first sample's: a root frame that is not
+        # upright in the model still starts at 0
+        up = (float(R[2, 0]), float(R[2, 1]), float(R[2, 2]))
+        if self._up0 is None:
+            self._up0 = up
+        cos = sum(a * b for a, b in zip(up, self._up0))
+        tilt = math.degrees(math.acos(max(-1.0, min(1.0, cos))))
+        self.max_tilt = max(self.max_tilt, tilt)
+        if self.turned_over is None and tilt > TURNED_OVER:
+            self.turned_over = len(self.t)
         self.t.append(t)
         self.x.append(float(p[0]))
         self.y.append(float(p[1]))
         self.yaw.append(turned)
+
+    def upright(self, segments) -> tuple[bool, str]:
+        """Whether the body stayed upright, and if not when and in which segment (1-based, of
+        ``segments`` with their "end" sample) it turned over."""
+        k = self.turned_over
+        if k is None:
+            return True, ""
+        seg = next((i + 1 for i, s in enumerate(segments) if k <= s["end"]), None)
+        where = f" in segment {seg}" if seg is not None else " while it settled"
+        return False, (f"it turned over at t = {self.t[k]:.2f} s{where}: the segments from there are not measured "
+                       "(their rates would be those of a body on its side)")
 
     def series(self) -> dict:
         import numpy as np

@@ -25,7 +25,7 @@ import time
 
 from myrabot_desc.convert.mjcf.bodies import PLANAR_BASE
 from myrabot_desc.model import drive as D
-from myrabot_desc.physics.engine import Engine, Path
+from myrabot_desc.physics.engine import TURNED_OVER, Engine, Path
 from myrabot_desc.physics.result import Cause, PhysicsResult
 from myrabot_desc.sim import kinds as kinematic
 from myrabot_desc.sim.result import Check
@@ -129,8 +129,11 @@ def run(robot, base: D.Base, *, script, tolerance, settle, ramp, sample_rate, tr
         a, b = seg.get("from"), seg["end"]
         if a is None or b - a < 2:
             continue
-        bx, by, w_meas = path.body_twist(a, b)
         vx, vy, w = seg["cmd"]
+        if path.turned_over is not None and b >= path.turned_over:
+            rows.append({"segment": i + 1, "vx_cmd": vx, "vy_cmd": vy, "w_cmd": w, "turned_over": True})
+            continue
+        bx, by, w_meas = path.body_twist(a, b)
         kin = kin_rows.get(i + 1, {})
         row = {"segment": i + 1, "vx_cmd": vx, "vy_cmd": vy, "w_cmd": w,
                "vx": round(bx, 5), "vy": round(by, 5), "w": round(w_meas, 5)}
@@ -156,6 +159,11 @@ def run(robot, base: D.Base, *, script, tolerance, settle, ramp, sample_rate, tr
         res.add(Check(label, ok, float(value), "", f"MuJoCo's ratio / the kinematic one = 1 ±{tolerance:.0%}",
                       f"segment {i + 1}: vx {vx:g}, vy {vy:g} m/s, w {w:g} rad/s"),
                 [] if ok else _causes(robot, eng, base, seg, tracking))
+    upright, why = path.upright(segments)
+    tipped = next((seg for seg in segments if not upright and path.turned_over <= seg["end"]), None)
+    res.add(Check("stays upright", upright, round(path.max_tilt, 1), "deg",
+                  f"tilts less than {TURNED_OVER:g} deg from how it settled", why),
+            [] if tipped is None else _causes(robot, eng, base, tipped, tracking))
     mj.mj_kinematics(m, d)
     low = eng.lowest_point()
     if floor0 is not None and math.isfinite(low) and math.isfinite(floor0):

@@ -756,16 +756,25 @@ def _controller_yaml(robot, text: str):
     return load_path(path, limit("max_input_bytes"), resource_roots(base, robot.package_roots), display(path))
 
 
-def _ros_params(doc, name: str) -> dict | None:
-    """``name``'s ros__parameters in a ros2 parameters file (keys may carry a namespace: ``/**/name``)."""
+def _nodes(doc, depth: int = 0):
+    """(node name, its ros__parameters) of a ros2 parameters file. A key may carry the node's
+    namespace (``/**/name:``) or be a namespace with its nodes nested below (``/**:`` then ``name:``);
+    the nesting is followed a few levels (the loader bounds what aliases expand to)."""
     if not isinstance(doc, dict):
-        return None
+        return
     for key, val in doc.items():
-        if str(key).rsplit("/", 1)[-1] == name and isinstance(val, dict):
-            p = val.get("ros__parameters")
-            if isinstance(p, dict):
-                return p
-    return None
+        if not isinstance(val, dict):
+            continue
+        p = val.get("ros__parameters")
+        if isinstance(p, dict):
+            yield str(key).rsplit("/", 1)[-1], p
+        elif depth < 4:
+            yield from _nodes(val, depth + 1)
+
+
+def _ros_params(doc, name: str) -> dict | None:
+    """``name``'s ros__parameters in a ros2 parameters file (the first node of that name)."""
+    return next((p for n, p in _nodes(doc) if n == name), None)
 
 
 def controllers(robot) -> list[Controller]:
@@ -783,9 +792,7 @@ def controllers(robot) -> list[Controller]:
                         named.append((str(name), ctype))
                 # a controller may give its type among its own parameters (ros2_control_demos'
                 # example 11: the spawner reads it from the controller's section)
-                for key in (doc if isinstance(doc, dict) else {}):
-                    name = str(key).rsplit("/", 1)[-1]
-                    own = _ros_params(doc, name) or {}
+                for name, own in _nodes(doc):
                     ctype = own.get("type")
                     if isinstance(ctype, str) and _controller_kind(ctype) and name not in {n for n, _ in named}:
                         named.append((name, ctype))

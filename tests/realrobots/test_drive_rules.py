@@ -86,6 +86,32 @@ def test_g016_mecanum_controller_planted(tmp_path):
     assert (0.25 + 0.27) / (0.17 + 0.27) == pytest.approx(1.18, abs=0.005)
 
 
+def _nested(text: str) -> str:
+    """The same parameters file with its nodes nested under one ``/**:`` namespace (the layout of
+    ros2_controllers' own examples) instead of ``/**/name:`` keys."""
+    out = ["/**:"]
+    for line in text.splitlines():
+        if line.startswith("/**/"):
+            line = line[len("/**/"):]
+        if line != "---":
+            out.append(("  " + line) if line.strip() else line)
+    return "\n".join(out) + "\n"
+
+
+def test_g016_reads_nodes_nested_under_a_namespace(tmp_path):
+    """The planted mecanum YAML above, its nodes nested under ``/**:``: the same two findings."""
+    urdf = _built("rosbot_xl_mecanum", tmp_path)
+    src = CORPUS / "rosbot_xl_controller/config/mecanum_drive_controller.yaml"
+    text = _nested(src.read_text())
+    assert "/**/" not in text and "\n  rosbot_xl_base_controller:\n    ros__parameters:" in text
+    _yaml_named(urdf, src, text)
+    assert _found(urdf, "G016") == []
+    urdf = _built("rosbot_xl_mecanum", tmp_path)
+    _yaml_named(urdf, src, text.replace("wheel_separation_x: 0.170", "wheel_separation_x: 0.25"))
+    (g,) = _found(urdf, "G016")
+    assert g["data"]["key"] == "wheel_separation_x" and g["severity"] == "error"
+
+
 def test_g016_skid_controller_number_itself_off_is_an_error(tmp_path):
     """ROSbot XL diff with wheel_separation 0.248 -> 0.3 (multiplier 1.3 kept): the number itself is
     off, so an error: 0.3 × 1.3 = 0.39 m on a 0.248 m track turns at 1.57×."""

@@ -226,7 +226,7 @@ def mass_fix(ctx, link) -> Fix | None:
         return None
     density = robot_density(ctx)
     mass = float(f"{density * s.props.volume:.3g}")
-    t = (s.props.inertia * mass).tolist()          # props are per kg (Solid measures at 1 kg)
+    t = [[v * mass for v in row] for row in s.props.inertia]     # props are per kg (Solid measures at 1 kg)
     title = f"mass {mass:g} kg ({density:.0f} kg/m³ × {s.props.volume:.3g} m³) and its inertia"
     i = link.inertial
     if i is None:

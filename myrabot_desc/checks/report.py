@@ -121,10 +121,24 @@ def render_text(results, color: bool | None = None, quiet: bool = False) -> str:
             if not ds:
                 continue
             lines.append(style(f"  {sev}s ({len(ds)})" if sev != "info" else f"  info ({len(ds)})", **STYLE[sev]))
+            # where() and the styled code once per file and code: a big robot has 40,000 findings
+            # in a few files and codes
+            places: dict = {}
+            codes: dict = {}
+            add = lines.append
             for d in ds:
-                w = where(d)
-                lines.append(f"    {w + ': ' if w else ''}" + style(clean(d.code), **STYLE[sev])
-                             + f" {clean(d.message)}")
+                loc = d.loc
+                if loc is None:
+                    w = ""
+                else:
+                    f = places.get(loc.file)
+                    if f is None:
+                        f = places[loc.file] = clean(rel(loc.file))
+                    w = f"{f}:{loc.line}" if loc.line else f
+                c = codes.get(d.code)
+                if c is None:
+                    c = codes[d.code] = style(clean(d.code), **STYLE[sev])
+                add(f"    {w + ': ' if w else ''}{c} {clean(d.message)}")
         if r.suggestions:
             lines.append(style("  suggested inertias (solid body of the collision geometry at the declared "
                                      "mass, in the inertial frame):", bold=True))

@@ -256,11 +256,15 @@ def placeholder(ctx):
     link's tensor from its geometry (`check --inertia --suggest`).
     """
     groups = defaultdict(list)
+    rounded: dict = {}          # tensor -> its key: a model repeats its tensors (that is what this rule finds)
     for link in ctx.robot.links.values():
         i = link.inertial
         if i is None or i.mass <= 0 or not any((i.ixx, i.iyy, i.izz)):
             continue
-        key = tuple(float(f"{v:.6g}") for v in (i.ixx, i.ixy, i.ixz, i.iyy, i.iyz, i.izz))
+        raw = (i.ixx, i.ixy, i.ixz, i.iyy, i.iyz, i.izz)
+        key = rounded.get(raw)
+        if key is None:
+            key = rounded[raw] = tuple(float(f"{v:.6g}") for v in raw)
         groups[key].append(link)
     for key, links in groups.items():
         masses = [l.mass for l in links]

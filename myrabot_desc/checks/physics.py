@@ -313,7 +313,7 @@ def _dynamics_surely_finite(robot, moments=None) -> bool:
     child has a positive mass with a positive-definite inertia, every other link a non-negative
     mass and semi-definite inertia. Then each moving body's spatial inertia is positive
     definite, so is the mass matrix at every configuration, and RNEA/ABA stay finite.
-    ``moments``: link -> principal moments (ascending), for the links whose are known already."""
+    ``moments``: link -> principal moments (ascending) already computed, for the links that have them."""
 
     if robot.load_issues:
         return False

@@ -141,17 +141,18 @@ def positive_definite(ctx):
     A zero moment (point mass) is a warning: MuJoCo refuses moving bodies with
     inertia below mjMINVAL. Fix: the solid-body values (`--inertia --suggest`).
     """
+    moments = principal(ctx)
     for link in ctx.robot.links.values():
         i = link.inertial
         if i is None or i.mass <= 0:
             continue
-        ev = principal_moments(i)
+        ev = moments[link.name]
         scale = max(max(abs(e) for e in ev), 1e-300)
         if min(ev) < -1e-9 * scale and -min(ev) > ZERO_MOMENT:
             yield Finding(f"link {link.name}: inertia not positive definite, principal moments "
                           + "/".join(f"{e:.4g}" for e in ev), i.loc or link.loc,
                           {"link": link.name, "principal": list(ev)}, fix=geometry_fix(ctx, link))
-        elif min(ev) <= max(1e-12 * scale, ZERO_MOMENT) and triangle_gap(i) is None:
+        elif min(ev) <= max(1e-12 * scale, ZERO_MOMENT) and triangle_gap(i, ev) is None:
             if ctx.moving(link.name):         # (0, 0, c) is no rod: I005 reports it
                 yield Finding(f"link {link.name} ({i.mass:g} kg) has a zero principal moment of inertia "
                               f"({'/'.join(f'{e:.3g}' for e in ev)}): a point mass or a rod", i.loc or link.loc,
@@ -176,11 +177,12 @@ def triangle(ctx):
     (principal moments 0, 0, 3·ixx), are impossible too, not point masses or rods. Fix:
     the solid-body values for the link's shape (`check --inertia --suggest`).
     """
+    moments = principal(ctx)
     for link in ctx.robot.links.values():
         i = link.inertial
         if i is None or i.mass <= 0:
             continue
-        gap = triangle_gap(i)
+        gap = triangle_gap(i, moments[link.name])
         if gap is not None:
             a, b, c = gap
             yield Finding(f"link {link.name}: impossible inertia, principal moments {a:.4g} + {b:.4g} = {a + b:.4g} "
@@ -226,7 +228,7 @@ def mass_fix(ctx, link) -> Fix | None:
         return None
     density = robot_density(ctx)
     mass = float(f"{density * s.props.volume:.3g}")
-    t = (s.props.inertia * mass).tolist()          # props are per kg (Solid measures at 1 kg)
+    t = [[v * mass for v in row] for row in s.props.inertia]     # props are per kg (Solid measures at 1 kg)
     title = f"mass {mass:g} kg ({density:.0f} kg/m³ × {s.props.volume:.3g} m³) and its inertia"
     i = link.inertial
     if i is None:
@@ -254,11 +256,15 @@ def placeholder(ctx):
     link's tensor from its geometry (`check --inertia --suggest`).
     """
     groups = defaultdict(list)
+    rounded: dict = {}          # tensor -> its key: a model repeats its tensors (that is what this rule finds)
     for link in ctx.robot.links.values():
         i = link.inertial
         if i is None or i.mass <= 0 or not any((i.ixx, i.iyy, i.izz)):
             continue
-        key = tuple(float(f"{v:.6g}") for v in (i.ixx, i.ixy, i.ixz, i.iyy, i.iyz, i.izz))
+        raw = (i.ixx, i.ixy, i.ixz, i.iyy, i.iyz, i.izz)
+        key = rounded.get(raw)
+        if key is None:
+            key = rounded[raw] = tuple(float(f"{v:.6g}") for v in raw)
         groups[key].append(link)
     for key, links in groups.items():
         masses = [l.mass for l in links]
@@ -273,8 +279,17 @@ def placeholder(ctx):
                            "mass_min": min(masses), "mass_max": max(masses)})
 
 
-def triangle_gap(i):
-    """The principal moments (a, b, c), ascending, when they break A + B ≥ C; else None.
+def principal(ctx) -> dict:
+    """link -> principal moments (ascending) of every link with a positive mass, computed once for
+    I004, I005 and P003."""
+    return ctx.fact("principal", lambda: {link.name: principal_moments(link.inertial)
+                                          for link in ctx.robot.links.values()
+                                          if link.inertial is not None and link.inertial.mass > 0})
+
+
+def triangle_gap(i, moments=None):
+    """The principal moments (a, b, c), ascending, when they break A + B ≥ C; else None
+    (``moments``: principal_moments(i), when the caller has them).
 
     Moments within round-off of zero count as 0, so ixx = 0.002 with iyy = izz = 0 (0 + 0 < 0.002)
     and a tensor whose six entries are equal (principal moments 0, 0, 3·ixx) are violations, as
@@ -283,7 +298,7 @@ def triangle_gap(i):
     """
     if i is None or i.mass <= 0:
         return None
-    a, b, c = sorted(float(e) for e in principal_moments(i))
+    a, b, c = sorted(float(e) for e in (principal_moments(i) if moments is None else moments))
     if c <= ZERO_MOMENT:
         return None
     noise = NOISE * c

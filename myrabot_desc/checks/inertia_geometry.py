@@ -53,6 +53,15 @@ class Solid:
         if not self.items:
             self.why_not = "no geometry"
             return
+        mass = link.inertial.mass if link.inertial else 0.0
+        if len(self.items) == 1:        # most links: one primitive, unrotated (no numpy for it)
+            g = self.items[0].geometry
+            props = G.placed_primitive(g, self.items[0].origin, mass if mass > 0 else 1.0)
+            if props is not NotImplemented:
+                self.props = props
+                sz = G.size_of(g)
+                self.marker = sz is not None and sz < MARKER_SIZE
+                return
         parts = []
         for it in self.items:
             g = it.geometry
@@ -72,7 +81,6 @@ class Solid:
                                 f"mesh {g.filename.rsplit('/', 1)[-1]} has no positive volume (inverted or open)")
                 return
             parts.append((*sp, pose_matrix(it.origin)))
-        mass = link.inertial.mass if link.inertial else 0.0
         self.props = G.combine(parts, mass if mass > 0 else 1.0)
         sizes = [G.size_of(it.geometry, ctx.mesh(it.geometry) if it.geometry.kind == "mesh" else None)
                  for it in self.items]
@@ -89,9 +97,9 @@ class Solid:
 
         T = pose_matrix(self.link.inertial.origin)
         R, p = T[:3, :3], T[:3, 3]
-        t = R.T @ self.props.inertia @ R
+        t = R.T @ np.array(self.props.inertia, dtype=float) @ R
         t[abs(t) < 1e-6 * abs(t).max()] = 0.0          # rotation round-off (rpy 1.570796) is not a product of inertia
-        return R.T @ (self.props.com - p), t
+        return R.T @ (np.array(self.props.com, dtype=float) - p), t
 
 
 def solids(ctx) -> dict:
@@ -106,8 +114,7 @@ def fmt(x: float) -> str:
 
 def inertia_line(t) -> str:
     """The <inertia/> element of a 3x3 tensor (an array or nested lists)."""
-    return (f'<inertia ixx="{t[0][0]:.4g}" ixy="{t[0][1]:.4g}" ixz="{t[0][2]:.4g}" '
-            f'iyy="{t[1][1]:.4g}" iyz="{t[1][2]:.4g}" izz="{t[2][2]:.4g}"/>').replace('"-0"', '"0"')
+    return _line(_six(t))
 
 
 @rule("I006", "inertia-vs-geometry", "warning",
@@ -129,53 +136,99 @@ def inertia_vs_geometry(ctx):
     and it makes the body spin too easily or too sluggishly. Fix: the computed values
     given in the message (`--inertia --suggest` prints the `<inertia/>` line).
     """
-    import numpy as np
-
     solid = [(name, s) for name, s in solids(ctx).items() if s.props is not None]
     if not solid:
         return
-    # in_inertial_frame of every link at once: stacked products take the per-matrix kernel of
-    # one product per link, so the numbers are the same to the bit
-    T = pose_stack(s.link.inertial.origin for _, s in solid)
-    R, p = T[:, :3, :3], T[:, :3, 3]
-    Rt = np.swapaxes(R, 1, 2)
-    comps = Rt @ np.array([s.props.inertia for _, s in solid], dtype=float) @ R
-    comps[abs(comps) < 1e-6 * abs(comps).max(axis=(1, 2))[:, None, None]] = 0.0   # as in in_inertial_frame
-    coms = (Rt @ (np.array([s.props.com for _, s in solid], dtype=float) - p)[:, :, None])[:, :, 0]
-    cf, mf = comps.ravel().tolist(), coms.ravel().tolist()      # flat: no list per row per link
-    for k, (name, s) in enumerate(solid):
-        t9 = cf[9 * k:9 * k + 9]
+    framed = [_unrotated(s.props, s.link.inertial.origin) for _, s in solid]
+    rest = [k for k, f in enumerate(framed) if f is None]
+    if rest:
+        import numpy as np
+
+        # in_inertial_frame of the other links at once: stacked products take the per-matrix kernel
+        # of one product per link, so the numbers are the same to the bit
+        T = pose_stack(solid[k][1].link.inertial.origin for k in rest)
+        R, p = T[:, :3, :3], T[:, :3, 3]
+        Rt = np.swapaxes(R, 1, 2)
+        comps = Rt @ np.array([solid[k][1].props.inertia for k in rest], dtype=float) @ R
+        comps[abs(comps) < 1e-6 * abs(comps).max(axis=(1, 2))[:, None, None]] = 0.0   # as in in_inertial_frame
+        coms = (Rt @ (np.array([solid[k][1].props.com for k in rest], dtype=float) - p)[:, :, None])[:, :, 0]
+        cf, mf = comps.ravel().tolist(), coms.ravel().tolist()      # flat: no list per row per link
+        for n, k in enumerate(rest):
+            framed[k] = (cf[9 * n:9 * n + 9], tuple(mf[3 * n:3 * n + 3]))
+    suggest = ctx.opts.suggest
+    inf = math.inf
+    for (name, s), (t9, com) in zip(solid, framed):
         comp = (tuple(t9[0:3]), tuple(t9[3:6]), tuple(t9[6:9]))
-        com = tuple(mf[3 * k:3 * k + 3])
         i = s.link.inertial
-        line = inertia_line(comp)
-        if ctx.opts.suggest:
+        texts = _six(comp)
+        line = _line(texts)
+        if suggest:
             ctx.suggestions.append((name, line))
         dd, cd = (float(i.ixx), float(i.iyy), float(i.izz)), (t9[0], t9[4], t9[8])
         ratios = []
+        worst = -inf
         for d, c in zip(dd, cd):
             if c <= 0 or d <= 0:
-                ratios.append(math.inf if (c <= 0) != (d <= 0) else 1.0)
+                r = inf if (c <= 0) != (d <= 0) else 1.0
             else:
-                ratios.append(d / c)
-        worst = max(max(r, 1 / r) if r > 0 else math.inf for r in ratios)
+                r = d / c
+            ratios.append(r)
+            w = max(r, 1 / r) if r > 0 else inf
+            if w > worst:
+                worst = w
         if worst > RATIO_LIMIT:
             yield Finding(
-                f"link {name}: inertia ixx/iyy/izz {'/'.join(fmt(v) for v in dd)} kg·m², but a solid "
-                f"{s.desc} of {i.mass:g} kg gives {'/'.join(fmt(v) for v in cd)} "
-                f"(ratio {'/'.join(_ratio(r) for r in ratios)}); fix: {line}",
+                f"link {name}: inertia ixx/iyy/izz {dd[0]:.3g}/{dd[1]:.3g}/{dd[2]:.3g} kg·m², but a solid "
+                f"{s.desc} of {i.mass:g} kg gives {cd[0]:.3g}/{cd[1]:.3g}/{cd[2]:.3g} "
+                f"(ratio {_ratio(ratios[0])}/{_ratio(ratios[1])}/{_ratio(ratios[2])}); fix: {line}",
                 i.loc or s.link.loc,
                 # tuples: the report writes them as lists; the collector stops scanning them (8 lists x 20,000 links)
                 {"link": name, "declared": dd, "computed": cd, "ratios": tuple(ratios),
                  "geometry": s.source, "fix": line, "computed_tensor": comp, "computed_com": com},
-                severity=s.severity, fix=tensor_fix(i, comp, f"inertia of {name} from its {s.source} geometry"))
+                severity=s.severity, fix=_texts_fix(i, texts, f"inertia of {name} from its {s.source} geometry"))
+
+
+def _unrotated(props, origin):
+    """(flat tensor, com) of in_inertial_frame for an inertial frame without rotation, or None.
+
+    R is then the identity (zeros of either sign): every product of R^T t R and R^T (com - p) is
+    by 1 or a zero, and neither t nor com holds a -0 (combine's sums start at +0), so the floats
+    are t's and com - p's; the stacked products are needed only for a rotated frame."""
+    r, p, y = origin.rpy
+    if r != 0 or p != 0 or y != 0:
+        return None
+    (a, b, c), (d, e, f), (g, h, k) = props.inertia
+    t9 = [a, b, c, d, e, f, g, h, k]
+    x, yy, z = origin.xyz
+    cx, cy, cz = props.com
+    com = (cx - float(x), cy - float(yy), cz - float(z))
+    if not all(map(math.isfinite, t9)) or not all(map(math.isfinite, com)):
+        return None
+    lim = 1e-6 * max(map(abs, t9))
+    return [0.0 if abs(v) < lim else v for v in t9], com
+
+
+def _six(t) -> tuple:
+    """ixx, ixy, ixz, iyy, iyz, izz of a 3x3 tensor written to 4 significant digits."""
+    return (f"{t[0][0]:.4g}", f"{t[0][1]:.4g}", f"{t[0][2]:.4g}", f"{t[1][1]:.4g}", f"{t[1][2]:.4g}", f"{t[2][2]:.4g}")
+
+
+def _line(v) -> str:
+    return (f'<inertia ixx="{v[0]}" ixy="{v[1]}" ixz="{v[2]}" '
+            f'iyy="{v[3]}" iyz="{v[4]}" izz="{v[5]}"/>').replace('"-0"', '"0"')
+
+
+_KEYS = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 
 
 def tensor_fix(inertial, t, title: str, safety: str = "unsafe") -> Fix:
     """Set the six values of ``inertial``'s <inertia> to tensor ``t`` (4 significant digits, as
     inertia_line prints them)."""
-    keys = (("ixx", 0, 0), ("ixy", 0, 1), ("ixz", 0, 2), ("iyy", 1, 1), ("iyz", 1, 2), ("izz", 2, 2))
-    return Fix(tuple(SetValue(inertial, k, float(f"{t[a][b]:.4g}") + 0.0) for k, a, b in keys), safety, title)
+    return _texts_fix(inertial, _six(t), title, safety)
+
+
+def _texts_fix(inertial, texts, title: str, safety: str = "unsafe") -> Fix:
+    return Fix(tuple(SetValue(inertial, k, float(v) + 0.0) for k, v in zip(_KEYS, texts)), safety, title)
 
 
 def _ratio(r: float) -> str:
@@ -222,20 +275,24 @@ def radius_of_gyration(ctx):
         flat = (ev.ravel().tolist(), np.swapaxes(vec, 1, 2).ravel().tolist(), reach.ravel().tolist())
         for n, s in enumerate(group):
             where[s.link.name] = (flat, n)
+    sqrt = math.sqrt
     for name, s in solids(ctx).items():
-        if name not in where:
+        at = where.get(name)
+        if at is None:
             continue
         link = s.link
         i = link.inertial
-        (ev, axes, reaches), n = where[name]
+        (ev, axes, reaches), n = at
+        mass = i.mass
         worst = None
-        for k in range(3):
-            if ev[3 * n + k] <= 0:
+        for b in range(3 * n, 3 * n + 3):
+            e = ev[b]
+            if e <= 0:
                 continue
-            reach = reaches[3 * n + k]
-            kg = math.sqrt(ev[3 * n + k] / i.mass)
+            reach = reaches[b]
+            kg = sqrt(e / mass)
             if kg > 1.1 * reach + 1e-4 and (worst is None or kg / max(reach, 1e-9) > worst[0]):
-                worst = (kg / max(reach, 1e-9), kg, reach, ev[3 * n + k], axes[9 * n + 3 * k:9 * n + 3 * k + 3])
+                worst = (kg / max(reach, 1e-9), kg, reach, e, axes[3 * b:3 * b + 3])
         if worst:
             _, kg, reach, moment, u = worst
             yield Finding(f"link {name}: radius of gyration √({moment:.3g}/{i.mass:g}) = {kg:.3g} m about axis "
@@ -253,11 +310,14 @@ def hull_points(ctx) -> dict:
     return ctx.fact("hull_points", lambda: _stack_hull_points(ctx), meshes=True)
 
 
+_CX, _CY, _CZ = [0, 0, 0, 0, 1, 1, 1, 1], [0, 0, 1, 1, 0, 0, 1, 1], [0, 1, 0, 1, 0, 1, 0, 1]
+
+
 def _stack_hull_points(ctx) -> dict:
     import numpy as np
 
     parts: dict[str, list | None] = {}
-    by_size: dict[int, list] = {}           # point count -> [(points in the shape frame, origin, link, slot)]
+    by_size: dict = {}      # point count or "box" -> [(points in the shape frame or box size, origin, link, slot, key)]
     for name, s in solids(ctx).items():
         items = _hull_items(s.link)
         todo = []
@@ -269,22 +329,32 @@ def _stack_hull_points(ctx) -> dict:
                     items = None
                     break
                 local = np.asarray(mesh.vertices)    # the rules use extremes only: no hull needed (nor scipy)
+            elif g.kind == "box":
+                todo.append((g.size, it.origin, name, len(todo), "box"))   # corners made below, all at once
+                continue
             else:
                 local = G.surface_points(g, 32)
-            todo.append((local, it.origin, name, len(todo)))
+            todo.append((local, it.origin, name, len(todo), len(local)))
         if not items:
             parts[name] = None
             continue
         parts[name] = [None] * len(todo)
         for t in todo:
-            by_size.setdefault(len(t[0]), []).append(t)
-    for group in by_size.values():
-        local = np.array([t[0] for t in group], dtype=float)
+            by_size.setdefault(t[4], []).append(t)
+    for key, group in by_size.items():
+        if key == "box":
+            # surface_points' corners (x outer, z inner), each coordinate s / 2 or -(s / 2) as there
+            h = np.array([t[0] for t in group], dtype=float) / 2
+            both = np.stack((-h, h), axis=1)
+            local = np.stack((both[:, _CX, 0], both[:, _CY, 1], both[:, _CZ, 2]), axis=2)
+        else:
+            local = np.array([t[0] for t in group], dtype=float)
         T = pose_stack(t[1] for t in group)
         placed = local @ np.swapaxes(T[:, :3, :3], 1, 2) + T[:, None, :3, 3]
-        for (_, _, name, slot), pts in zip(group, placed):
+        for (_, _, name, slot, _), pts in zip(group, placed):
             parts[name][slot] = pts
-    return {name: (np.vstack(p) if p is not None else None) for name, p in parts.items()}
+    # one shape: its rows as they are (vstack would copy them, 20,000 times in a star)
+    return {name: (None if p is None else p[0] if len(p) == 1 else np.vstack(p)) for name, p in parts.items()}
 
 
 def _hull_items(link):
@@ -369,7 +439,7 @@ def origin_inside(ctx):
         gap = np.maximum(np.maximum(lo - margin - p, p - hi - margin), 0)
         if gap.max() > 0:
             out = float(np.linalg.norm(np.maximum(np.maximum(lo - p, p - hi), 0)))
-            centroid = s.props.com.tolist() if s.props is not None else ((lo + hi) / 2).tolist()
+            centroid = list(s.props.com) if s.props is not None else ((lo + hi) / 2).tolist()
             yield Finding(f"link {name}: inertial origin ({' '.join(f'{v:.3g}' for v in p)}) lies {out:.3g} m outside "
                           f"the box bounding its geometry ({' '.join(f'{v:.3g}' for v in lo)} .. "
                           f"{' '.join(f'{v:.3g}' for v in hi)}); geometric centroid "

@@ -5,10 +5,11 @@ from __future__ import annotations
 import math
 
 from myrabot_desc.checks.examples import drive_example as _drive
+from myrabot_desc.checks.inertia import principal
 from myrabot_desc.checks.rule import Finding, Fix, FixInfo, InsertAfter, SetValue, rule
 from myrabot_desc.errors import InputError
 from myrabot_desc.model import drive as D
-from myrabot_desc.model.inertia import eigh3, tensor
+from myrabot_desc.model.inertia import principal_moments
 from myrabot_desc.model.kinematics import center_of_mass, pose_matrix
 from myrabot_desc.model.parts import JOINT_TYPES
 from myrabot_desc.model.pin_model import MAX_DOF
@@ -249,7 +250,7 @@ def dynamics_finite(ctx):
     such joint is a virtual one (other joints mimic it and its link is no body:
     model/drive.virtual_joints, a bicycle model's), the model is kinematic by design: a warning.
     """
-    if not ctx.tree_ok or not ctx.robot.joints or _dynamics_surely_finite(ctx.robot):
+    if not ctx.tree_ok or not ctx.robot.joints or _dynamics_surely_finite(ctx.robot, principal(ctx)):
         return
     massless = _massless_leaf(ctx.robot)
     if massless:
@@ -306,12 +307,13 @@ def _nan_finding(robot, bad: str, massless: list) -> Finding:
                    severity="warning" if kinematic else None)
 
 
-def _dynamics_surely_finite(robot) -> bool:
+def _dynamics_surely_finite(robot, moments=None) -> bool:
     """True when Pinocchio need not be loaded (a third of check's time): urdfdom accepts what it
     reads (no bad values, known types, limits on revolute/prismatic) and every moving joint's
     child has a positive mass with a positive-definite inertia, every other link a non-negative
     mass and semi-definite inertia. Then each moving body's spatial inertia is positive
-    definite, so is the mass matrix at every configuration, and RNEA/ABA stay finite."""
+    definite, so is the mass matrix at every configuration, and RNEA/ABA stay finite.
+    ``moments``: link -> principal moments (ascending) already computed, for the links that have them."""
 
     if robot.load_issues:
         return False
@@ -329,7 +331,9 @@ def _dynamics_surely_finite(robot) -> bool:
             if positive:
                 return False
             continue
-        w, _v = eigh3(tensor(ine))
+        w = moments.get(link.name) if moments else None
+        if w is None:
+            w = principal_moments(ine)          # eigh3's eigenvalues
         if positive and not (ine.mass > 0 and w[0] > 1e-12 * max(w[2], 1e-300)):
             return False
         if not positive and (ine.mass < 0 or w[0] < 0):

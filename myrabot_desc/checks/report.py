@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import functools
 import json
+import math
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -120,10 +121,24 @@ def render_text(results, color: bool | None = None, quiet: bool = False) -> str:
             if not ds:
                 continue
             lines.append(style(f"  {sev}s ({len(ds)})" if sev != "info" else f"  info ({len(ds)})", **STYLE[sev]))
+            # where() and the styled code once per file and code: a big robot has 40,000 findings
+            # in a few files and codes
+            places: dict = {}
+            codes: dict = {}
+            add = lines.append
             for d in ds:
-                w = where(d)
-                lines.append(f"    {w + ': ' if w else ''}" + style(clean(d.code), **STYLE[sev])
-                             + f" {clean(d.message)}")
+                loc = d.loc
+                if loc is None:
+                    w = ""
+                else:
+                    f = places.get(loc.file)
+                    if f is None:
+                        f = places[loc.file] = clean(rel(loc.file))
+                    w = f"{f}:{loc.line}" if loc.line else f
+                c = codes.get(d.code)
+                if c is None:
+                    c = codes[d.code] = style(clean(d.code), **STYLE[sev])
+                add(f"    {w + ': ' if w else ''}{c} {clean(d.message)}")
         if r.suggestions:
             lines.append(style("  suggested inertias (solid body of the collision geometry at the declared "
                                      "mass, in the inertial frame):", bold=True))
@@ -152,8 +167,12 @@ def diag_json(d) -> dict:
 
 def _plain(x):
     """JSON-safe, deterministic: numpy scalars/arrays to Python, floats rounded to 9 significant digits."""
-    import math
-
+    t = x.__class__
+    if t is float:                      # the common leaves first (a big report has millions)
+        if math.isfinite(x):
+            return float(f"{x:.9g}")
+    elif t is str or t is int or t is bool or x is None:
+        return x
     if isinstance(x, dict):
         return {str(k): _plain(v) for k, v in x.items()}
     if isinstance(x, (list, tuple)):
@@ -182,7 +201,80 @@ def render_json(results, version: str) -> str:
         if r.fixes is not None:
             entry["fixes"] = _plain(r.fixes)
         doc["files"].append(entry)
-    return json.dumps(_json_safe(doc), indent=2, ensure_ascii=False) + "\n"
+    return _dumps_safe(doc) + "\n"
+
+
+class _Unusual(Exception):
+    """A value _dumps_safe leaves to json.dumps."""
+
+
+def _dumps_safe(doc) -> str:
+    """``json.dumps(_json_safe(doc), indent=2, ensure_ascii=False)``, the same text, in one pass:
+    json's indenting encoder is pure Python (only the compact one is C) and took most of a
+    40,000-finding report's time. A key that is not a string or that json_safe changes goes to
+    json.dumps itself (two keys could become one there)."""
+    from json.encoder import encode_basestring as enc
+
+    out: list[str] = []
+    add = out.append
+    inf = float("inf")
+
+    def value(x, ind: str, safe: bool) -> None:
+        # the order of json's own tests (bool before int: it is one)
+        if isinstance(x, str):
+            add(enc(json_safe(x) if safe else x))
+        elif x is None:
+            add("null")
+        elif x is True:
+            add("true")
+        elif x is False:
+            add("false")
+        elif isinstance(x, int):
+            add(int.__repr__(x))
+        elif isinstance(x, float):
+            add("NaN" if x != x else "Infinity" if x == inf else "-Infinity" if x == -inf else float.__repr__(x))
+        elif isinstance(x, (list, tuple)):
+            if not x:
+                add("[]")
+                return
+            inner = ind + "  "
+            sep = ",\n" + inner
+            add("[\n" + inner)
+            safe = safe and isinstance(x, list)     # _json_safe does not enter tuples
+            first = True
+            for v in x:
+                if first:
+                    first = False
+                else:
+                    add(sep)
+                value(v, inner, safe)
+            add("\n" + ind + "]")
+        elif isinstance(x, dict):
+            if not x:
+                add("{}")
+                return
+            inner = ind + "  "
+            sep = ",\n" + inner
+            add("{\n" + inner)
+            first = True
+            for k, v in x.items():
+                if not isinstance(k, str) or (safe and json_safe(k) is not k):
+                    raise _Unusual
+                if first:
+                    first = False
+                else:
+                    add(sep)
+                add(enc(k) + ": ")
+                value(v, inner, safe)
+            add("\n" + ind + "}")
+        else:
+            raise _Unusual
+
+    try:
+        value(doc, "", True)
+    except _Unusual:
+        return json.dumps(_json_safe(doc), indent=2, ensure_ascii=False)
+    return "".join(out)
 
 
 def _json_safe(x):
@@ -339,7 +431,7 @@ def render_sarif(results, version: str, exit_code: int = 0, help_url: str | None
            "columnKind": "unicodeCodePoints",
            "results": res}
     doc = {"$schema": SARIF_SCHEMA, "version": "2.1.0", "runs": [run]}
-    return json.dumps(_json_safe(doc), indent=2, ensure_ascii=False) + "\n"
+    return _dumps_safe(doc) + "\n"
 
 
 def sarif_fix(f: dict, location) -> dict:

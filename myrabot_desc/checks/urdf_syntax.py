@@ -125,25 +125,33 @@ def _walk(ctx) -> list:
     return ctx.fact("urdf_syntax.walk", lambda: _problems(ctx.robot.root_element))
 
 
+_FREE = (None, None)
+
+
 def _problems(root) -> list:
     out = []
+    add = out.append
+    schema = SCHEMA.get
     stack = [(root, local(root.tag))]
+    pop, push = stack.pop, stack.append
     while stack:
-        el, tag = stack.pop()
-        attrs, children = SCHEMA.get(tag, (None, None))
+        el, tag = pop()
+        attrs, children = schema(tag, _FREE)
         if children is None:                   # unknown, or a free-form body (keeps its own attributes)
             continue
-        for a in el.keys():
-            if a not in attrs and not a.startswith("{"):     # namespaced attributes are extensions
-                out.append((el, tag, ("attribute", a)))
+        keys = el.keys()
+        if keys and not attrs.issuperset(keys):    # the usual case is all known: one set test
+            for a in keys:
+                if a not in attrs and not a.startswith("{"):     # namespaced attributes are extensions
+                    add((el, tag, ("attribute", a)))
+        if not len(el):                        # most elements are leaves: no child iterator
+            continue
         for c in el:
             ct = c.tag
-            if not isinstance(ct, str) or ct.startswith("{"):   # comments; namespaced elements: extensions
-                continue
-            if ct in children:
-                stack.append((c, ct))
-            else:
-                out.append((c, tag, ("element", ct)))
+            if ct in children:                 # a comment's tag is a function: never in the set
+                push((c, ct))
+            elif isinstance(ct, str) and not ct.startswith("{"):   # comments; namespaced elements: extensions
+                add((c, tag, ("element", ct)))
     return out
 
 

@@ -18,8 +18,8 @@ from myrabot_desc.model import meshes as meshio
 @dataclass
 class MassProps:
     volume: float
-    com: object          # (3,) in the frame the props are expressed in
-    inertia: object      # (3,3) about com, per the given mass
+    com: tuple           # (x, y, z) in the frame the props are expressed in
+    inertia: tuple       # 3x3 as three row tuples, about com, per the given mass
     mass: float
 
 
@@ -136,7 +136,48 @@ def combine(parts, mass: float):
         R = T[:3, :3]
         d = cw - com
         inertia += R @ (Iu * m) @ R.T + m * (d @ d * np.eye(3) - np.outer(d, d))
-    return MassProps(vol, com, inertia, mass)
+    return MassProps(vol, tuple(com.tolist()), tuple(map(tuple, inertia.tolist())), mass)
+
+
+def placed_primitive(g, pose, mass: float):
+    """``combine([(*shape_props(g), pose_matrix(pose))], mass)`` for one primitive whose pose has no
+    rotation, in pure Python, or NotImplemented when that shortcut does not apply.
+
+    The floats are the same: with R the identity (its zeros signed either way) every product
+    combine takes is by 1 or by a zero, and a centroid the mass split leaves where it is makes the
+    parallel-axis term zero. Anything else (a rotation, a centroid moved by an ulp, non-finite
+    numbers) is NotImplemented: the caller takes combine, whose numpy kernels round their own way.
+    """
+    r, p, y = pose.rpy
+    if r != 0 or p != 0 or y != 0 or not mass > 0 or not math.isfinite(mass):
+        return NotImplemented
+    kind = g.kind
+    if kind == "box":
+        x, y, z = g.size
+        v = x * y * z
+        dx, dy, dz = (y * y + z * z, x * x + z * z, x * x + y * y)
+        i0, i1, i2 = 1.0 * dx / 12.0, 1.0 * dy / 12.0, 1.0 * dz / 12.0
+    elif kind == "cylinder":
+        r, h = g.radius, g.length
+        v = math.pi * r ** 2 * h
+        i0 = i1 = 1.0 * (3 * r * r + h * h) / 12.0
+        i2 = 1.0 * r * r / 2.0
+    elif kind == "sphere":
+        v = 4.0 / 3.0 * math.pi * g.radius ** 3
+        i0 = i1 = i2 = 2.0 / 5.0 * 1.0 * g.radius ** 2
+    else:
+        return NotImplemented
+    vol = 0 + v
+    if not math.isfinite(vol) or not (math.isfinite(i0) and math.isfinite(i1) and math.isfinite(i2)):
+        return NotImplemented
+    if vol <= 0:
+        return None
+    m = mass * v / vol
+    cw = [0.0 + float(c) for c in pose.xyz]                 # R @ (0, 0, 0) is +0: the origin is the centroid
+    com = tuple((0 + m * c) / mass for c in cw)
+    if cw[0] - com[0] != 0 or cw[1] - com[1] != 0 or cw[2] - com[2] != 0:
+        return NotImplemented
+    return MassProps(vol, com, ((i0 * m, 0.0, 0.0), (0.0, i1 * m, 0.0), (0.0, 0.0, i2 * m)), mass)
 
 
 def surface_points(g, n: int = 32, mesh=None, loc=None):

@@ -33,21 +33,28 @@ def primitive_volume(g) -> float:
     raise ValueError(g.kind)
 
 
+def primitive_moments(g, mass: float) -> tuple[float, float, float]:
+    """The principal moments of a primitive about its centroid, along its own axes (closed forms)."""
+    if g.kind == "box":
+        x, y, z = g.size
+        d = (y * y + z * z, x * x + z * z, x * x + y * y)
+        return mass * d[0] / 12.0, mass * d[1] / 12.0, mass * d[2] / 12.0
+    if g.kind == "cylinder":
+        r, h = g.radius, g.length
+        a = mass * (3 * r * r + h * h) / 12.0
+        return a, a, mass * r * r / 2.0
+    if g.kind == "sphere":
+        a = 2.0 / 5.0 * mass * g.radius ** 2
+        return a, a, a
+    raise ValueError(g.kind)
+
+
 def primitive_inertia(g, mass: float):
     """3x3 inertia about the centroid in the geometry frame (closed forms)."""
     import numpy as np
 
-    if g.kind == "box":
-        x, y, z = g.size
-        d = (y * y + z * z, x * x + z * z, x * x + y * y)
-        return np.diag([mass * v / 12.0 for v in d])
-    if g.kind == "cylinder":
-        r, h = g.radius, g.length
-        a = mass * (3 * r * r + h * h) / 12.0
-        return np.diag([a, a, mass * r * r / 2.0])
-    if g.kind == "sphere":
-        return np.eye(3) * (2.0 / 5.0 * mass * g.radius ** 2)
-    raise ValueError(g.kind)
+    d = primitive_moments(g, mass)
+    return np.eye(3) * d[0] if g.kind == "sphere" else np.diag(d)
 
 
 def describe(g) -> str:
@@ -151,22 +158,10 @@ def placed_primitive(g, pose, mass: float):
     r, p, y = pose.rpy
     if r != 0 or p != 0 or y != 0 or not mass > 0 or not math.isfinite(mass):
         return NotImplemented
-    kind = g.kind
-    if kind == "box":
-        x, y, z = g.size
-        v = x * y * z
-        dx, dy, dz = (y * y + z * z, x * x + z * z, x * x + y * y)
-        i0, i1, i2 = 1.0 * dx / 12.0, 1.0 * dy / 12.0, 1.0 * dz / 12.0
-    elif kind == "cylinder":
-        r, h = g.radius, g.length
-        v = math.pi * r ** 2 * h
-        i0 = i1 = 1.0 * (3 * r * r + h * h) / 12.0
-        i2 = 1.0 * r * r / 2.0
-    elif kind == "sphere":
-        v = 4.0 / 3.0 * math.pi * g.radius ** 3
-        i0 = i1 = i2 = 2.0 / 5.0 * 1.0 * g.radius ** 2
-    else:
+    if g.kind not in ("box", "cylinder", "sphere"):
         return NotImplemented
+    v = primitive_volume(g)
+    i0, i1, i2 = primitive_moments(g, 1.0)
     vol = 0 + v
     if not math.isfinite(vol) or not (math.isfinite(i0) and math.isfinite(i1) and math.isfinite(i2)):
         return NotImplemented

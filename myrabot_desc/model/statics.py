@@ -22,7 +22,7 @@ from __future__ import annotations
 import math
 from typing import NamedTuple
 
-from myrabot_desc.model.kinematics import _norms, axis_angle, pose_matrix, pose_stack, world_transforms, \
+from myrabot_desc.model.kinematics import _norms, _with_mimic, axis_angle, pose_matrix, pose_stack, world_transforms, \
     world_transforms_from
 
 SAMPLES = 13             # values per joint range: 15 degrees apart on a half-turn range
@@ -52,6 +52,31 @@ def effort_of(joint) -> float | None:
 
 def sample_values(joint, n: int = SAMPLES) -> list[float]:
     """``n`` values over the joint's range (a full turn when it has none; one turn at most)."""
+    lo, hi = _sampled_range(joint)
+    if hi - lo < 1e-12:
+        return [lo]
+    return [lo + (hi - lo) * k / (n - 1) for k in range(n)]
+
+
+def _sample_rows(np, joints, n: int = SAMPLES) -> dict:
+    """joint -> sample_values(joint, n) as an array, the same floats (the same operations, in
+    numpy for all the joints at once)."""
+    ranges = [_sampled_range(j) for j in joints]
+    out = {}
+    wide = [k for k, (lo, hi) in enumerate(ranges) if not hi - lo < 1e-12]
+    for k, (lo, hi) in enumerate(ranges):
+        if hi - lo < 1e-12:
+            out[joints[k].name] = np.array([lo])
+    if wide:
+        lo = np.array([ranges[k][0] for k in wide])[:, None]
+        hi = np.array([ranges[k][1] for k in wide])[:, None]
+        rows = lo + (hi - lo) * np.arange(n, dtype=float) / (n - 1)
+        for k, row in zip(wide, rows):
+            out[joints[k].name] = row
+    return out
+
+
+def _sampled_range(joint) -> tuple[float, float]:
     lo = hi = None
     if joint.type != "continuous" and joint.limit is not None:
         lo, hi = joint.limit.lower, joint.limit.upper
@@ -59,9 +84,7 @@ def sample_values(joint, n: int = SAMPLES) -> list[float]:
         lo, hi = (-math.pi, math.pi) if joint.type != "prismatic" else (0.0, 0.0)
     if joint.type != "prismatic":
         lo, hi = max(lo, -math.pi), min(hi, math.pi)
-    if hi - lo < 1e-12:
-        return [lo]
-    return [lo + (hi - lo) * k / (n - 1) for k in range(n)]
+    return lo, hi
 
 
 def _subtrees(robot, names):
@@ -91,7 +114,9 @@ def gravity_needs(robot, samples: int = SAMPLES, joints=None) -> list[Need]:
     import numpy as np
 
     rest = robot.rest_pose()
-    W = world_transforms(robot, rest)
+    # the rest pose is often every joint at 0: the zero configuration, which check keeps once per robot
+    zero = all(v == 0.0 and math.copysign(1.0, v) > 0 for v in _with_mimic(robot, rest).values())
+    W = world_transforms(robot) if zero else world_transforms(robot, rest)
     movers = [j for j in robot.joints.values() if j.type in MOVING and j.mimic is None
               and j.parent in W and j.child in W]
     names = [j.name for j in movers if joints is None or j.name in joints]
@@ -137,7 +162,7 @@ def gravity_needs(robot, samples: int = SAMPLES, joints=None) -> list[Need]:
     # subtree adds the same change to every joint above it; below it, a_i . (mu_i x g') = g' . (a_i x mu_i)
     r_rest = np.where(prism, 0.0, GRAVITY * (A[:, 1] * (Q[:, 0] - M * P[:, 0]) - A[:, 0] * (Q[:, 1] - M * P[:, 1])))
     B = np.cross(A, Q - M[:, None] * P)
-    vals = {j.name: sample_values(j, samples) for j in movers}
+    vals = _sample_rows(np, movers, samples)
     turned = [j for j in movers if j.type != "prismatic" and j.name not in followers and len(vals[j.name]) == samples]
     R_all, R_of = None, {}
     if turned:          # every revolute joint's sampled rotations at once
@@ -346,9 +371,11 @@ class _Sweep:
                 lo[k] = max(lo[k], self_lb[k])
         self.V_lo = lo
 
+    CUT = 1e-6          # L_k = (the lower bound on V_k) - CUT (1 + it): far below the 1e-9 of a tie
+
     def run(self):
         np = self.np
-        L = np.where(self.active, self.V_lo - 1e-6 * (1 + self.V_lo), np.inf)
+        L = np.where(self.active, self.V_lo - self.CUT * (1 + self.V_lo), np.inf)
         first = self._pass(L, self.active)
         bad = self.active & (self.t_rest < L) & ~(first > L + 1e-9 * (1 + L))
         if bad.any():          # a near tie at the cut: these columns again, every torque above rest kept
@@ -550,10 +577,9 @@ def _joint_frames(np, robot, W, names) -> dict:
     joints = [robot.joints[n] for n in names]
     F = np.array([W[j.parent] for j in joints]) @ pose_stack(j.origin for j in joints)
     axes = (F[:, :3, :3] @ np.array([j.axis for j in joints], dtype=float).reshape(-1, 3, 1))[:, :, 0]
-    frames = {}
-    for n, Fj, a, norm in zip(names, F, axes, _norms(axes.tolist())):
-        frames[n] = (Fj[:3, 3], a / norm if norm > 0 else a)
-    return frames
+    norms = np.array(_norms(axes.tolist()))[:, None]
+    unit = np.where(norms > 0, axes / np.where(norms > 0, norms, 1.0), axes)
+    return dict(zip(names, zip(F[:, :3, 3], unit)))
 
 
 def _subtree_sums(values, parent, levels):
@@ -561,6 +587,18 @@ def _subtree_sums(values, parent, levels):
     import numpy as np
 
     out = np.array(values, dtype=float, copy=True)
+    if len(levels) * 8 > len(out):        # deep and narrow: one Python add per link, in np.add.at's order
+        rows, up = out.tolist(), parent.tolist()
+        flat = out.ndim == 1
+        for level in levels:
+            for c in level.tolist():
+                p = up[c]
+                if p >= 0:
+                    if flat:
+                        rows[p] += rows[c]
+                    else:
+                        rows[p] = [a + b for a, b in zip(rows[p], rows[c])]
+        return np.array(rows, dtype=float).reshape(out.shape)
     for level in levels:
         up = parent[level]
         keep = up >= 0

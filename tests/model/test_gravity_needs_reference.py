@@ -37,7 +37,7 @@ def reference_needs(robot, samples: int = S.SAMPLES, joints=None) -> list[S.Need
     names = [j.name for j in movers if joints is None or j.name in joints]
     if not names:
         return []
-    tree = S._preorder(robot, W)
+    tree = _preorder(robot, W)
     if tree is None:
         return S._gravity_needs_dense(robot, samples, joints)
     order, pos, parent, levels, end = tree
@@ -51,10 +51,10 @@ def reference_needs(robot, samples: int = S.SAMPLES, joints=None) -> list[S.Need
         own_m[k] = [link.inertial.mass for link in links]
         c = (np.array([W[link.name] for link in links]) @ S.pose_stack(link.inertial.origin for link in links))[:, :3, 3]
         own_mc[k] = own_m[k][:, None] * c
-    Mtot = S._subtree_sums(own_m, parent, levels)
-    Qtot = S._subtree_sums(own_mc, parent, levels)
+    Mtot = _subtree_sums(own_m, parent, levels)
+    Qtot = _subtree_sums(own_mc, parent, levels)
     every = [j.name for j in movers]
-    frames = S._joint_frames(np, robot, W, every)
+    frames = _joint_frames(np, robot, W, every)
     ci = np.array([pos[robot.joints[n].child] for n in names])        # each asked joint's child, in preorder
     P = np.array([frames[n][0] for n in names])
     A = np.array([frames[n][1] for n in names])
@@ -81,7 +81,7 @@ def reference_needs(robot, samples: int = S.SAMPLES, joints=None) -> list[S.Need
     tin_sorted = ci[by_tin]
     up = _asked_above(robot, names, order, pos, parent) if len(levels) <= 64 else None   # shallow: walk up
     full = None
-    vals = {j.name: S.sample_values(j, samples) for j in movers}
+    vals = {j.name: sample_values(j, samples) for j in movers}
     turned = [j for j in movers if j.type != "prismatic" and j.name not in followers and len(vals[j.name]) == samples]
     R_of = {}
     if turned:          # every revolute joint's sampled rotations at once
@@ -219,6 +219,86 @@ def _asked_above(robot, names, order, pos, parent):
 
 
 
+def sample_values(joint, n: int = S.SAMPLES) -> list[float]:
+    """``n`` values over the joint's range (a full turn when it has none; one turn at most)."""
+    lo = hi = None
+    if joint.type != "continuous" and joint.limit is not None:
+        lo, hi = joint.limit.lower, joint.limit.upper
+    if lo is None or hi is None or not (math.isfinite(lo) and math.isfinite(hi)) or hi < lo:
+        lo, hi = (-math.pi, math.pi) if joint.type != "prismatic" else (0.0, 0.0)
+    if joint.type != "prismatic":
+        lo, hi = max(lo, -math.pi), min(hi, math.pi)
+    if hi - lo < 1e-12:
+        return [lo]
+    return [lo + (hi - lo) * k / (n - 1) for k in range(n)]
+
+
+def _preorder(robot, W):
+    """(links in depth-first preorder, link -> place, parent place per place (-1 at a root), places
+    by depth (deepest first), end of each subtree's places); None when the links reached are not a
+    tree (a link hanging from two joints)."""
+    import numpy as np
+
+    children = robot.joints_by_parent()
+    has_parent = set()
+    for j in robot.joints.values():
+        if j.parent in W and j.child in W:
+            if j.child in has_parent:
+                return None
+            has_parent.add(j.child)
+    order, pos, parent, depth = [], {}, [], []
+    for root in (name for name in W if name not in has_parent):
+        stack = [(root, -1, 0)]
+        while stack:
+            link, up, dep = stack.pop()
+            if link in pos:
+                return None
+            pos[link] = len(order)
+            order.append(link)
+            parent.append(up)
+            depth.append(dep)
+            here = pos[link]
+            stack.extend((jj.child, here, dep + 1) for jj in reversed(children.get(link, ()))
+                         if jj.child in W)
+    if len(order) != len(W):
+        return None
+    parent = np.array(parent, dtype=np.int64)
+    depth = np.array(depth, dtype=np.int64)
+    by_depth = np.argsort(-depth, kind="stable")
+    cuts = np.flatnonzero(np.diff(depth[by_depth])) + 1
+    levels = np.split(by_depth, cuts)
+    size = _subtree_sums(np.ones(len(order)), parent, levels).astype(np.int64)
+    end = np.arange(len(order)) + size
+    return order, pos, parent, levels, end
+
+
+def _joint_frames(np, robot, W, names) -> dict:
+    """joint -> (its origin, its unit axis) in the world, from the link poses ``W``."""
+    if not names:
+        return {}
+    # every joint's products at once: stacked products give each joint's numbers to the bit
+    joints = [robot.joints[n] for n in names]
+    F = np.array([W[j.parent] for j in joints]) @ S.pose_stack(j.origin for j in joints)
+    axes = (F[:, :3, :3] @ np.array([j.axis for j in joints], dtype=float).reshape(-1, 3, 1))[:, :, 0]
+    frames = {}
+    for n, Fj, a, norm in zip(names, F, axes, S._norms(axes.tolist())):
+        frames[n] = (Fj[:3, 3], a / norm if norm > 0 else a)
+    return frames
+
+
+def _subtree_sums(values, parent, levels):
+    """``values`` (one row per link place) summed over each link's subtree, deepest level first."""
+    import numpy as np
+
+    out = np.array(values, dtype=float, copy=True)
+    for level in levels:
+        up = parent[level]
+        keep = up >= 0
+        if keep.any():
+            np.add.at(out, up[keep], out[level[keep]])
+    return out
+
+
 # ------------------------------------------------------------------ comparing
 def same(new, old, what=""):
     assert [n.joint for n in new] == [n.joint for n in old], what
@@ -335,6 +415,22 @@ def test_generated_chain_and_star_as_before(tmp_path):
         f = tmp_path / f"{kind}.urdf"
         f.write_text(tree_urdf(kind, n))
         compare(load_robot(str(f)), kind)
+
+
+@pytest.mark.parametrize("cut", [0.0, 1e-10, 1e-3])
+def test_any_cut_as_before(tmp_path, monkeypatch, cut):
+    """The cut below each joint's maximum only decides how many torques are evaluated: at the
+    maximum's lower bound itself most joints fall back to a second pass, far below it few do."""
+    monkeypatch.setattr(S._Sweep, "CUT", cut)
+    rng = random.Random(int(cut * 1e12) + 3)
+    for trial in range(12):
+        f = tmp_path / f"t{trial}.urdf"
+        f.write_text(random_urdf(rng, rng.choice([5, 30, 80]), ["chain", "branchy", "random"][trial % 3]))
+        compare(load_robot(str(f)), f"cut {cut} {trial}")
+    for axis in ("0 1 0", "0 0.6 0.8"):
+        f = tmp_path / "p.urdf"
+        f.write_text(planar_urdf(40, axis, True))
+        compare(load_robot(str(f)), f"cut {cut} planar {axis}")
 
 
 def test_bundled_robot_as_before():

@@ -296,7 +296,7 @@ class _Sweep:
         rho = np.full(n, np.inf)
         delta = np.full(n, np.inf)
         vertical = np.zeros(n, dtype=bool)
-        self_lb = {}
+        self_lb = np.full(len(self.names), -np.inf)
         k_of = {name: k for k, name in enumerate(self.names)}
         plain = [q for q, j in enumerate(deep) if j.name not in self.followers]
         turned = [q for q in plain if deep[q].name in self.R_of]
@@ -338,12 +338,14 @@ class _Sweep:
             row = R[:, :, 2, :]
             delta[qs] = G * np.sqrt(((row - np.array([0.0, 0.0, 1.0])) ** 2).sum(2)).max(1)
             vertical[qs] = ((row[..., 0] == 0) & (row[..., 1] == 0) & (row[..., 2] == 1)).all(1)
-            for i, q in enumerate(qs):
-                k = k_of.get(deep[q].name)
-                if k is not None and not self.prism[k]:
-                    v = self.r_rest[k] + G * (shift[i, :, 0] * self.A[k, 1] - shift[i, :, 1] * self.A[k, 0])
-                    scale = abs(self.r_rest[k]) + G * math.hypot(self.A[k, 0], self.A[k, 1]) * rho[q]
-                    self_lb[k] = float(np.abs(v).max()) - 1e-10 * scale
+            ks = np.array([k_of.get(deep[q].name, -1) for q in qs])
+            i = np.flatnonzero(ks >= 0)
+            i = i[~self.prism[ks[i]]]
+            if len(i):               # a joint's own turn: a lower bound on its maximum
+                k, r, Ak = ks[i], self.r_rest[ks[i]][:, None], self.A[ks[i]]
+                v = np.abs(r + G * (shift[i, :, 0] * Ak[:, 1:2] - shift[i, :, 1] * Ak[:, 0:1])).max(1)
+                scale = np.abs(r[:, 0]) + G * np.hypot(Ak[:, 0], Ak[:, 1]) * rho[qs[i]]
+                self_lb[k] = np.maximum(self_lb[k], v - 1e-10 * scale)
         self.rho, self.delta, self.vertical = rho, delta, vertical
         # the torque under a vertical turn above (exactly these products: g' has two zeros)
         self.c_rest = np.abs(np.where(self.prism, (self.g @ self.A.T) * self.M, self.g @ self.B.T))
@@ -359,17 +361,13 @@ class _Sweep:
             up = parent[c]
             f = first_v[up] if up >= 0 else -1
             first_v[c] = own[c] if f < 0 else f
+        up = self.parent[self.ci]
+        f = np.where(up >= 0, np.array(first_v)[np.maximum(up, 0)], -1)
+        f[~self.active] = -1
         self.ev_at = {}
-        lo = self.t_rest.copy()
-        for k in np.flatnonzero(self.active).tolist():
-            up = parent[int(self.ci[k])]
-            f = first_v[up] if up >= 0 else -1
-            if f >= 0:
-                self.ev_at.setdefault(f, []).append(k)
-                lo[k] = max(lo[k], self.c_rest[k])
-            if k in self_lb:
-                lo[k] = max(lo[k], self_lb[k])
-        self.V_lo = lo
+        for k, q in zip(np.flatnonzero(f >= 0).tolist(), f[f >= 0].tolist()):
+            self.ev_at.setdefault(q, []).append(k)
+        self.V_lo = np.maximum(np.maximum(self.t_rest, self_lb), np.where(f >= 0, self.c_rest, -np.inf))
 
     CUT = 1e-6          # L_k = (the lower bound on V_k) - CUT (1 + it): far below the 1e-9 of a tie
 
@@ -563,7 +561,7 @@ def _preorder(robot, W):
     depth = np.array(depth, dtype=np.int64)
     by_depth = np.argsort(-depth, kind="stable")
     cuts = np.flatnonzero(np.diff(depth[by_depth])) + 1
-    levels = np.split(by_depth, cuts)
+    levels = [by_depth[a:b] for a, b in zip([0, *cuts.tolist()], [*cuts.tolist(), len(by_depth)])]
     size = _subtree_sums(np.ones(len(order)), parent, levels).astype(np.int64)
     end = np.arange(len(order)) + size
     return order, pos, parent, levels, end

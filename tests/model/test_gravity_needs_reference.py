@@ -314,6 +314,7 @@ def compare(robot, what="", joints=None):
     same(gravity_needs(robot, joints=joints), reference_needs(robot, joints=joints), what)
 
 
+MIMIC = 0.08           # the share of mimic joints
 AXES = ["0 0 1", "0 1 0", "1 0 0", "0 0 -1", "1 1 0", "0.3 -0.2 1", "1 2 3", "0 0.001 1"]
 
 
@@ -355,7 +356,7 @@ def random_urdf(rng: random.Random, n: int, shape: str) -> str:
         if kind in ("revolute", "prismatic") and not lim:
             lim = '<limit lower="-1" upper="1" effort="10" velocity="1"/>'
         mimic = ""
-        if kind != "fixed" and movers and rng.random() < 0.08:
+        if kind != "fixed" and movers and rng.random() < MIMIC:
             mimic = f'<mimic joint="{rng.choice(movers)}" multiplier="{rng.choice([1, -1, 0.5])}" offset="0.1"/>'
         elif kind != "fixed":
             movers.append(f"j{i}")

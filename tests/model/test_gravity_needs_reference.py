@@ -1,7 +1,7 @@
-"""gravity_needs (model/statics.py) against the algorithm it replaced, kept here as the reference:
-every (joint, sample) torque evaluated, O(joints x depth) on a deep tree. The new one skips the
-torques that cannot change a maximum or a worst pose; the results must be the same (torques within
-1e-12 relative, the same worst pose) on random trees, the bundled robot, the corpus and
+"""gravity_needs (model/statics.py) against the plain algorithm, kept here as the reference: every
+(joint, sample) torque evaluated, O(joints x depth) on a deep tree. gravity_needs skips the torques
+that cannot change a maximum or a worst pose; the results must be the same (torques within 1e-12
+relative, the same worst pose) on random trees, the bundled robot, the corpus and
 example-robot-data."""
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ from myrabot_desc.model.statics import gravity_needs
 np = pytest.importorskip("numpy")
 
 
-# ------------------------------------------------------------------ the reference (the former algorithm)
+# ------------------------------------------------------------------ the reference: every torque evaluated
 def reference_needs(robot, samples: int = S.SAMPLES, joints=None) -> list[S.Need]:
     """One :class:`Need` per moving, non-mimic joint (``joints``: only these), in file order.
 
@@ -49,7 +49,8 @@ def reference_needs(robot, samples: int = S.SAMPLES, joints=None) -> list[S.Need
     if links:
         k = np.array([pos[link.name] for link in links])
         own_m[k] = [link.inertial.mass for link in links]
-        c = (np.array([W[link.name] for link in links]) @ S.pose_stack(link.inertial.origin for link in links))[:, :3, 3]
+        origins = S.pose_stack(link.inertial.origin for link in links)
+        c = (np.array([W[link.name] for link in links]) @ origins)[:, :3, 3]
         own_mc[k] = own_m[k][:, None] * c
     Mtot = _subtree_sums(own_m, parent, levels)
     Qtot = _subtree_sums(own_mc, parent, levels)
@@ -370,7 +371,8 @@ def random_urdf(rng: random.Random, n: int, shape: str) -> str:
 def planar_urdf(n: int, axis: str, spread: bool) -> str:
     """A chain whose joints all turn about one horizontal axis: the torques of a joint tie between
     its own turn and every turn above it (the worst pose is decided by the tie-breaking)."""
-    inertial = '<inertial><mass value="0.1"/><inertia ixx="1e-4" ixy="0" ixz="0" iyy="1e-4" iyz="0" izz="1e-4"/></inertial>'
+    inertial = ('<inertial><mass value="0.1"/><inertia ixx="1e-4" ixy="0" ixz="0" iyy="1e-4" iyz="0" izz="1e-4"/>'
+                '</inertial>')
     out = ['<robot name="p">', f'<link name="l0">{inertial}</link>']
     for i in range(1, n):
         lim = f'<limit lower="{-0.5 - 0.1 * (i % 3) if spread else -1}" upper="1" effort="1" velocity="1"/>'

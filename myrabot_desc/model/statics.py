@@ -287,15 +287,17 @@ class _Sweep:
         self.tin_sorted = ci[self.by_tin]
         self.up = _asked_above(robot, names, None, pos, parent) if len(levels) <= 64 else None
         self.full = None
-        self._bounds()
+        self.cj = np.array([pos[j.child] for j in deep], dtype=np.int64)
+        self.Rs, self.ts = [None] * len(deep), [None] * len(deep)   # the exact rotations and translations
+        self.plain = len(deep) * len(levels) < self.PLAIN
+        if not self.plain:
+            self._bounds()
 
     def _bounds(self):
         """Per turned joint: rho, delta, whether its turn is vertical; per column its rest-pose
         lower bound on the maximum and the constant of the vertical turns above it."""
         np, G = self.np, GRAVITY
         deep, n = self.deep, len(self.deep)
-        self.cj = np.array([self.pos[j.child] for j in deep], dtype=np.int64)
-        self.Rs, self.ts = [None] * n, [None] * n         # the exact rotations and translations, as evaluated
         rho = np.full(n, np.inf)
         delta = np.full(n, np.inf)
         vertical = np.zeros(n, dtype=bool)
@@ -372,10 +374,14 @@ class _Sweep:
             self.ev_at.setdefault(q, []).append(k)
         self.V_lo = np.maximum(np.maximum(self.t_rest, self_lb), np.where(f >= 0, self.c_rest, -np.inf))
 
+    PLAIN = 4096        # joints x depth below which every torque is evaluated: fewer than the bounds cost
     CUT = 1e-6          # L_k = (the lower bound on V_k) - CUT (1 + it): far below the 1e-9 of a tie
 
     def run(self):
         np = self.np
+        if self.plain:
+            self._pass(None, self.active)
+            return
         L = np.where(self.active, self.V_lo - self.CUT * (1 + self.V_lo), np.inf)
         first = self._pass(L, self.active)
         bad = self.active & (self.t_rest < L) & ~(first > L + 1e-9 * (1 + L))
@@ -386,7 +392,13 @@ class _Sweep:
             self._pass(np.where(bad, self.t_rest, np.inf), bad)
 
     def _pass(self, L, active):
+        """Every turn's torques that may matter on the columns ``active``, replayed; each column's first
+        torque at or above its cut ``L`` (None: every torque, without cuts)."""
         np, G = self.np, GRAVITY
+        if L is None:
+            for q, j in enumerate(self.deep):
+                self._turn_all(q, j, active, None, None)
+            return None
         parent, ci, t_rest = self.parent.tolist(), self.ci, self.t_rest
         Lc = np.maximum(L, t_rest) * (1 - 1e-10)
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -421,14 +433,7 @@ class _Sweep:
                 if len(cols):
                     self._record(j.name, cols, self.c_rest[cols][None, :], values[:1], L, first)
             if j.name in self.followers:
-                idx = np.concatenate([self._above(cj), self._below(cj)])
-                idx = idx[active[idx]]
-                if len(idx):
-                    if self.full is None:
-                        self.full = _FullTree(self.robot, self.rest, self.W, self.names, self.links, self.pos,
-                                              self.parent, self.levels, self.M, self.prism)
-                    T = np.array([self.full.torques(j.name, x, self.torques) for x in values])[:, idx]
-                    self._record(j.name, idx, T, values, L, first)
+                self._turn_all(q, j, active, L, first)
                 continue
             reach = self.rho[q] * (1 + 1e-9)
             above = below = None
@@ -446,6 +451,28 @@ class _Sweep:
             if len(idx):
                 self._record(j.name, idx, T, values, L, first)
         return first
+
+    def _turn_all(self, q, j, active, L, first):
+        """Joint j's turn on every asked joint above and below it, replayed (a joint a mimic joint
+        follows: the whole pose, the slow way)."""
+        np = self.np
+        cj = int(self.cj[q])
+        values = self.vals[j.name]
+        if j.name in self.followers:
+            idx = np.concatenate([self._above(cj), self._below(cj)])
+            idx = idx[active[idx]]
+            if not len(idx):
+                return
+            if self.full is None:
+                self.full = _FullTree(self.robot, self.rest, self.W, self.names, self.links, self.pos,
+                                      self.parent, self.levels, self.M, self.prism)
+            T = np.array([self.full.torques(j.name, x, self.torques) for x in values])[:, idx]
+        else:
+            above, below = self._above(cj), self._below(cj)
+            if not len(above) and not len(below):
+                return
+            T, idx = self._turn(q, j, above, below)
+        self._record(j.name, idx, T, values, L, first)
 
     def _above(self, cj):
         """The asked joints whose child is at or above place cj."""
@@ -470,8 +497,15 @@ class _Sweep:
         cj = int(self.cj[q])
         if self.Rs[q] is not None:
             R, t = self.Rs[q], self.ts[q]
+        elif j.type == "prismatic":
+            d = self.vals[j.name] - self.rest.get(j.name, 0.0)
+            R = np.broadcast_to(np.eye(3), (len(d), 3, 3))
+            t = d[:, None] * a0
         else:
-            R = self.R_all[self.R_of[j.name]]
+            if j.name in self.R_of:
+                R = self.R_all[self.R_of[j.name]]
+            else:
+                R = _rotations(a0[None, :], (self.vals[j.name] - self.rest.get(j.name, 0.0))[None, :])[0]
             t = p0 - R @ p0
         parts, idx = [], []
         if above is not None and len(above):
@@ -506,6 +540,8 @@ class _Sweep:
                     where[k] = (name, x)
                 bg = np.maximum(bg, t)
         best[idx] = np.maximum(b, top)
+        if first is None:
+            return
         fresh = np.isnan(first[idx])
         if fresh.any():
             at = np.flatnonzero(fresh)

@@ -627,14 +627,13 @@ def _subtree_sums(values, parent, levels):
     if len(levels) * 8 > len(out):        # deep and narrow: one Python add per link, in np.add.at's order
         rows, up = out.tolist(), parent.tolist()
         flat = out.ndim == 1
-        for level in levels:
-            for c in level.tolist():
-                p = up[c]
-                if p >= 0:
-                    if flat:
-                        rows[p] += rows[c]
-                    else:
-                        rows[p] = [a + b for a, b in zip(rows[p], rows[c])]
+        for c in np.concatenate(levels).tolist():
+            p = up[c]
+            if p >= 0:
+                if flat:
+                    rows[p] += rows[c]
+                else:
+                    rows[p] = [a + b for a, b in zip(rows[p], rows[c])]
         return np.array(rows, dtype=float).reshape(out.shape)
     for level in levels:
         up = parent[level]

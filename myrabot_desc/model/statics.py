@@ -17,7 +17,7 @@ rigidly, so each sample is a few small array products, and ``check`` does not pa
 import (a fifth of a one-robot check) for it.
 
 Every joint's samples change the torques of the joints above and below it, so the full table is
-O(joints x depth): on a 5,000-link chain, 10^8 torques. Only the few that can change a joint's
+O(joints x depth): on a 5,000-link chain, some 3 x 10^8 torques. Only the few that can change a joint's
 maximum or worst pose are evaluated (``_Sweep``: upper bounds on every other, aggregated along the
 tree); the others are skipped, with the same maxima and poses, to the bit. The cost is then linear in
 the tree's size plus the torques that come near a maximum; a long chain turning about tilted or

@@ -11,7 +11,7 @@ import random
 
 import pytest
 
-from helpers import ERD, corpus_model, corpus_robots
+from helpers import ERD, ROOT, corpus_model, corpus_robots, cpu_time
 from myrabot_desc.model import statics as S
 from myrabot_desc.model.loader import load_robot
 from myrabot_desc.model.statics import gravity_needs
@@ -411,20 +411,39 @@ def test_planar_chains_tie_as_before(tmp_path, axis, spread):
     compare(load_robot(str(f)), axis)
 
 
-def test_generated_chain_and_star_as_before(tmp_path):
+def _tree_urdf(kind: str, n: int) -> str:
+    """bench/gen_tree.py's chain or star of n links."""
     import sys
-
-    from helpers import ROOT
 
     sys.path.insert(0, str(ROOT / "bench"))
     try:
         from gen_tree import tree_urdf
     finally:
         sys.path.remove(str(ROOT / "bench"))
+    return tree_urdf(kind, n)
+
+
+def test_generated_chain_and_star_as_before(tmp_path):
     for kind, n in (("chain", 400), ("star", 400)):
         f = tmp_path / f"{kind}.urdf"
-        f.write_text(tree_urdf(kind, n))
+        f.write_text(_tree_urdf(kind, n))
         compare(load_robot(str(f)), kind)
+
+
+def test_deep_chain_is_not_joints_times_depth(tmp_path):
+    """The 5,000-link chain: some 3 x 10^8 (joint, sample) torques for the plain algorithm (3 s and more of
+    CPU), about 0.1 s here with its rest-pose transforms (made once per robot, as check does);
+    the limit leaves room for a loaded machine."""
+    from myrabot_desc.model.kinematics import world_transforms
+
+    f = tmp_path / "chain.urdf"
+    f.write_text(_tree_urdf("chain", 5000))
+    r = load_robot(str(f))
+    world_transforms(r)
+    with cpu_time() as t:
+        needs = gravity_needs(r)
+    assert len(needs) == 4999 and t.seconds < 1.0
+    assert all(n.torque == 0.0 and n.pose_joint is None for n in needs)      # vertical axes: no torque
 
 
 @pytest.mark.parametrize("cut", [0.0, 1e-10, 1e-3])

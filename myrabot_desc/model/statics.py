@@ -17,11 +17,12 @@ rigidly, so each sample is a few small array products, and ``check`` does not pa
 import (a fifth of a one-robot check) for it.
 
 Every joint's samples change the torques of the joints above and below it, so the full table is
-O(joints x depth): on a 5,000-link chain, some 3 x 10^8 torques. Only the few that can change a joint's
-maximum or worst pose are evaluated (``_Sweep``: upper bounds on every other, aggregated along the
-tree); the others are skipped, with the same maxima and poses, to the bit. The cost is then linear in
-the tree's size plus the torques that come near a maximum; a long chain turning about tilted or
-horizontal axes, where the turns above a joint tie with its own, still evaluates most of them.
+O(joints x depth): on a 5,000-link chain, some 3 x 10^8 torques. On a large deep tree only the
+turns that can change a joint's maximum or worst pose are evaluated (``_Sweep``: upper bounds
+aggregated along the tree), with the same maxima and poses, to the bit: the cost is linear in the
+tree's size plus the turns kept (one kept for a joint below it is evaluated on every joint below it,
+as a BLAS product's bits depend on its shape). A long chain turning about tilted or horizontal axes,
+where the turns above a joint tie with its own, still keeps most turns: O(joints x depth) there.
 """
 
 from __future__ import annotations

@@ -304,9 +304,9 @@ class _Sweep:
         vertical = np.zeros(n, dtype=bool)
         self_lb = np.full(len(self.names), -np.inf)
         k_of = {name: k for k, name in enumerate(self.names)}
-        plain = [q for q, j in enumerate(deep) if j.name not in self.followers]
-        turned = [q for q in plain if deep[q].name in self.R_of]
-        rest_q = [q for q in plain if deep[q].name not in self.R_of]
+        free = [q for q, j in enumerate(deep) if j.name not in self.followers]
+        turned = [q for q in free if deep[q].name in self.R_of]
+        rest_q = [q for q in free if deep[q].name not in self.R_of]
         groups = []
         if turned:
             R = self.R_all[[self.R_of[deep[q].name] for q in turned]]
@@ -347,7 +347,7 @@ class _Sweep:
             ks = np.array([k_of.get(deep[q].name, -1) for q in qs])
             i = np.flatnonzero(ks >= 0)
             i = i[~self.prism[ks[i]]]
-            if len(i):               # a joint's own turn: a lower bound on its maximum
+            if len(i):               # a joint's own turn: about a lower bound on its maximum (the cut is checked)
                 k, r, Ak = ks[i], self.r_rest[ks[i]][:, None], self.A[ks[i]]
                 v = np.abs(r + G * (shift[i, :, 0] * Ak[:, 1:2] - shift[i, :, 1] * Ak[:, 0:1])).max(1)
                 scale = np.abs(r[:, 0]) + G * np.hypot(Ak[:, 0], Ak[:, 1]) * rho[qs[i]]
@@ -383,6 +383,7 @@ class _Sweep:
         if self.plain:
             self._pass(None, self.active)
             return
+        # only the bounds must be rigorous: a cut above V_k leaves no evaluated torque over it, and the check fails
         L = np.where(self.active, self.V_lo - self.CUT * (1 + self.V_lo), np.inf)
         first = self._pass(L, self.active)
         bad = self.active & (self.t_rest < L) & ~(first > L + 1e-9 * (1 + L))
@@ -525,8 +526,9 @@ class _Sweep:
         return np.concatenate(parts, axis=1), np.concatenate(idx)
 
     def _record(self, name, idx, T, values, L, first):
-        """Replay the torques T (samples x columns idx) into the running maxima and worst poses, as
-        gravity_needs did, and note each column's first torque at or above its cut."""
+        """Replay the torques T (samples x columns idx) into the running maxima and worst poses (a
+        later torque takes the pose only beyond 1e-9 (1 + maximum)), and note each column's first
+        torque at or above its cut."""
         np = self.np
         best, where = self.best, self.where
         b = best[idx]

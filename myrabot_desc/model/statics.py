@@ -15,6 +15,14 @@ for a fixed base, which tests/check/test_statics.py compares it with. It is comp
 numpy from the model's own kinematics (model/kinematics.py): moving one joint moves its subtree
 rigidly, so each sample is a few small array products, and ``check`` does not pay Pinocchio's
 import (a fifth of a one-robot check) for it.
+
+Every joint's samples change the torques of the joints above and below it, so the full table is
+O(joints x depth): on a 5,000-link chain, some 3 x 10^8 torques. On a large deep tree only the
+turns that can change a joint's maximum or worst pose are evaluated (``_Sweep``: upper bounds
+aggregated along the tree), with the same maxima and poses, to the bit: the cost is linear in the
+tree's size plus the turns kept (one kept for a joint below it is evaluated on every joint below it,
+as a BLAS product's bits depend on its shape). A long chain turning about tilted or horizontal axes,
+where the turns above a joint tie with its own, still keeps most turns: O(joints x depth) there.
 """
 
 from __future__ import annotations
@@ -22,7 +30,7 @@ from __future__ import annotations
 import math
 from typing import NamedTuple
 
-from myrabot_desc.model.kinematics import _norms, axis_angle, pose_matrix, pose_stack, world_transforms, \
+from myrabot_desc.model.kinematics import _norms, _with_mimic, axis_angle, pose_matrix, pose_stack, world_transforms, \
     world_transforms_from
 
 SAMPLES = 13             # values per joint range: 15 degrees apart on a half-turn range
@@ -52,6 +60,31 @@ def effort_of(joint) -> float | None:
 
 def sample_values(joint, n: int = SAMPLES) -> list[float]:
     """``n`` values over the joint's range (a full turn when it has none; one turn at most)."""
+    lo, hi = _sampled_range(joint)
+    if hi - lo < 1e-12:
+        return [lo]
+    return [lo + (hi - lo) * k / (n - 1) for k in range(n)]
+
+
+def _sample_rows(np, joints, n: int = SAMPLES) -> dict:
+    """joint -> sample_values(joint, n) as an array, the same floats (the same operations, in
+    numpy for all the joints at once)."""
+    ranges = [_sampled_range(j) for j in joints]
+    out = {}
+    wide = [k for k, (lo, hi) in enumerate(ranges) if not hi - lo < 1e-12]
+    for k, (lo, hi) in enumerate(ranges):
+        if hi - lo < 1e-12:
+            out[joints[k].name] = np.array([lo])
+    if wide:
+        lo = np.array([ranges[k][0] for k in wide])[:, None]
+        hi = np.array([ranges[k][1] for k in wide])[:, None]
+        rows = lo + (hi - lo) * np.arange(n, dtype=float) / (n - 1)
+        for k, row in zip(wide, rows):
+            out[joints[k].name] = row
+    return out
+
+
+def _sampled_range(joint) -> tuple[float, float]:
     lo = hi = None
     if joint.type != "continuous" and joint.limit is not None:
         lo, hi = joint.limit.lower, joint.limit.upper
@@ -59,9 +92,7 @@ def sample_values(joint, n: int = SAMPLES) -> list[float]:
         lo, hi = (-math.pi, math.pi) if joint.type != "prismatic" else (0.0, 0.0)
     if joint.type != "prismatic":
         lo, hi = max(lo, -math.pi), min(hi, math.pi)
-    if hi - lo < 1e-12:
-        return [lo]
-    return [lo + (hi - lo) * k / (n - 1) for k in range(n)]
+    return lo, hi
 
 
 def _subtrees(robot, names):
@@ -83,15 +114,17 @@ def _subtrees(robot, names):
 def gravity_needs(robot, samples: int = SAMPLES, joints=None) -> list[Need]:
     """One :class:`Need` per moving, non-mimic joint (``joints``: only these), in file order.
 
-    Linear in the tree's size for a wide tree, O(joints x depth) for a deep one: the masses and
-    moments of every subtree are summed once, bottom-up; moving one joint changes only the torques
-    of the joints above it (the moment of its subtree turns) and below it (gravity turns in their
-    frames), the others keep their rest value. A model that is not a tree (a link hanging from two
-    joints) takes the dense form (``_gravity_needs_dense``)."""
+    The masses and moments of every subtree are summed once, bottom-up; moving one joint changes
+    only the torques of the joints above it (the moment of its subtree turns) and below it (gravity
+    turns in their frames), the others keep their rest value; of those, only the ones that can
+    matter are evaluated (``_Sweep``; the module's doc gives the cost). A model that is not a tree
+    (a link hanging from two joints) takes the dense form (``_gravity_needs_dense``)."""
     import numpy as np
 
     rest = robot.rest_pose()
-    W = world_transforms(robot, rest)
+    # the rest pose is often every joint at 0: the zero configuration, which check keeps once per robot
+    zero = all(v == 0.0 and math.copysign(1.0, v) > 0 for v in _with_mimic(robot, rest).values())
+    W = world_transforms(robot) if zero else world_transforms(robot, rest)
     movers = [j for j in robot.joints.values() if j.type in MOVING and j.mimic is None
               and j.parent in W and j.child in W]
     names = [j.name for j in movers if joints is None or j.name in joints]
@@ -137,13 +170,9 @@ def gravity_needs(robot, samples: int = SAMPLES, joints=None) -> list[Need]:
     # subtree adds the same change to every joint above it; below it, a_i . (mu_i x g') = g' . (a_i x mu_i)
     r_rest = np.where(prism, 0.0, GRAVITY * (A[:, 1] * (Q[:, 0] - M * P[:, 0]) - A[:, 0] * (Q[:, 1] - M * P[:, 1])))
     B = np.cross(A, Q - M[:, None] * P)
-    by_tin = np.argsort(ci, kind="stable")           # asked joints by their child's place in preorder
-    tin_sorted = ci[by_tin]
-    up = _asked_above(robot, names, order, pos, parent) if len(levels) <= 64 else None   # shallow: walk up
-    full = None
-    vals = {j.name: sample_values(j, samples) for j in movers}
+    vals = _sample_rows(np, movers, samples)
     turned = [j for j in movers if j.type != "prismatic" and j.name not in followers and len(vals[j.name]) == samples]
-    R_of = {}
+    R_all, R_of = None, {}
     if turned:          # every revolute joint's sampled rotations at once
         R_all = _rotations(np.array([frames[j.name][1] for j in turned]),
                            np.array([vals[j.name] for j in turned])
@@ -154,57 +183,10 @@ def gravity_needs(robot, samples: int = SAMPLES, joints=None) -> list[Need]:
         _turn_alone(np, robot, alone, names, vals, frames, pos, R_all, R_of, Qtot, Mtot, prism, t_rest, r_rest,
                     A, best, where)
     alone = set(alone)
-    for j in movers:
-        if j.name in alone:
-            continue
-        values = vals[j.name]
-        cj = pos[j.child]
-        if end[cj] > cj + 1:
-            lo, hi = np.searchsorted(tin_sorted, [cj + 1, end[cj]])
-            below = by_tin[lo:hi]                      # the asked joints under j (j itself excluded)
-        else:
-            below = by_tin[:0]
-        if up is not None:
-            above = np.array(up(cj), dtype=np.int64)
-        else:
-            above = np.flatnonzero((ci <= cj) & (end[ci] > cj))
-        idx = np.concatenate([above, below]) if len(below) else above
-        if not len(idx):
-            continue
-        if j.name in followers:          # a mimic follows it: the whole pose, the slow way
-            if full is None:
-                full = _FullTree(robot, rest, W, names, links, pos, parent, levels, M, prism)
-            T = np.array([full.torques(j.name, x, torques) for x in values])[:, idx]
-        else:
-            p0, a0 = frames[j.name]
-            d = np.asarray(values) - rest.get(j.name, 0.0)
-            if j.type == "prismatic":
-                R = np.broadcast_to(np.eye(3), (len(d), 3, 3))
-                t = d[:, None] * a0
-            else:
-                R = R_all[R_of[j.name]] if j.name in R_of else _rotations(a0[None, :], d[None, :])[0]
-                t = p0 - R @ p0
-            shift = Qtot[cj] @ np.swapaxes(R, 1, 2) + Mtot[cj] * t - Qtot[cj]   # the turned subtree's moment change
-            T_above = np.abs(np.where(prism[above], t_rest[above],
-                                      r_rest[above] + GRAVITY * (np.outer(shift[:, 0], A[above, 1])
-                                                                 - np.outer(shift[:, 1], A[above, 0]))))
-            if len(below):
-                g_below = g @ R                                        # gravity in the turned frames
-                T_below = np.abs(np.where(prism[below], (g_below @ A[below].T) * M[below], g_below @ B[below].T))
-                T = np.concatenate([T_above, T_below], axis=1)
-            else:
-                T = T_above
-        b = best[idx]
-        gain = T.max(axis=0) > b + 1e-9 * (1 + b)       # only these columns move their worst pose
-        if gain.any():
-            cols, Tg = idx[gain], T[:, gain]
-            bg = best[cols]
-            for x, t in zip(values, Tg):
-                better = t > bg + 1e-9 * (1 + bg)
-                for k in cols[better]:
-                    where[k] = (j.name, x)
-                bg = np.maximum(bg, t)
-        best[idx] = np.maximum(b, T.max(axis=0))
+    deep = [j for j in movers if j.name not in alone]
+    if deep:
+        _Sweep(np, robot, rest, W, names, links, deep, followers, vals, frames, R_all, R_of, pos, parent, levels, end,
+               ci, Qtot, Mtot, M, A, B, prism, t_rest, r_rest, torques, best, where).run()
     out = []
     for k, n in enumerate(names):
         j = robot.joints[n]
@@ -260,6 +242,319 @@ def _turn_alone(np, robot, alone, names, vals, frames, pos, R_all, R_of, Qtot, M
     best[K] = np.maximum(b, T.max(axis=1))
 
 
+class _Sweep:
+    """gravity_needs' turns of the joints that are not alone, each (joint, sample) torque evaluated
+    only where it can change a maximum or a worst pose.
+
+    Joint k's worst pose is the last torque of its stream (the moving joints in file order, each
+    over its samples, from its rest torque) that beats the running maximum by more than
+    1e-9 (1 + maximum); its torque is the stream's maximum V_k. A torque t is left out (skipped) only
+    when an upper bound u >= t, float rounding included, shows one of:
+
+    - u <= the rest torque: t never beats the running maximum and never raises it;
+    - u < L_k, a cut a margin below a lower bound on V_k (the rest torque, k's own turn, ...).
+
+    Replaying the evaluated torques alone, from the rest torque, gives the whole stream's maximum
+    and worst pose when the rest torque is >= L_k (every skipped torque is then of the first kind),
+    or when the first evaluated torque >= L_k beats L_k + 1e-9 (1 + L_k): before it the running
+    maximum is below L_k in both streams, so both take it, and after it every skipped torque is
+    below the running maximum. A joint for which neither holds (a near tie at the cut) is replayed
+    with L_k = its rest torque. Torques known to be equal to the bit are counted once, the first.
+
+    The bounds, with r_k, A_k, B_k as in gravity_needs and s the moment change of the turned subtree:
+    a joint j at or below revolute k gives |r_k + G (s_x A_k,y - s_y A_k,x)| <= |r_k| + G |A_k,xy| rho_j
+    (rho_j: the largest horizontal |s| over j's samples); a joint j above k turns gravity to g' and
+    gives |g' . B_k| <= |g . B_k| + |B_k| delta_j (delta_j: the largest |g' - g|; A_k M_k for a
+    prismatic k). Whole joints are skipped by the least cut over the joints above (a prefix minimum)
+    or below (a subtree minimum), so a joint that changes nothing that matters costs O(1). A
+    vertical turn (or a slide) leaves g' = (0, 0, -G) exactly: its torques below are one constant per
+    joint, counted at the first such joint above. The torques kept are computed by the same numpy
+    expressions, on the same rows for the products a BLAS call makes, so they are the same to the bit.
+    """
+
+    def __init__(self, np, robot, rest, W, names, links, deep, followers, vals, frames, R_all, R_of, pos, parent,
+                 levels, end, ci, Qtot, Mtot, M, A, B, prism, t_rest, r_rest, torques, best, where):
+        self.np, self.robot, self.rest, self.W, self.names, self.links = np, robot, rest, W, names, links
+        self.deep, self.followers, self.vals, self.frames = deep, followers, vals, frames
+        self.R_all, self.R_of, self.pos, self.parent, self.levels, self.end, self.ci = \
+            R_all, R_of, pos, parent, levels, end, ci
+        self.Qtot, self.Mtot, self.M, self.A, self.B, self.prism = Qtot, Mtot, M, A, B, prism
+        self.t_rest, self.r_rest, self.torques, self.best, self.where = t_rest, r_rest, torques, best, where
+        self.g = np.array([0.0, 0.0, -GRAVITY])
+        deep_names = {j.name for j in deep}
+        # the columns still to do (an alone joint's only moves with its own turn, done)
+        self.active = np.array([n in deep_names for n in names])
+        self.by_tin = np.argsort(ci, kind="stable")
+        self.tin_sorted = ci[self.by_tin]
+        self.up = _asked_above(robot, names, None, pos, parent) if len(levels) <= 64 else None
+        self.full = None
+        self.cj = np.array([pos[j.child] for j in deep], dtype=np.int64)
+        self.Rs, self.ts = [None] * len(deep), [None] * len(deep)   # the exact rotations and translations
+        self.plain = len(deep) * len(levels) < self.PLAIN
+        if not self.plain:
+            self._bounds()
+
+    def _bounds(self):
+        """Per turned joint: rho, delta, whether its turn is vertical; per column its rest-pose
+        lower bound on the maximum and the constant of the vertical turns above it."""
+        np, G = self.np, GRAVITY
+        deep, n = self.deep, len(self.deep)
+        rho = np.full(n, np.inf)
+        delta = np.full(n, np.inf)
+        vertical = np.zeros(n, dtype=bool)
+        self_lb = np.full(len(self.names), -np.inf)
+        k_of = {name: k for k, name in enumerate(self.names)}
+        free = [q for q, j in enumerate(deep) if j.name not in self.followers]
+        turned = [q for q in free if deep[q].name in self.R_of]
+        rest_q = [q for q in free if deep[q].name not in self.R_of]
+        groups = []
+        if turned:
+            R = self.R_all[[self.R_of[deep[q].name] for q in turned]]
+            p0 = np.array([self.frames[deep[q].name][0] for q in turned])
+            t = p0[:, None, :] - (R @ p0[:, None, :, None])[..., 0]
+            groups.append((turned, R, t, p0))
+        if rest_q:
+            S = max(len(self.vals[deep[q].name]) for q in rest_q)
+            Rl, tl, pl = [], [], []
+            for q in rest_q:
+                j = deep[q]
+                p0, a0 = self.frames[j.name]
+                d = np.asarray(self.vals[j.name]) - self.rest.get(j.name, 0.0)
+                if j.type == "prismatic":
+                    R = np.broadcast_to(np.eye(3), (len(d), 3, 3))
+                    t = d[:, None] * a0
+                else:
+                    R = _rotations(a0[None, :], d[None, :])[0]
+                    t = p0 - R @ p0
+                self.Rs[q], self.ts[q] = R, t
+                pad = S - len(d)                    # the last sample again: same maxima
+                Rl.append(np.concatenate([R, np.repeat(R[-1:], pad, 0)]) if pad else R)
+                tl.append(np.concatenate([t, np.repeat(t[-1:], pad, 0)]) if pad else t)
+                pl.append(p0)
+            groups.append((rest_q, np.array(Rl), np.array(tl), np.array(pl)))
+        for qs, R, t, p0 in groups:
+            qs = np.array(qs)
+            cj = self.cj[qs]
+            Qj, Mj = self.Qtot[cj], self.Mtot[cj]
+            shift = np.einsum("nc,nsrc->nsr", Qj, R) + Mj[:, None, None] * t - Qj[:, None, :]
+            err = 1e-11 * (3 * np.abs(Qj).sum(1) + Mj * (3 * np.abs(p0).sum(1) + np.abs(t).sum(2).max(1)))
+            m0 = np.abs(shift[:, :, 0]).max(1) + err
+            m1 = np.abs(shift[:, :, 1]).max(1) + err
+            rho[qs] = np.hypot(m0, m1)
+            row = R[:, :, 2, :]
+            delta[qs] = G * np.sqrt(((row - np.array([0.0, 0.0, 1.0])) ** 2).sum(2)).max(1)
+            vertical[qs] = ((row[..., 0] == 0) & (row[..., 1] == 0) & (row[..., 2] == 1)).all(1)
+            ks = np.array([k_of.get(deep[q].name, -1) for q in qs])
+            i = np.flatnonzero(ks >= 0)
+            i = i[~self.prism[ks[i]]]
+            if len(i):               # a joint's own turn: about a lower bound on its maximum (the cut is checked)
+                k, r, Ak = ks[i], self.r_rest[ks[i]][:, None], self.A[ks[i]]
+                v = np.abs(r + G * (shift[i, :, 0] * Ak[:, 1:2] - shift[i, :, 1] * Ak[:, 0:1])).max(1)
+                scale = np.abs(r[:, 0]) + G * np.hypot(Ak[:, 0], Ak[:, 1]) * rho[qs[i]]
+                self_lb[k] = np.maximum(self_lb[k], v - 1e-10 * scale)
+        self.rho, self.delta, self.vertical = rho, delta, vertical
+        # the torque under a vertical turn above (exactly these products: g' has two zeros)
+        self.c_rest = np.abs(np.where(self.prism, (self.g @ self.A.T) * self.M, self.g @ self.B.T))
+        self.W_k = np.where(self.prism, np.linalg.norm(self.A, axis=1) * self.M, np.linalg.norm(self.B, axis=1))
+        self.a_h = GRAVITY * np.hypot(self.A[:, 0], self.A[:, 1])
+        # the first vertical turn strictly above each column (prefix minimum down the tree)
+        parent = self.parent.tolist()
+        own = [-1] * len(parent)
+        for q in np.flatnonzero(vertical).tolist():
+            own[int(self.cj[q])] = q
+        first_v = [-1] * len(parent)
+        for c in range(len(parent)):              # preorder: a parent before its children
+            up = parent[c]
+            f = first_v[up] if up >= 0 else -1
+            first_v[c] = own[c] if f < 0 else f
+        up = self.parent[self.ci]
+        f = np.where(up >= 0, np.array(first_v)[np.maximum(up, 0)], -1)
+        f[~self.active] = -1
+        self.ev_at = {}
+        for k, q in zip(np.flatnonzero(f >= 0).tolist(), f[f >= 0].tolist()):
+            self.ev_at.setdefault(q, []).append(k)
+        self.V_lo = np.maximum(np.maximum(self.t_rest, self_lb), np.where(f >= 0, self.c_rest, -np.inf))
+
+    PLAIN = 4096        # joints x depth below which every torque is evaluated: fewer than the bounds cost
+    CUT = 1e-6          # L_k = (the lower bound on V_k) - CUT (1 + it): far below the 1e-9 of a tie
+
+    def run(self):
+        np = self.np
+        if self.plain:
+            self._pass(None, self.active)
+            return
+        # only the bounds must be rigorous: a cut above V_k leaves no evaluated torque over it, and the check fails
+        L = np.where(self.active, self.V_lo - self.CUT * (1 + self.V_lo), np.inf)
+        first = self._pass(L, self.active)
+        bad = self.active & (self.t_rest < L) & ~(first > L + 1e-9 * (1 + L))
+        if bad.any():          # a near tie at the cut: these columns again, every torque above rest kept
+            for k in np.flatnonzero(bad).tolist():
+                self.best[k] = self.t_rest[k]
+                self.where[k] = (None, 0.0)
+            self._pass(np.where(bad, self.t_rest, np.inf), bad)
+
+    def _pass(self, L, active):
+        """Every turn's torques that may matter on the columns ``active``, replayed; each column's first
+        torque at or above its cut ``L`` (None: every torque, without cuts)."""
+        np, G = self.np, GRAVITY
+        if L is None:
+            for q, j in enumerate(self.deep):
+                self._turn_all(q, j, active, None, None)
+            return None
+        parent, ci, t_rest = self.parent.tolist(), self.ci, self.t_rest
+        Lc = np.maximum(L, t_rest) * (1 - 1e-10)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            kappa = np.where(active & ~self.prism & (self.a_h > 0), (Lc - np.abs(self.r_rest)) / self.a_h, np.inf)
+            tau = np.where(active & (self.W_k > 0), (Lc - self.c_rest) / self.W_k, np.inf)
+        kappa = np.where(np.isnan(kappa), -np.inf, kappa)
+        tau = np.where(np.isnan(tau), -np.inf, tau)
+        places = len(parent)
+        k_at, t_at = [math.inf] * places, [math.inf] * places
+        for k, c in enumerate(ci.tolist()):
+            k_at[c], t_at[c] = float(kappa[k]), float(tau[k])
+        k_min = [0.0] * places                      # least kappa at or above each place
+        for c in range(places):
+            up = parent[c]
+            k_min[c] = min(k_at[c], k_min[up]) if up >= 0 else k_at[c]
+        t_sub = list(t_at)                          # least tau at or below each place
+        t_strict = [math.inf] * places              # ... strictly below
+        for c in range(places - 1, -1, -1):         # reversed preorder: children before their parent
+            up = parent[c]
+            if up >= 0:
+                if t_sub[c] < t_sub[up]:
+                    t_sub[up] = t_sub[c]
+                if t_sub[c] < t_strict[up]:
+                    t_strict[up] = t_sub[c]
+        first = np.full(len(t_rest), np.nan)
+        for q, j in enumerate(self.deep):
+            cj = int(self.cj[q])
+            values = self.vals[j.name]
+            cols = self.ev_at.get(q)
+            if cols:
+                cols = np.array([k for k in cols if active[k]], dtype=np.int64)
+                if len(cols):
+                    self._record(j.name, cols, self.c_rest[cols][None, :], values[:1], L, first)
+            if j.name in self.followers:
+                self._turn_all(q, j, active, L, first)
+                continue
+            reach = self.rho[q] * (1 + 1e-9)
+            above = below = None
+            if reach >= k_min[cj]:
+                above = self._above(cj)
+                above = above[kappa[above] <= reach]
+            if not self.vertical[q] and (self.delta[q] + 1e-11 * G) * (1 + 1e-9) >= t_strict[cj]:
+                below = self._below(cj)
+            if (above is None or not len(above)) and (below is None or not len(below)):
+                continue
+            T, idx = self._turn(q, j, above, below)
+            keep = active[idx]
+            if not keep.all():
+                T, idx = T[:, keep], idx[keep]
+            if len(idx):
+                self._record(j.name, idx, T, values, L, first)
+        return first
+
+    def _turn_all(self, q, j, active, L, first):
+        """Joint j's turn on every asked joint above and below it, replayed (a joint a mimic joint
+        follows: the whole pose, the slow way)."""
+        np = self.np
+        cj = int(self.cj[q])
+        values = self.vals[j.name]
+        if j.name in self.followers:
+            idx = np.concatenate([self._above(cj), self._below(cj)])
+            idx = idx[active[idx]]
+            if not len(idx):
+                return
+            if self.full is None:
+                self.full = _FullTree(self.robot, self.rest, self.W, self.names, self.links, self.pos,
+                                      self.parent, self.levels, self.M, self.prism)
+            T = np.array([self.full.torques(j.name, x, self.torques) for x in values])[:, idx]
+        else:
+            above, below = self._above(cj), self._below(cj)
+            if not len(above) and not len(below):
+                return
+            T, idx = self._turn(q, j, above, below)
+        self._record(j.name, idx, T, values, L, first)
+
+    def _above(self, cj):
+        """The asked joints whose child is at or above place cj."""
+        np = self.np
+        if self.up is not None:
+            return np.array(self.up(cj), dtype=np.int64)
+        return np.flatnonzero((self.ci <= cj) & (self.end[self.ci] > cj))
+
+    def _below(self, cj):
+        """The asked joints strictly below place cj (gravity_needs' order: by their child's place)."""
+        np = self.np
+        if self.end[cj] > cj + 1:
+            lo, hi = np.searchsorted(self.tin_sorted, [cj + 1, self.end[cj]])
+            return self.by_tin[lo:hi]
+        return self.by_tin[:0]
+
+    def _turn(self, q, j, above, below):
+        """Joint j's torques over its samples on the asked joints ``above`` (at or above it; any rows)
+        and ``below`` (all of them: a BLAS product's bits depend on its shape)."""
+        np, G, g = self.np, GRAVITY, self.g
+        p0, a0 = self.frames[j.name]
+        cj = int(self.cj[q])
+        if self.Rs[q] is not None:
+            R, t = self.Rs[q], self.ts[q]
+        elif j.type == "prismatic":
+            d = self.vals[j.name] - self.rest.get(j.name, 0.0)
+            R = np.broadcast_to(np.eye(3), (len(d), 3, 3))
+            t = d[:, None] * a0
+        else:
+            if j.name in self.R_of:
+                R = self.R_all[self.R_of[j.name]]
+            else:
+                R = _rotations(a0[None, :], (self.vals[j.name] - self.rest.get(j.name, 0.0))[None, :])[0]
+            t = p0 - R @ p0
+        parts, idx = [], []
+        if above is not None and len(above):
+            shift = self.Qtot[cj] @ np.swapaxes(R, 1, 2) + self.Mtot[cj] * t - self.Qtot[cj]
+            parts.append(np.abs(np.where(self.prism[above], self.t_rest[above],
+                                         self.r_rest[above] + G * (np.outer(shift[:, 0], self.A[above, 1])
+                                                                   - np.outer(shift[:, 1], self.A[above, 0])))))
+            idx.append(above)
+        if below is not None and len(below):
+            g_below = g @ R                                        # gravity in the turned frames
+            parts.append(np.abs(np.where(self.prism[below], (g_below @ self.A[below].T) * self.M[below],
+                                         g_below @ self.B[below].T)))
+            idx.append(below)
+        if len(parts) == 1:
+            return parts[0], idx[0]
+        return np.concatenate(parts, axis=1), np.concatenate(idx)
+
+    def _record(self, name, idx, T, values, L, first):
+        """Replay the torques T (samples x columns idx) into the running maxima and worst poses (a
+        later torque takes the pose only beyond 1e-9 (1 + maximum)), and note each column's first
+        torque at or above its cut."""
+        np = self.np
+        best, where = self.best, self.where
+        b = best[idx]
+        top = T.max(axis=0)
+        gain = top > b + 1e-9 * (1 + b)       # only these columns move their worst pose
+        if gain.any():
+            cols, Tg = idx[gain], T[:, gain]
+            bg = best[cols]
+            for x, t in zip(values, Tg):
+                better = t > bg + 1e-9 * (1 + bg)
+                for k in cols[better]:
+                    where[k] = (name, x)
+                bg = np.maximum(bg, t)
+        best[idx] = np.maximum(b, top)
+        if first is None:
+            return
+        fresh = np.isnan(first[idx])
+        if fresh.any():
+            at = np.flatnonzero(fresh)
+            hit = T[:, at] >= L[idx[at]]
+            some = hit.any(axis=0)
+            if some.any():
+                s = hit.argmax(axis=0)[some]
+                first[idx[at[some]]] = T[s, at[some]]
+
+
 def _rotations(axes, angles):
     """Rotation matrices (k, n, 3, 3) about each of ``axes`` (k, 3) by its row of ``angles`` (k, n)
     (Rodrigues; a zero axis gives the identity)."""
@@ -308,7 +603,7 @@ def _preorder(robot, W):
     depth = np.array(depth, dtype=np.int64)
     by_depth = np.argsort(-depth, kind="stable")
     cuts = np.flatnonzero(np.diff(depth[by_depth])) + 1
-    levels = np.split(by_depth, cuts)
+    levels = [by_depth[a:b] for a, b in zip([0, *cuts.tolist()], [*cuts.tolist(), len(by_depth)])]
     size = _subtree_sums(np.ones(len(order)), parent, levels).astype(np.int64)
     end = np.arange(len(order)) + size
     return order, pos, parent, levels, end
@@ -322,10 +617,9 @@ def _joint_frames(np, robot, W, names) -> dict:
     joints = [robot.joints[n] for n in names]
     F = np.array([W[j.parent] for j in joints]) @ pose_stack(j.origin for j in joints)
     axes = (F[:, :3, :3] @ np.array([j.axis for j in joints], dtype=float).reshape(-1, 3, 1))[:, :, 0]
-    frames = {}
-    for n, Fj, a, norm in zip(names, F, axes, _norms(axes.tolist())):
-        frames[n] = (Fj[:3, 3], a / norm if norm > 0 else a)
-    return frames
+    norms = np.array(_norms(axes.tolist()))[:, None]
+    unit = np.where(norms > 0, axes / np.where(norms > 0, norms, 1.0), axes)
+    return dict(zip(names, zip(F[:, :3, 3], unit)))
 
 
 def _subtree_sums(values, parent, levels):
@@ -333,6 +627,17 @@ def _subtree_sums(values, parent, levels):
     import numpy as np
 
     out = np.array(values, dtype=float, copy=True)
+    if len(levels) * 8 > len(out):        # deep and narrow: one Python add per link, in np.add.at's order
+        rows, up = out.tolist(), parent.tolist()
+        flat = out.ndim == 1
+        for c in np.concatenate(levels).tolist():
+            p = up[c]
+            if p >= 0:
+                if flat:
+                    rows[p] += rows[c]
+                else:
+                    rows[p] = [a + b for a, b in zip(rows[p], rows[c])]
+        return np.array(rows, dtype=float).reshape(out.shape)
     for level in levels:
         up = parent[level]
         keep = up >= 0

@@ -19,32 +19,37 @@ if TYPE_CHECKING:
     import numpy as np
 
 
-def pose_rows(pose) -> list:
-    """pose_matrix(pose) as nested lists of the same floats (many of them become one array at once)."""
-    r, p, y = pose.rpy
+def _rotation(rpy) -> tuple:
+    """The 3x3 rotation of ``rpy`` (fixed-axis X, Y, Z), row by row: 9 floats."""
+    r, p, y = rpy
     cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
-    x, yy, z = pose.xyz
-    return [[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr, x],
-            [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr, yy],
-            [-sp, cp * sr, cp * cr, z],
-            [0.0, 0.0, 0.0, 1.0]]
+    return (cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr,
+            sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr,
+            -sp, cp * sr, cp * cr)
 
 
 def pose_stack(poses) -> np.ndarray:
     """pose_matrix of every pose as one (n, 4, 4) array (the same floats), built from one flat list:
-    a list per row and pose would be 100,000 objects for the garbage collector to rescan."""
+    a list per row and pose would be 100,000 objects for the garbage collector to rescan. Models
+    repeat a few rpy (most origins have none), so each rotation is computed once per call."""
     import numpy as np
 
     flat: list[float] = []
     add = flat.extend
+    turns: dict = {}
     for pose in poses:
-        r, p, y = pose.rpy
-        cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
+        rpy = pose.rpy
+        if type(rpy) is not tuple:
+            rpy = tuple(rpy)
+        seen = turns.get(rpy)
+        # equal tuples hold the same floats unless one has a zero: 0.0 == -0.0, whose sines differ
+        if seen is not None and (seen[0] is rpy or 0.0 not in rpy):
+            rot = seen[1]
+        else:
+            rot = _rotation(rpy)
+            turns[rpy] = (rpy, rot)
         x, yy, z = pose.xyz
-        add((cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr, x,
-             sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr, yy,
-             -sp, cp * sr, cp * cr, z,
-             0.0, 0.0, 0.0, 1.0))
+        add((rot[0], rot[1], rot[2], x, rot[3], rot[4], rot[5], yy, rot[6], rot[7], rot[8], z, 0.0, 0.0, 0.0, 1.0))
     return np.array(flat, dtype=float).reshape(-1, 4, 4)
 
 
@@ -61,7 +66,10 @@ def rpy_matrix(rpy) -> np.ndarray:
 def pose_matrix(pose: Pose) -> np.ndarray:
     import numpy as np
 
-    return np.array(pose_rows(pose), dtype=float)
+    # from a flat tuple: an array from nested lists costs five times as much
+    a, b, c, d, e, f, g, h, i = _rotation(pose.rpy)
+    x, y, z = pose.xyz
+    return np.array((a, b, c, x, d, e, f, y, g, h, i, z, 0.0, 0.0, 0.0, 1.0), dtype=float).reshape(4, 4)
 
 
 def _norms(axes) -> list[float]:
@@ -126,10 +134,11 @@ def world_transforms(robot: Robot, q: dict[str, float] | None = None, root_pose:
     4x4 products (the same per-matrix kernel, so the same bits as one product per joint, but
     without a numpy call per joint: a 20,000-link star is two calls).
 
-    The zero configuration (no ``q``, no ``root_pose``) is computed once per robot (check asks
-    for it from several rules); its arrays are read-only, each call gets its own dict.
+    The zero configuration (no ``q``, or one that puts every joint at 0, and no ``root_pose``) is
+    computed once per robot (check asks for it from several rules, some at the rest pose); its
+    arrays are read-only, each call gets its own dict.
     """
-    if not q and root_pose is None:
+    if root_pose is None and (not q or _at_zero(robot, q)):
         key = (id(robot.joints), len(robot.joints), id(robot.links), len(robot.links))
         cached = robot.derived.get("world_transforms")
         if cached is None or cached[0] != key:
@@ -137,6 +146,15 @@ def world_transforms(robot: Robot, q: dict[str, float] | None = None, root_pose:
             robot.derived["world_transforms"] = cached
         return dict(cached[1])
     return _world_transforms(robot, q, root_pose)
+
+
+def _at_zero(robot: Robot, q: dict) -> bool:
+    """Does ``q`` place every joint as no ``q`` does: each position, mimic joints' included, a
+    Python 0 or +0.0 (``Robot.rest_pose`` of most robots; -0.0 would turn frames by a signed zero)."""
+    for v in _with_mimic(robot, q).values():
+        if type(v) not in (float, int) or v != 0 or math.copysign(1.0, v) < 0:
+            return False
+    return True
 
 
 def _walk(robot: Robot, children) -> tuple[list[str], dict, dict]:

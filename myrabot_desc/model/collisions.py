@@ -205,6 +205,25 @@ def _boxes_meet(np, A, B, margin: float) -> bool:
     return bool(np.all(np.abs(axes @ (cb - ca)) <= reach - margin))
 
 
+def _clearly_apart(np, C, R, H, pairs, margin: float):
+    """For each pair (i, j): True when the boxes (centres C, rotations R, half extents H) are apart by
+    a clear margin on one of the separating axes _boxes_meet tests, all pairs in a few array calls.
+    Only a clear verdict is taken: a pair within rounding of meeting (or not clearly apart) is left
+    to _boxes_meet, so the answer is _boxes_meet's to the bit."""
+    a = np.array([i for i, _ in pairs], dtype=np.intp)
+    b = np.array([j for _, j in pairs], dtype=np.intp)
+    At, Bt = np.swapaxes(R[a], 1, 2), np.swapaxes(R[b], 1, 2)               # rows: each box's axes
+    axes = np.concatenate([At, Bt, np.cross(At[:, :, None, :], Bt[:, None, :, :]).reshape(-1, 9, 3)], axis=1)
+    n = np.sqrt((axes * axes).sum(axis=2))
+    use = n > 2e-9                       # kept by _boxes_meet too (its cut is 1e-9)
+    axes = axes / np.where(use, n, 1.0)[:, :, None]
+    reach = (np.abs(axes @ R[a]) * H[a][:, None, :]).sum(axis=2) + (np.abs(axes @ R[b]) * H[b][:, None, :]).sum(axis=2)
+    gap = np.abs((axes * (C[b] - C[a])[:, None, :]).sum(axis=2)) - (reach - margin)
+    # rounding differs from _boxes_meet's by a few ulps of these magnitudes; demand far more
+    scale = 1.0 + np.abs(C[a]).sum(axis=1) + np.abs(C[b]).sum(axis=1) + H[a].sum(axis=1) + H[b].sum(axis=1) + abs(margin)
+    return ((gap > 1e-9 * scale[:, None]) & use).any(axis=1)
+
+
 class Scene:
     """The robot's collision shapes, made once (hulls are the costly part), placed at any
     configuration by :meth:`overlaps`."""
@@ -258,8 +277,17 @@ class Scene:
         items = self._placed(world)
         if len(items) < 2:
             return []
-        near = [(a, b) for a, b in _sphere_pairs(np, items, min_depth)
-                if items[a].body != items[b].body and frozenset((items[a].body, items[b].body)) not in self.adjacent
+        adjacent = self.adjacent
+        pairs = [(a, b) for a, b in _sphere_pairs(np, items, min_depth)
+                 if items[a].body != items[b].body and frozenset((items[a].body, items[b].body)) not in adjacent]
+        apart = ()
+        if len(pairs) > 8:              # a long chain's neighbours: thousands of box tests, one batch
+            C = np.array([i.centre for i in items], dtype=float).reshape(-1, 3)
+            R = np.array([i.T[:3, :3] for i in items], dtype=float).reshape(-1, 3, 3)
+            H = np.array([i.half for i in items], dtype=float).reshape(-1, 3)
+            apart = _clearly_apart(np, C, R, H, pairs, min_depth).tolist()
+        near = [(a, b) for k, (a, b) in enumerate(pairs)
+                if not (apart and apart[k])
                 and _boxes_meet(np, (items[a].centre, items[a].T[:3, :3], items[a].half),
                                 (items[b].centre, items[b].T[:3, :3], items[b].half), min_depth)]
         if not near:

@@ -164,6 +164,7 @@ class _Reader:
         # text -> value of the numbers read at the usual limit: a model repeats the same few texts
         # ("0", "1e-4", "0 0 1") in every link, and each parse is a float() and its checks
         self._numbers: dict[str, float] = {}
+        self._unlimited: dict[str, float] = {}     # the same for numbers read without a limit
         self._vectors: dict[str, tuple] = {}
         elements = [el for el in root.iter() if isinstance(el.tag, str)] if locations is not None else ()
         if locations is not None and len(locations) == len(elements):
@@ -183,13 +184,13 @@ class _Reader:
             # held 2 x 260,000 objects for a 20,000-link star, and the garbage collector rescanned them)
             self.loc_of = SourceLines(str(src), root)
             self._keep = []
-
-    def loc(self, el) -> Loc | None:
-        if el is None:
-            return None
+        # loc(el): an element's Loc (None for None), without testing the kind of map at each call
         if type(self.loc_of) is dict:
-            return self.loc_of.get(id(el))
-        return Loc(self.loc_of.file, el.sourceline)
+            get = self.loc_of.get
+            self.loc = lambda el: None if el is None else get(id(el))
+        else:
+            file = self.loc_of.file
+            self.loc = lambda el: None if el is None else Loc(file, el.sourceline)
 
     def issue(self, el, message: str, code: str = "T010") -> None:
         self.issues.append(Diagnostic(code, "error", message, self.loc(el)))
@@ -198,9 +199,9 @@ class _Reader:
         raw = el.get(attr)
         if raw is None:
             return default
-        usual = limit is MAX_MAGNITUDE
-        if usual:
-            v = self._numbers.get(raw)
+        cache = self._numbers if limit is MAX_MAGNITUDE else self._unlimited if limit is None else None
+        if cache is not None:
+            v = cache.get(raw)
             if v is not None:
                 return v
         try:
@@ -208,9 +209,20 @@ class _Reader:
         except V.ValueProblem as exc:
             self.issue(el, V.problem(el.tag, raw, exc.reason, attr))
             return default
-        if usual:
-            self._numbers[raw] = v
+        if cache is not None:
+            cache[raw] = v
         return v
+
+    def nums(self, el, attrs: tuple, default: float | None, limit: float | None = MAX_MAGNITUDE) -> list:
+        """[num(el, a, default, limit) for a in attrs], the texts seen before taken from the cache."""
+        cache = self._numbers if limit is MAX_MAGNITUDE else self._unlimited if limit is None else {}
+        get = el.get
+        out = []
+        for a in attrs:
+            raw = get(a)
+            v = cache.get(raw) if raw is not None else default
+            out.append(v if v is not None or raw is None else self.num(el, a, default, limit))
+        return out
 
     def vec(self, el, attr: str, default=(0.0, 0.0, 0.0), n: int = 3) -> tuple:
         raw = el.get(attr) if el is not None else None
@@ -280,8 +292,13 @@ class _Reader:
         m = ik.get("mass")
         mass = self.num(m, "value", 0.0) if m is not None else 0.0
         t = ik.get("inertia")
-        vals = {k: (self.num(t, k, 0.0) if t is not None else 0.0) for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
-        return Inertial(mass, self.pose(i, ik), loc=self.loc(i), ref=i, **vals)
+        ixx, ixy, ixz, iyy, iyz, izz = self.nums(t, _INERTIA, 0.0) if t is not None else _NO_INERTIA
+        return Inertial(mass, self.pose(i, ik), ixx, ixy, ixz, iyy, iyz, izz, self.loc(i), i)
+
+
+_INERTIA = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+_NO_INERTIA = (0.0,) * 6
+_LIMIT = ("lower", "upper", "effort", "velocity")
 
 
 _NO_ORIGIN = Pose()    # one shared (immutable) identity for every element without <origin>
@@ -407,8 +424,7 @@ def _read_model(root, text, src: Path, locations, package_roots, build_warnings,
         axis_el = kids.get("axis")
         axis = r.vec(axis_el, "xyz", (1.0, 0.0, 0.0)) if axis_el is not None else (1.0, 0.0, 0.0)
         lim = kids.get("limit")
-        limit = Limit(*(r.num(lim, a, None, limit=None) for a in ("lower", "upper", "effort", "velocity"))) \
-            if lim is not None else None
+        limit = Limit(*r.nums(lim, _LIMIT, None, limit=None)) if lim is not None else None
         mim = kids.get("mimic")
         mimic = Mimic(mim.get("joint", ""), r.num(mim, "multiplier", 1.0), r.num(mim, "offset", 0.0)) \
             if mim is not None else None

@@ -28,6 +28,7 @@ from myrabot_desc.model import meshes as meshio
 from myrabot_desc.model.kinematics import pose_stack, world_transforms
 from myrabot_desc.model.shapes import describe
 from myrabot_desc.model.support import _mesh_reader
+from myrabot_desc.model.tree import maps
 from myrabot_desc.safety import limit
 
 TOUCH = 0.001        # m: overlaps this shallow are contact (see the module docstring)
@@ -110,11 +111,13 @@ class Overlap(NamedTuple):
 def rigid_bodies(robot) -> dict[str, str]:
     """link -> the link heading its rigid body (fixed joints merged upward)."""
     out: dict[str, str] = {}
-    for name in robot.links:
+    parent_joint = maps(robot).parent_joint.get      # robot.parent_joint without a call per hop
+    links, most = robot.links, len(robot.joints)
+    for name in links:
         cur, hops = name, 0
-        while hops <= len(robot.joints):
-            pj = robot.parent_joint(cur)
-            if pj is None or pj.type != "fixed" or pj.parent not in robot.links:
+        while hops <= most:
+            pj = parent_joint(cur)
+            if pj is None or pj.type != "fixed" or pj.parent not in links:
                 break
             cur, hops = pj.parent, hops + 1
         out[name] = cur

@@ -195,25 +195,44 @@ def _world_transforms(robot: Robot, q, root_pose, frozen: bool = False) -> dict[
     level = [link for link in order if via[link] is None]
     for link in level:
         out[link] = base
+    levels = []
     while level:
         joints = [j for link in level for j in kids.get(link, ())]
         if not joints:
             break
-        moving = [j for j in joints if j.type in _MOVING]
-        norm = dict(zip(map(id, moving), _norms([j.axis for j in moving])))
+        levels.append(joints)
+        level = [j.child for j in joints]
+    # every joint's origin and motion at once (they do not depend on the parents): a 5,000-link
+    # chain has 5,000 levels, and a few numpy calls per level instead of a dozen
+    every = [j for joints in levels for j in joints]
+    moving = [j for j in every if j.type in _MOVING]
+    norm = dict(zip(map(id, moving), _norms([j.axis for j in moving])))
+    flat: list[float] = []
+    same: dict = {}     # (type, axis, q) -> its motion, for the same axis and position objects
+    for j in every:
+        qv, axis = q.get(j.name, 0.0), j.axis
+        key = (j.type, axis, qv) if type(axis) is tuple else None
+        seen = same.get(key) if key is not None else None
+        # identical objects hold identical bits (equal ones may not: 0.0 == -0.0)
+        if seen is not None and seen[0] is axis and seen[1] is qv:
+            m = seen[2]
+        else:
+            m = _motion_flat(j, norm.get(id(j), 0.0), qv)
+            if key is not None:
+                same[key] = (axis, qv, m)
+        flat.extend(m)
+    P_all = pose_stack(j.origin for j in every)
+    M_all = np.array(flat, dtype=float).reshape(-1, 4, 4)
+    k = 0
+    for joints in levels:
+        n = len(joints)
         parents = np.array([out[j.parent] for j in joints], dtype=float)
-        P = pose_stack(j.origin for j in joints)
-        flat: list[float] = []
-        for j in joints:
-            flat.extend(_motion_flat(j, norm.get(id(j), 0.0), q.get(j.name, 0.0)))
-        M = np.array(flat, dtype=float).reshape(-1, 4, 4)
-        T = parents @ P @ M
+        T = parents @ P_all[k:k + n] @ M_all[k:k + n]
+        k += n
         if frozen:
             T.flags.writeable = False
-        level = []
-        for k, j in enumerate(joints):
-            out[j.child] = T[k]
-            level.append(j.child)
+        for i, j in enumerate(joints):
+            out[j.child] = T[i]
     return {link: out[link] for link in order}
 
 

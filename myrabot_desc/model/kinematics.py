@@ -29,14 +29,17 @@ def _rotation(rpy) -> tuple:
 
 
 def pose_stack(poses) -> np.ndarray:
-    """pose_matrix of every pose as one (n, 4, 4) array (the same floats), built from one flat list:
+    """pose_matrix of every pose as one (n, 4, 4) array (the same floats), filled from flat lists:
     a list per row and pose would be 100,000 objects for the garbage collector to rescan. Models
-    repeat a few rpy (most origins have none), so each rotation is computed once per call."""
+    repeat a few rpy (most origins have none): each rotation is computed once per call and put
+    in place by one index."""
     import numpy as np
 
-    flat: list[float] = []
-    add = flat.extend
-    turns: dict = {}
+    xyz: list[float] = []
+    add = xyz.extend
+    turns: dict = {}            # rpy -> (that rpy, its row in rotations)
+    rotations: list = []
+    which: list[int] = []
     for pose in poses:
         rpy = pose.rpy
         if type(rpy) is not tuple:
@@ -44,13 +47,19 @@ def pose_stack(poses) -> np.ndarray:
         seen = turns.get(rpy)
         # equal tuples hold the same floats unless one has a zero: 0.0 == -0.0, whose sines differ
         if seen is not None and (seen[0] is rpy or 0.0 not in rpy):
-            rot = seen[1]
+            which.append(seen[1])
         else:
-            rot = _rotation(rpy)
-            turns[rpy] = (rpy, rot)
-        x, yy, z = pose.xyz
-        add((rot[0], rot[1], rot[2], x, rot[3], rot[4], rot[5], yy, rot[6], rot[7], rot[8], z, 0.0, 0.0, 0.0, 1.0))
-    return np.array(flat, dtype=float).reshape(-1, 4, 4)
+            turns[rpy] = (rpy, len(rotations))
+            which.append(len(rotations))
+            rotations.append(_rotation(rpy))
+        x, y, z = pose.xyz
+        add((x, y, z))
+    out = np.zeros((len(which), 4, 4))
+    if which:
+        out[:, :3, :3] = np.array(rotations, dtype=float).reshape(-1, 3, 3)[np.array(which, dtype=np.intp)]
+        out[:, :3, 3] = np.array(xyz, dtype=float).reshape(-1, 3)
+        out[:, 3, 3] = 1.0
+    return out
 
 
 def rpy_matrix(rpy) -> np.ndarray:

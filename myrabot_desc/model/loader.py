@@ -190,7 +190,17 @@ class _Reader:
             self.loc = lambda el: None if el is None else get(id(el))
         else:
             file = self.loc_of.file
-            self.loc = lambda el: None if el is None else Loc(file, el.sourceline)
+            by_line: dict = {}      # line -> its Loc: immutable, so the elements of one line share it
+
+            def loc(el):
+                if el is None:
+                    return None
+                line = el.sourceline
+                found = by_line.get(line)
+                if found is None:
+                    found = by_line[line] = Loc(file, line)
+                return found
+            self.loc = loc
 
     def issue(self, el, message: str, code: str = "T010") -> None:
         self.issues.append(Diagnostic(code, "error", message, self.loc(el)))

@@ -243,7 +243,7 @@ class Scene:
         self.skipped: list = []          # (link, why) of collision shapes left out
         self._shapes: dict = {}          # id(collision) -> coal shape
         self._local: dict = {}           # id(collision) -> bounding box in its own frame
-        self._by_geometry: dict = {}     # primitive geometry -> (its bounding box,)
+        self._by_geometry: dict = {}     # (kind, primitive geometry) -> (its bounding box,)
 
     def _placed(self, world):
         """Every collision shape placed by ``world`` with its bounding box (no coal shape yet).
@@ -275,9 +275,9 @@ class Scene:
                 if key not in local:
                     if mesh is None:     # a primitive's box is its size's: equal sizes share one
                         try:
-                            box = by_geometry.get(g)
+                            box = by_geometry.get((g.kind, g))
                             if box is None:
-                                box = by_geometry[g] = (_local_box(np, g, mesh),)
+                                box = by_geometry[(g.kind, g)] = (_local_box(np, g, mesh),)
                             local[key] = box[0]
                         except TypeError:            # a size given as a list: not hashable
                             local[key] = _local_box(np, g, mesh)

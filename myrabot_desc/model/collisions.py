@@ -25,9 +25,10 @@ from typing import NamedTuple
 
 from myrabot_desc.errors import InputError
 from myrabot_desc.model import meshes as meshio
-from myrabot_desc.model.kinematics import world_transforms
+from myrabot_desc.model.kinematics import pose_stack, world_transforms
 from myrabot_desc.model.shapes import describe
-from myrabot_desc.model.support import _mesh_reader, placed_collisions
+from myrabot_desc.model.support import _mesh_reader
+from myrabot_desc.model.tree import maps
 from myrabot_desc.safety import limit
 
 TOUCH = 0.001        # m: overlaps this shallow are contact (see the module docstring)
@@ -110,11 +111,13 @@ class Overlap(NamedTuple):
 def rigid_bodies(robot) -> dict[str, str]:
     """link -> the link heading its rigid body (fixed joints merged upward)."""
     out: dict[str, str] = {}
-    for name in robot.links:
+    parent_joint = maps(robot).parent_joint.get      # robot.parent_joint without a call per hop
+    links, most = robot.links, len(robot.joints)
+    for name in links:
         cur, hops = name, 0
-        while hops <= len(robot.joints):
-            pj = robot.parent_joint(cur)
-            if pj is None or pj.type != "fixed" or pj.parent not in robot.links:
+        while hops <= most:
+            pj = parent_joint(cur)
+            if pj is None or pj.type != "fixed" or pj.parent not in links:
                 break
             cur, hops = pj.parent, hops + 1
         out[name] = cur
@@ -205,6 +208,25 @@ def _boxes_meet(np, A, B, margin: float) -> bool:
     return bool(np.all(np.abs(axes @ (cb - ca)) <= reach - margin))
 
 
+def _clearly_apart(np, C, R, H, pairs, margin: float):
+    """For each pair (i, j): True when the boxes (centres C, rotations R, half extents H) are apart by
+    a clear margin on one of the separating axes _boxes_meet tests, all pairs in a few array calls.
+    Only a clear verdict is taken: a pair within rounding of meeting (or not clearly apart) is left
+    to _boxes_meet, so the answer is _boxes_meet's to the bit."""
+    a = np.array([i for i, _ in pairs], dtype=np.intp)
+    b = np.array([j for _, j in pairs], dtype=np.intp)
+    At, Bt = np.swapaxes(R[a], 1, 2), np.swapaxes(R[b], 1, 2)               # rows: each box's axes
+    axes = np.concatenate([At, Bt, np.cross(At[:, :, None, :], Bt[:, None, :, :]).reshape(-1, 9, 3)], axis=1)
+    n = np.sqrt((axes * axes).sum(axis=2))
+    use = n > 2e-9                       # kept by _boxes_meet too (its cut is 1e-9)
+    axes = axes / np.where(use, n, 1.0)[:, :, None]
+    reach = (np.abs(axes @ R[a]) * H[a][:, None, :]).sum(axis=2) + (np.abs(axes @ R[b]) * H[b][:, None, :]).sum(axis=2)
+    gap = np.abs((axes * (C[b] - C[a])[:, None, :]).sum(axis=2)) - (reach - margin)
+    # rounding differs from _boxes_meet's by a few ulps of these magnitudes; demand far more
+    scale = 1.0 + np.abs(C[a]).sum(axis=1) + np.abs(C[b]).sum(axis=1) + H[a].sum(axis=1) + H[b].sum(axis=1) + abs(margin)
+    return ((gap > 1e-9 * scale[:, None]) & use).any(axis=1)
+
+
 class Scene:
     """The robot's collision shapes, made once (hulls are the costly part), placed at any
     configuration by :meth:`overlaps`."""
@@ -221,23 +243,62 @@ class Scene:
         self.skipped: list = []          # (link, why) of collision shapes left out
         self._shapes: dict = {}          # id(collision) -> coal shape
         self._local: dict = {}           # id(collision) -> bounding box in its own frame
+        self._by_geometry: dict = {}     # (kind, primitive geometry) -> (its bounding box,)
 
     def _placed(self, world):
-        """Every collision shape placed by ``world`` with its bounding box (no coal shape yet)."""
+        """Every collision shape placed by ``world`` with its bounding box (no coal shape yet).
+
+        The walk of support.placed_collisions (the same shapes, meshes read in the same order),
+        with the poses, centres and radii as stacked products: the same kernels, so the same bits
+        as one product per shape, without a dozen numpy calls per shape."""
         import numpy as np
 
-        items = []
-        for link, it, T, v in placed_collisions(self.robot, world, self.read):
-            key = id(it)
-            if key not in self._local:
-                self._local[key] = _local_box(np, it.geometry, v)
-            box = self._local[key]
-            if box is None:
+        read = self.read
+        local, by_geometry = self._local, self._by_geometry
+        found, frames, origins = [], [], []
+        for link in self.robot.links.values():
+            if link.name not in world:
                 continue
-            c, h = box
-            items.append(_Item(link.name, self.body_of.get(link.name, link.name), it, None, T,
-                               T[:3, :3] @ c + T[:3, 3], float(np.linalg.norm(h)), v, h))
-        return items
+            W = world[link.name]
+            for it in link.collisions:
+                g = it.geometry
+                if g is None:
+                    continue
+                mesh = None
+                if g.kind == "mesh":
+                    if read is None or g.path is None:
+                        continue
+                    mesh = read(g, it.loc)
+                    if mesh is None or isinstance(mesh, str):
+                        continue
+                key = id(it)
+                if key not in local:
+                    if mesh is None:     # a primitive's box is its size's: equal sizes share one
+                        try:
+                            box = by_geometry.get((g.kind, g))
+                            if box is None:
+                                box = by_geometry[(g.kind, g)] = (_local_box(np, g, mesh),)
+                            local[key] = box[0]
+                        except TypeError:            # a size given as a list: not hashable
+                            local[key] = _local_box(np, g, mesh)
+                    else:
+                        local[key] = _local_box(np, g, mesh)
+                box = local[key]
+                if box is None:
+                    continue
+                found.append((link.name, it, mesh, box))
+                frames.append(W)
+                origins.append(it.origin)
+        if not found:
+            return []
+        T = np.array(frames, dtype=float).reshape(-1, 4, 4) @ pose_stack(origins)
+        c = np.array([box[0] for *_, box in found], dtype=float).reshape(-1, 3)
+        h = np.array([box[1] for *_, box in found], dtype=float).reshape(-1, 3)
+        centres = (T[:, :3, :3] @ c[:, :, None])[:, :, 0] + T[:, :3, 3]
+        radii = np.sqrt((h[:, None, :] @ h[:, :, None])[:, 0, 0]).tolist()     # np.linalg.norm's dot
+        body_of = self.body_of
+        return [_Item(name, body_of.get(name, name), it, None, T[k], centres[k], radii[k], mesh, box[1])
+                for k, (name, it, mesh, box) in enumerate(found)]
 
     def _shape(self, coal, np, item):
         key = id(item.collision)
@@ -258,8 +319,17 @@ class Scene:
         items = self._placed(world)
         if len(items) < 2:
             return []
-        near = [(a, b) for a, b in _sphere_pairs(np, items, min_depth)
-                if items[a].body != items[b].body and frozenset((items[a].body, items[b].body)) not in self.adjacent
+        adjacent = self.adjacent
+        pairs = [(a, b) for a, b in _sphere_pairs(np, items, min_depth)
+                 if items[a].body != items[b].body and frozenset((items[a].body, items[b].body)) not in adjacent]
+        apart = ()
+        if len(pairs) > 8:              # a long chain's neighbours: thousands of box tests, one batch
+            C = np.array([i.centre for i in items], dtype=float).reshape(-1, 3)
+            R = np.array([i.T[:3, :3] for i in items], dtype=float).reshape(-1, 3, 3)
+            H = np.array([i.half for i in items], dtype=float).reshape(-1, 3)
+            apart = _clearly_apart(np, C, R, H, pairs, min_depth).tolist()
+        near = [(a, b) for k, (a, b) in enumerate(pairs)
+                if not (apart and apart[k])
                 and _boxes_meet(np, (items[a].centre, items[a].T[:3, :3], items[a].half),
                                 (items[b].centre, items[b].T[:3, :3], items[b].half), min_depth)]
         if not near:

@@ -19,33 +19,47 @@ if TYPE_CHECKING:
     import numpy as np
 
 
-def pose_rows(pose) -> list:
-    """pose_matrix(pose) as nested lists of the same floats (many of them become one array at once)."""
-    r, p, y = pose.rpy
+def _rotation(rpy) -> tuple:
+    """The 3x3 rotation of ``rpy`` (fixed-axis X, Y, Z), row by row: 9 floats."""
+    r, p, y = rpy
     cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
-    x, yy, z = pose.xyz
-    return [[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr, x],
-            [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr, yy],
-            [-sp, cp * sr, cp * cr, z],
-            [0.0, 0.0, 0.0, 1.0]]
+    return (cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr,
+            sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr,
+            -sp, cp * sr, cp * cr)
 
 
 def pose_stack(poses) -> np.ndarray:
-    """pose_matrix of every pose as one (n, 4, 4) array (the same floats), built from one flat list:
-    a list per row and pose would be 100,000 objects for the garbage collector to rescan."""
+    """pose_matrix of every pose as one (n, 4, 4) array (the same floats), filled from flat lists:
+    a list per row and pose would be 100,000 objects for the garbage collector to rescan. Models
+    repeat a few rpy (most origins have none): each rotation is computed once per call and put
+    in place by one index."""
     import numpy as np
 
-    flat: list[float] = []
-    add = flat.extend
+    xyz: list[float] = []
+    add = xyz.extend
+    turns: dict = {}            # rpy -> (that rpy, its row in rotations)
+    rotations: list = []
+    which: list[int] = []
     for pose in poses:
-        r, p, y = pose.rpy
-        cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
-        x, yy, z = pose.xyz
-        add((cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr, x,
-             sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr, yy,
-             -sp, cp * sr, cp * cr, z,
-             0.0, 0.0, 0.0, 1.0))
-    return np.array(flat, dtype=float).reshape(-1, 4, 4)
+        rpy = pose.rpy
+        if type(rpy) is not tuple:
+            rpy = tuple(rpy)
+        seen = turns.get(rpy)
+        # equal tuples hold the same floats unless one has a zero: 0.0 == -0.0, whose sines differ
+        if seen is not None and (seen[0] is rpy or 0.0 not in rpy):
+            which.append(seen[1])
+        else:
+            turns[rpy] = (rpy, len(rotations))
+            which.append(len(rotations))
+            rotations.append(_rotation(rpy))
+        x, y, z = pose.xyz
+        add((x, y, z))
+    out = np.zeros((len(which), 4, 4))
+    if which:
+        out[:, :3, :3] = np.array(rotations, dtype=float).reshape(-1, 3, 3)[np.array(which, dtype=np.intp)]
+        out[:, :3, 3] = np.array(xyz, dtype=float).reshape(-1, 3)
+        out[:, 3, 3] = 1.0
+    return out
 
 
 def rpy_matrix(rpy) -> np.ndarray:
@@ -61,7 +75,10 @@ def rpy_matrix(rpy) -> np.ndarray:
 def pose_matrix(pose: Pose) -> np.ndarray:
     import numpy as np
 
-    return np.array(pose_rows(pose), dtype=float)
+    # from a flat tuple: an array from nested lists costs five times as much
+    a, b, c, d, e, f, g, h, i = _rotation(pose.rpy)
+    x, y, z = pose.xyz
+    return np.array((a, b, c, x, d, e, f, y, g, h, i, z, 0.0, 0.0, 0.0, 1.0), dtype=float).reshape(4, 4)
 
 
 def _norms(axes) -> list[float]:
@@ -126,10 +143,11 @@ def world_transforms(robot: Robot, q: dict[str, float] | None = None, root_pose:
     4x4 products (the same per-matrix kernel, so the same bits as one product per joint, but
     without a numpy call per joint: a 20,000-link star is two calls).
 
-    The zero configuration (no ``q``, no ``root_pose``) is computed once per robot (check asks
-    for it from several rules); its arrays are read-only, each call gets its own dict.
+    The zero configuration (no ``q``, or one that puts every joint at 0, and no ``root_pose``) is
+    computed once per robot (check asks for it from several rules, some at the rest pose); its
+    arrays are read-only, each call gets its own dict.
     """
-    if not q and root_pose is None:
+    if root_pose is None and (not q or _at_zero(robot, q)):
         key = (id(robot.joints), len(robot.joints), id(robot.links), len(robot.links))
         cached = robot.derived.get("world_transforms")
         if cached is None or cached[0] != key:
@@ -137,6 +155,15 @@ def world_transforms(robot: Robot, q: dict[str, float] | None = None, root_pose:
             robot.derived["world_transforms"] = cached
         return dict(cached[1])
     return _world_transforms(robot, q, root_pose)
+
+
+def _at_zero(robot: Robot, q: dict) -> bool:
+    """Does ``q`` place every joint as no ``q`` does: each position, mimic joints' included, a
+    Python 0 or +0.0 (``Robot.rest_pose`` of most robots; -0.0 would turn frames by a signed zero)."""
+    for v in _with_mimic(robot, q).values():
+        if type(v) not in (float, int) or v != 0 or math.copysign(1.0, v) < 0:
+            return False
+    return True
 
 
 def _walk(robot: Robot, children) -> tuple[list[str], dict, dict]:
@@ -177,25 +204,44 @@ def _world_transforms(robot: Robot, q, root_pose, frozen: bool = False) -> dict[
     level = [link for link in order if via[link] is None]
     for link in level:
         out[link] = base
+    levels = []
     while level:
         joints = [j for link in level for j in kids.get(link, ())]
         if not joints:
             break
-        moving = [j for j in joints if j.type in _MOVING]
-        norm = dict(zip(map(id, moving), _norms([j.axis for j in moving])))
+        levels.append(joints)
+        level = [j.child for j in joints]
+    # every joint's origin and motion at once (they do not depend on the parents): a 5,000-link
+    # chain has 5,000 levels, and a few numpy calls per level instead of a dozen
+    every = [j for joints in levels for j in joints]
+    moving = [j for j in every if j.type in _MOVING]
+    norm = dict(zip(map(id, moving), _norms([j.axis for j in moving])))
+    flat: list[float] = []
+    same: dict = {}     # (type, axis, q) -> its motion, for the same axis and position objects
+    for j in every:
+        qv, axis = q.get(j.name, 0.0), j.axis
+        key = (j.type, axis, qv) if type(axis) is tuple else None
+        seen = same.get(key) if key is not None else None
+        # identical objects hold identical bits (equal ones may not: 0.0 == -0.0)
+        if seen is not None and seen[0] is axis and seen[1] is qv:
+            m = seen[2]
+        else:
+            m = _motion_flat(j, norm.get(id(j), 0.0), qv)
+            if key is not None:
+                same[key] = (axis, qv, m)
+        flat.extend(m)
+    P_all = pose_stack(j.origin for j in every)
+    M_all = np.array(flat, dtype=float).reshape(-1, 4, 4)
+    k = 0
+    for joints in levels:
+        n = len(joints)
         parents = np.array([out[j.parent] for j in joints], dtype=float)
-        P = pose_stack(j.origin for j in joints)
-        flat: list[float] = []
-        for j in joints:
-            flat.extend(_motion_flat(j, norm.get(id(j), 0.0), q.get(j.name, 0.0)))
-        M = np.array(flat, dtype=float).reshape(-1, 4, 4)
-        T = parents @ P @ M
+        T = parents @ P_all[k:k + n] @ M_all[k:k + n]
+        k += n
         if frozen:
             T.flags.writeable = False
-        level = []
-        for k, j in enumerate(joints):
-            out[j.child] = T[k]
-            level.append(j.child)
+        for i, j in enumerate(joints):
+            out[j.child] = T[i]
     return {link: out[link] for link in order}
 
 

@@ -164,6 +164,7 @@ class _Reader:
         # text -> value of the numbers read at the usual limit: a model repeats the same few texts
         # ("0", "1e-4", "0 0 1") in every link, and each parse is a float() and its checks
         self._numbers: dict[str, float] = {}
+        self._unlimited: dict[str, float] = {}     # the same for numbers read without a limit
         self._vectors: dict[str, tuple] = {}
         elements = [el for el in root.iter() if isinstance(el.tag, str)] if locations is not None else ()
         if locations is not None and len(locations) == len(elements):
@@ -183,13 +184,23 @@ class _Reader:
             # held 2 x 260,000 objects for a 20,000-link star, and the garbage collector rescanned them)
             self.loc_of = SourceLines(str(src), root)
             self._keep = []
-
-    def loc(self, el) -> Loc | None:
-        if el is None:
-            return None
+        # loc(el): an element's Loc (None for None), without testing the kind of map at each call
         if type(self.loc_of) is dict:
-            return self.loc_of.get(id(el))
-        return Loc(self.loc_of.file, el.sourceline)
+            get = self.loc_of.get
+            self.loc = lambda el: None if el is None else get(id(el))
+        else:
+            file = self.loc_of.file
+            by_line: dict = {}      # line -> its Loc: immutable, so the elements of one line share it
+
+            def loc(el):
+                if el is None:
+                    return None
+                line = el.sourceline
+                found = by_line.get(line)
+                if found is None:
+                    found = by_line[line] = Loc(file, line)
+                return found
+            self.loc = loc
 
     def issue(self, el, message: str, code: str = "T010") -> None:
         self.issues.append(Diagnostic(code, "error", message, self.loc(el)))
@@ -198,9 +209,9 @@ class _Reader:
         raw = el.get(attr)
         if raw is None:
             return default
-        usual = limit is MAX_MAGNITUDE
-        if usual:
-            v = self._numbers.get(raw)
+        cache = self._numbers if limit is MAX_MAGNITUDE else self._unlimited if limit is None else None
+        if cache is not None:
+            v = cache.get(raw)
             if v is not None:
                 return v
         try:
@@ -208,9 +219,20 @@ class _Reader:
         except V.ValueProblem as exc:
             self.issue(el, V.problem(el.tag, raw, exc.reason, attr))
             return default
-        if usual:
-            self._numbers[raw] = v
+        if cache is not None:
+            cache[raw] = v
         return v
+
+    def nums(self, el, attrs: tuple, default: float | None, limit: float | None = MAX_MAGNITUDE) -> list:
+        """[num(el, a, default, limit) for a in attrs], the texts seen before taken from the cache."""
+        cache = self._numbers if limit is MAX_MAGNITUDE else self._unlimited if limit is None else {}
+        get = el.get
+        out = []
+        for a in attrs:
+            raw = get(a)
+            v = cache.get(raw) if raw is not None else default
+            out.append(v if v is not None or raw is None else self.num(el, a, default, limit))
+        return out
 
     def vec(self, el, attr: str, default=(0.0, 0.0, 0.0), n: int = 3) -> tuple:
         raw = el.get(attr) if el is not None else None
@@ -240,17 +262,22 @@ class _Reader:
         g = kids.get("geometry")
         if g is None:
             return None
-        shape = next((c for c in g if isinstance(c.tag, str)), None)
+        shape = tag = None
+        for c in g:                     # the first element (a generator costs more than the search)
+            tag = c.tag
+            if isinstance(tag, str):
+                shape = c
+                break
         if shape is None:
             self.issue(g, "<geometry> is empty")
             return None
-        if shape.tag == "box":
+        if tag == "box":
             return Box(self.vec(shape, "size"))
-        if shape.tag == "cylinder":
+        if tag == "cylinder":
             return Cylinder(self.num(shape, "radius"), self.num(shape, "length"))
-        if shape.tag == "sphere":
+        if tag == "sphere":
             return Sphere(self.num(shape, "radius"))
-        if shape.tag == "mesh":
+        if tag == "mesh":
             fn = shape.get("filename", "")
             path = resolve(fn) if fn else None
             if fn and path is None:
@@ -280,11 +307,17 @@ class _Reader:
         m = ik.get("mass")
         mass = self.num(m, "value", 0.0) if m is not None else 0.0
         t = ik.get("inertia")
-        vals = {k: (self.num(t, k, 0.0) if t is not None else 0.0) for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
-        return Inertial(mass, self.pose(i, ik), loc=self.loc(i), ref=i, **vals)
+        ixx, ixy, ixz, iyy, iyz, izz = self.nums(t, _INERTIA, 0.0) if t is not None else _NO_INERTIA
+        return Inertial(mass, self.pose(i, ik), ixx, ixy, ixz, iyy, iyz, izz, self.loc(i), i)
+
+
+_INERTIA = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+_NO_INERTIA = (0.0,) * 6
+_LIMIT = ("lower", "upper", "effort", "velocity")
 
 
 _NO_ORIGIN = Pose()    # one shared (immutable) identity for every element without <origin>
+_X_AXIS = (1.0, 0.0, 0.0)   # URDF's axis when <axis> or its xyz is absent
 
 
 def _kids(el) -> dict:
@@ -323,8 +356,9 @@ def _read_model(root, text, src: Path, locations, package_roots, build_warnings,
     # Resolve every package named by a package:// URI (meshes, textures).
     roots = dict(package_roots)
     resolver = None
-    for el in root.xpath("descendant-or-self::*[@filename]"):     # (in C: 260,000 elements in a big tree)
-        fn = el.get("filename")
+    # the attributes themselves, as plain strings: a third faster than their elements (in C: 260,000
+    # elements in a big tree)
+    for fn in root.xpath("descendant-or-self::*/@filename", smart_strings=False):
         parts = split_package_uri(fn) if fn else None
         if parts and parts[0] not in roots:
             if resolver is None:
@@ -345,10 +379,13 @@ def _read_model(root, text, src: Path, locations, package_roots, build_warnings,
         return resolved[uri]
 
     top: dict = {"material": [], "link": [], "joint": [], "gazebo": [], "transmission": []}
+    control = []
     for el in root:                     # the top-level elements by tag, in one pass
         found = top.get(el.tag)
         if found is not None:
             found.append(el)
+        elif isinstance(el.tag, str) and _local(el) == "ros2_control":
+            control.append(el)
 
     materials: dict[str, Material] = {}
     for m in top["material"]:
@@ -356,6 +393,7 @@ def _read_model(root, text, src: Path, locations, package_roots, build_warnings,
         if mat.name:
             materials.setdefault(mat.name, mat)
 
+    loc, pose, geometry, kids_of = r.loc, r.pose, r.geometry, _kids     # (locals: 20,000 links and joints)
     links: dict[str, Link] = {}
     for el in top["link"]:
         name = el.get("name")
@@ -374,7 +412,7 @@ def _read_model(root, text, src: Path, locations, package_roots, build_warnings,
             if t not in first and isinstance(t, str):
                 first[t] = c
         for v in vis_els:
-            vk = _kids(v)
+            vk = kids_of(v)
             mel = vk.get("material")
             mat = r.material(mel) if mel is not None else None
             mname = mat.name if mat else None
@@ -382,33 +420,35 @@ def _read_model(root, text, src: Path, locations, package_roots, build_warnings,
                 mat = materials[mname]
             if mat is not None and mname and mname not in materials and (mat.rgba or mat.texture):
                 materials[mname] = mat
-            visuals.append(Visual(r.pose(v, vk), r.geometry(vk, base, roots, resolve), v.get("name"), mname, mat,
-                                  r.loc(v), v))
+            visuals.append(Visual(pose(v, vk), geometry(vk, base, roots, resolve), v.get("name"), mname, mat,
+                                  loc(v), v))
         collisions = []
         for c in col_els:
-            ck = _kids(c)
-            collisions.append(Collision(r.pose(c, ck), r.geometry(ck, base, roots, resolve), c.get("name"), r.loc(c), c))
+            ck = kids_of(c)
+            collisions.append(Collision(pose(c, ck), geometry(ck, base, roots, resolve), c.get("name"), loc(c), c))
         if name in links:
             continue  # duplicates are reported by the tree rules from the XML
-        links[name] = Link(name, r.inertial(first), tuple(visuals), tuple(collisions), r.loc(el), el)
+        links[name] = Link(name, r.inertial(first), tuple(visuals), tuple(collisions), loc(el), el)
 
     joints: dict[str, Joint] = {}
+    vec, nums = r.vec, r.nums
     for el in top["joint"]:
         name = el.get("name")
         jtype = el.get("type", "")
-        kids = _kids(el)
+        kids = kids_of(el)
         p, c = kids.get("parent"), kids.get("child")
         if not name:
             r.issue(el, "<joint> without a name")
             continue
-        if p is None or c is None or not p.get("link") or not c.get("link"):
+        parent = p.get("link") if p is not None else None
+        child = c.get("link") if c is not None else None
+        if not parent or not child:
             r.issue(el, f"joint '{name}' needs <parent link=...> and <child link=...>")
             continue
         axis_el = kids.get("axis")
-        axis = r.vec(axis_el, "xyz", (1.0, 0.0, 0.0)) if axis_el is not None else (1.0, 0.0, 0.0)
+        axis = vec(axis_el, "xyz", _X_AXIS) if axis_el is not None else _X_AXIS
         lim = kids.get("limit")
-        limit = Limit(*(r.num(lim, a, None, limit=None) for a in ("lower", "upper", "effort", "velocity"))) \
-            if lim is not None else None
+        limit = Limit(*nums(lim, _LIMIT, None, limit=None)) if lim is not None else None
         mim = kids.get("mimic")
         mimic = Mimic(mim.get("joint", ""), r.num(mim, "multiplier", 1.0), r.num(mim, "offset", 0.0)) \
             if mim is not None else None
@@ -417,12 +457,11 @@ def _read_model(root, text, src: Path, locations, package_roots, build_warnings,
             if dyn is not None else None
         if name in joints:
             continue
-        joints[name] = Joint(name, jtype, p.get("link"), c.get("link"), r.pose(el, kids), axis, limit, mimic,
-                             dynamics, r.loc(el), el)
+        joints[name] = Joint(name, jtype, parent, child, pose(el, kids), axis, limit, mimic, dynamics, loc(el), el)
 
     gazebo = tuple(_gazebo_block(r, g) for g in top["gazebo"])
     transmissions = tuple(_transmission(r, t) for t in top["transmission"])
-    ros2_control = tuple(_ros2_control(r, b) for b in root if isinstance(b.tag, str) and _local(b) == "ros2_control")
+    ros2_control = tuple(_ros2_control(r, b) for b in control)
 
     return Robot(name=root.get("name", ""), links=links, joints=joints, materials=materials, gazebo=gazebo,
                  transmissions=transmissions, root_element=root, source=src, urdf_text=text, loc=r.loc(root),

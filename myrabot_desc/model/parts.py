@@ -472,12 +472,15 @@ class Robot:
         duplicates and nameless ones included (``links``/``joints``/``materials`` keep one per name)."""
         def build():
             out = []
+            add = out.append
             for el in self.root_element.iterchildren(tag):
                 child = None
                 if tag == "joint":
-                    c = next(el.iterchildren("child"), None)
-                    child = c.get("link") if c is not None else None
-                out.append(Declared(tag, el.get("name"), child, el, self))
+                    for c in el:            # the first <child> (a loop costs less than an iterator)
+                        if c.tag == "child":
+                            child = c.get("link")
+                            break
+                add(Declared(tag, el.get("name"), child, el, self))
             return tuple(out)
         return list(self.derive(("declared", tag), build))
 

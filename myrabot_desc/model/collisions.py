@@ -27,7 +27,7 @@ from myrabot_desc.errors import InputError
 from myrabot_desc.model import meshes as meshio
 from myrabot_desc.model.kinematics import pose_stack, world_transforms
 from myrabot_desc.model.shapes import describe
-from myrabot_desc.model.support import _mesh_reader
+from myrabot_desc.model.support import _mesh_reader, collision_shapes
 from myrabot_desc.model.tree import maps
 from myrabot_desc.safety import limit
 
@@ -248,47 +248,33 @@ class Scene:
     def _placed(self, world):
         """Every collision shape placed by ``world`` with its bounding box (no coal shape yet).
 
-        The walk of support.placed_collisions (the same shapes, meshes read in the same order),
-        with the poses, centres and radii as stacked products: the same kernels, so the same bits
-        as one product per shape, without a dozen numpy calls per shape."""
+        support.collision_shapes' walk, with the poses, centres and radii as stacked products: the
+        same kernels, so the same bits as one product per shape, without a dozen numpy calls per
+        shape."""
         import numpy as np
 
-        read = self.read
         local, by_geometry = self._local, self._by_geometry
         found, frames, origins = [], [], []
-        for link in self.robot.links.values():
-            if link.name not in world:
-                continue
-            W = world[link.name]
-            for it in link.collisions:
-                g = it.geometry
-                if g is None:
-                    continue
-                mesh = None
-                if g.kind == "mesh":
-                    if read is None or g.path is None:
-                        continue
-                    mesh = read(g, it.loc)
-                    if mesh is None or isinstance(mesh, str):
-                        continue
-                key = id(it)
-                if key not in local:
-                    if mesh is None:     # a primitive's box is its size's: equal sizes share one
-                        try:
-                            box = by_geometry.get((g.kind, g))
-                            if box is None:
-                                box = by_geometry[(g.kind, g)] = (_local_box(np, g, mesh),)
-                            local[key] = box[0]
-                        except TypeError:            # a size given as a list: not hashable
-                            local[key] = _local_box(np, g, mesh)
-                    else:
+        for link, it, mesh in collision_shapes(self.robot, world, self.read):
+            g = it.geometry
+            key = id(it)
+            if key not in local:
+                if mesh is None:     # a primitive's box is its size's: equal sizes share one
+                    try:
+                        box = by_geometry.get((g.kind, g))
+                        if box is None:
+                            box = by_geometry[(g.kind, g)] = (_local_box(np, g, mesh),)
+                        local[key] = box[0]
+                    except TypeError:            # a size given as a list: not hashable
                         local[key] = _local_box(np, g, mesh)
-                box = local[key]
-                if box is None:
-                    continue
-                found.append((link.name, it, mesh, box))
-                frames.append(W)
-                origins.append(it.origin)
+                else:
+                    local[key] = _local_box(np, g, mesh)
+            box = local[key]
+            if box is None:
+                continue
+            found.append((link.name, it, mesh, box))
+            frames.append(world[link.name])
+            origins.append(it.origin)
         if not found:
             return []
         T = np.array(frames, dtype=float).reshape(-1, 4, 4) @ pose_stack(origins)

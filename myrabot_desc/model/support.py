@@ -75,12 +75,11 @@ def _mesh_reader(meshes):
     return read_loaded
 
 
-def placed_collisions(robot, world, mesh_of=None):
-    """(link, collision item, world pose 4x4, mesh) for every collision shape placed by ``world``
-    (link -> 4x4, from model.kinematics.world_transforms). ``mesh`` is None for primitives; mesh
-    shapes come with ``mesh_of(geometry, loc)``'s answer and are left out without ``mesh_of`` or
-    when it gives None or a reason (a str). The one walk check's P rules and the support share."""
-
+def collision_shapes(robot, world, mesh_of=None):
+    """(link, collision item, mesh) of every collision shape of a link ``world`` places, in file
+    order: the one walk check's P rules, P005 and the support share. ``mesh`` is None for
+    primitives; mesh shapes come with ``mesh_of(geometry, loc)``'s answer and are left out without
+    ``mesh_of`` or when it gives None or a reason (a str)."""
     for link in robot.links.values():
         if link.name not in world:
             continue
@@ -95,7 +94,14 @@ def placed_collisions(robot, world, mesh_of=None):
                 mesh = mesh_of(g, it.loc)
                 if mesh is None or isinstance(mesh, str):
                     continue
-            yield link, it, world[link.name] @ pose_matrix(it.origin), mesh
+            yield link, it, mesh
+
+
+def placed_collisions(robot, world, mesh_of=None):
+    """(link, collision item, world pose 4x4, mesh) for every shape of ``collision_shapes``, placed
+    by ``world`` (link -> 4x4, from model.kinematics.world_transforms)."""
+    for link, it, mesh in collision_shapes(robot, world, mesh_of):
+        yield link, it, world[link.name] @ pose_matrix(it.origin), mesh
 
 
 def lowest(robot, world, meshes=True):

@@ -30,7 +30,7 @@ from __future__ import annotations
 import math
 from typing import NamedTuple
 
-from myrabot_desc.model.kinematics import _norms, _with_mimic, axis_angle, pose_matrix, pose_stack, world_transforms, \
+from myrabot_desc.model.kinematics import _norms, axis_angle, pose_matrix, pose_stack, world_transforms, \
     world_transforms_from
 
 SAMPLES = 13             # values per joint range: 15 degrees apart on a half-turn range
@@ -122,9 +122,7 @@ def gravity_needs(robot, samples: int = SAMPLES, joints=None) -> list[Need]:
     import numpy as np
 
     rest = robot.rest_pose()
-    # the rest pose is often every joint at 0: the zero configuration, which check keeps once per robot
-    zero = all(v == 0.0 and math.copysign(1.0, v) > 0 for v in _with_mimic(robot, rest).values())
-    W = world_transforms(robot) if zero else world_transforms(robot, rest)
+    W = world_transforms(robot, rest)        # at all zeros, the zero configuration check keeps per robot
     movers = [j for j in robot.joints.values() if j.type in MOVING and j.mimic is None
               and j.parent in W and j.child in W]
     names = [j.name for j in movers if joints is None or j.name in joints]

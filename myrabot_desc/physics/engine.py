@@ -404,7 +404,8 @@ class Path:
         self.x: list[float] = []
         self.y: list[float] = []
         self.yaw: list[float] = []
-        self.max_tilt = 0.0              # degrees
+        self.tilt: list[float] = []      # degrees from how it stood at the first sample
+        self.max_tilt = 0.0
         self.turned_over: int | None = None   # the first sample tilted past TURNED_OVER
         self._last = None
         self._up0 = None
@@ -428,6 +429,7 @@ class Path:
         self.x.append(float(p[0]))
         self.y.append(float(p[1]))
         self.yaw.append(turned)
+        self.tilt.append(tilt)
 
     def upright(self, segments) -> tuple[bool, str]:
         """Whether the body stayed upright, and if not when and in which segment (1-based, of
@@ -443,7 +445,8 @@ class Path:
     def series(self) -> dict:
         import numpy as np
 
-        return {"base_x_m": np.asarray(self.x), "base_y_m": np.asarray(self.y), "base_yaw_rad": np.asarray(self.yaw)}
+        return {"base_x_m": np.asarray(self.x), "base_y_m": np.asarray(self.y), "base_yaw_rad": np.asarray(self.yaw),
+                "base_tilt_deg": np.asarray(self.tilt)}
 
     def body_twist(self, a: int, b: int) -> tuple[float, float, float]:
         """The mean body-frame (vx, vy, w) between samples ``a`` and ``b`` (each step's chord at its

@@ -111,6 +111,19 @@ def _subtrees(robot, names):
     return below
 
 
+def _setup(robot, joints):
+    """What both forms start from: the rest pose, its world transforms, the moving joints they place
+    (mimic joints follow theirs), the names of those asked for and the links with a usable mass."""
+    rest = robot.rest_pose()
+    W = world_transforms(robot, rest)        # at all zeros, the zero configuration check keeps per robot
+    movers = [j for j in robot.joints.values() if j.type in MOVING and j.mimic is None
+              and j.parent in W and j.child in W]
+    names = [j.name for j in movers if joints is None or j.name in joints]
+    links = [link for link in robot.links.values() if link.name in W and link.inertial is not None
+             and link.inertial.mass > 0 and math.isfinite(link.inertial.mass)]
+    return rest, W, movers, names, links
+
+
 def gravity_needs(robot, samples: int = SAMPLES, joints=None) -> list[Need]:
     """One :class:`Need` per moving, non-mimic joint (``joints``: only these), in file order.
 
@@ -121,19 +134,13 @@ def gravity_needs(robot, samples: int = SAMPLES, joints=None) -> list[Need]:
     (a link hanging from two joints) takes the dense form (``_gravity_needs_dense``)."""
     import numpy as np
 
-    rest = robot.rest_pose()
-    W = world_transforms(robot, rest)        # at all zeros, the zero configuration check keeps per robot
-    movers = [j for j in robot.joints.values() if j.type in MOVING and j.mimic is None
-              and j.parent in W and j.child in W]
-    names = [j.name for j in movers if joints is None or j.name in joints]
+    rest, W, movers, names, links = _setup(robot, joints)
     if not names:
         return []
     tree = _preorder(robot, W)
     if tree is None:
         return _gravity_needs_dense(robot, samples, joints)
     order, pos, parent, levels, end = tree
-    links = [link for link in robot.links.values() if link.name in W and link.inertial is not None
-             and link.inertial.mass > 0 and math.isfinite(link.inertial.mass)]
     L = len(order)
     own_m = np.zeros(L)
     own_mc = np.zeros((L, 3))
@@ -665,15 +672,9 @@ def _gravity_needs_dense(robot, samples: int = SAMPLES, joints=None) -> list[Nee
     """``gravity_needs`` of a model that is not a tree: a dense joint x link matrix of the links below each joint."""
     import numpy as np
 
-    rest = robot.rest_pose()
-    W = world_transforms(robot, rest)
-    movers = [j for j in robot.joints.values() if j.type in MOVING and j.mimic is None
-              and j.parent in W and j.child in W]
-    names = [j.name for j in movers if joints is None or j.name in joints]
+    rest, W, movers, names, links = _setup(robot, joints)
     if not names:
         return []
-    links = [link for link in robot.links.values() if link.name in W and link.inertial is not None
-             and link.inertial.mass > 0 and math.isfinite(link.inertial.mass)]
     index = {link.name: k for k, link in enumerate(links)}
     m = np.array([link.inertial.mass for link in links], dtype=float)
     c = np.array([(W[link.name] @ pose_matrix(link.inertial.origin))[:3, 3] for link in links]).reshape(-1, 3)

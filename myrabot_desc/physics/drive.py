@@ -28,7 +28,7 @@ from myrabot_desc.model.statics import effort_of
 from myrabot_desc.sim import drive as kinematic
 from myrabot_desc.sim.diffdrive import find_drive
 from myrabot_desc.physics import kinds
-from myrabot_desc.physics.engine import TURNED_OVER, Engine, Path
+from myrabot_desc.physics.engine import Engine, Path
 from myrabot_desc.physics.result import Cause, PhysicsResult
 from myrabot_desc.sim.result import Check
 
@@ -178,12 +178,9 @@ def run(robot, *, script=kinematic.DEFAULT_SCRIPT, wheels="plugin", left=(), rig
         causes = [] if ok else _causes(robot, eng, drv, declared, segments[i], kind, per_wheel)
         res.add(Check(label, ok, float(value), "", f"MuJoCo's ratio / the kinematic one = 1 ±{tolerance:.0%}",
                       f"segment {i + 1}: v {segments[i]['v']:g} m/s, w {segments[i]['w']:g} rad/s"), causes)
-    upright, why = path.upright(segments)
-    tipped = next((seg for seg in segments if not upright and path.turned_over <= seg["end"]), None)
-    res.add(Check("stays upright", upright, round(path.max_tilt, 1), "deg",
-                  f"tilts less than {TURNED_OVER:g} deg from how it settled", why),
-            [] if tipped is None else _causes(robot, eng, drv, declared, tipped, "w" if tipped["w"] else "v",
-                                              per_wheel))
+    upright, tipped = path.upright(segments)
+    res.add(upright, [] if tipped is None else _causes(robot, eng, drv, declared, tipped, "w" if tipped["w"] else "v",
+                                    per_wheel))
     # what the wheels and the contacts did, for every run
     track = _tracking(segments, per_wheel)
     if track is not None:

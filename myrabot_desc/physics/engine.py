@@ -27,6 +27,7 @@ from myrabot_desc.model.legs import stance
 from myrabot_desc.model.statics import effort_of
 from myrabot_desc.model.support import CONTACT_TOL
 from myrabot_desc.safety import limit
+from myrabot_desc.sim.result import Check
 
 FLOOR = "floor"
 # A joint needing between 1x and this many times its effort limit to hold what it carries at the start
@@ -431,16 +432,19 @@ class Path:
         self.yaw.append(turned)
         self.tilt.append(tilt)
 
-    def upright(self, segments) -> tuple[bool, str]:
-        """Whether the body stayed upright, and if not when and in which segment (1-based, of
-        ``segments`` with their "end" sample) it turned over."""
+    def upright(self, segments):
+        """The "stays upright" check of a run, and the segment (of ``segments``, dicts with their
+        "end" sample) in which the body turned over, None when it did not or while it settled."""
         k = self.turned_over
-        if k is None:
-            return True, ""
-        seg = next((i + 1 for i, s in enumerate(segments) if k <= s["end"]), None)
-        where = f" in segment {seg}" if seg is not None else " while it settled"
-        return False, (f"it turned over at t = {self.t[k]:.2f} s{where}: the segments from there are not measured "
-                       "(their rates would be those of a body on its side)")
+        i = None if k is None else next((i for i, s in enumerate(segments) if k <= s["end"]), None)
+        why = ""
+        if k is not None:
+            where = f" in segment {i + 1}" if i is not None else " while it settled"
+            why = (f"it turned over at t = {self.t[k]:.2f} s{where}: the segments from there are not measured "
+                   "(their rates would be those of a body on its side)")
+        check = Check("stays upright", k is None, round(self.max_tilt, 1), "deg",
+                      f"tilts less than {TURNED_OVER:g} deg from how it settled", why)
+        return check, None if i is None else segments[i]
 
     def series(self) -> dict:
         import numpy as np

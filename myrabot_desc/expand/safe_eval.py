@@ -777,7 +777,7 @@ def _prepare_by_shape(expr: str, shapes: dict):
                 entry = _calls_of(tree)
         except Exception:  # refused or unparsable shape: the full path reports it
             entry = None
-        if len(shapes) < 100_000:
+        if len(shapes) < MAX_PREPARED:
             shapes[shape] = entry
     if entry is None:
         return None

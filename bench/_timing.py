@@ -65,6 +65,20 @@ def best_of(cmds: dict, n: int, *, cwd=None, env=None, ok=(0,), warmup=1) -> dic
     return {k: {"wall": min(v["wall"]), "cpu": min(v["cpu"]), "n": n} for k, v in res.items()}
 
 
+def baseline(n: int = 5) -> dict:
+    """This machine's floor in the same run: ``python -c pass`` and ``python -c "import numpy"`` (one
+    BLAS thread, as the CLI runs it), best of ``n``: figures from another machine compare through them."""
+    py = str(BIN / "python")
+    return best_of({"python -c pass": [py, "-c", "pass"], "import numpy": [py, "-c", "import numpy"]}, n,
+                   env=dict(bench_env(), OPENBLAS_NUM_THREADS="1"))
+
+
+def baseline_text(base: dict) -> str:
+    p, n = base["python -c pass"], base["import numpy"]
+    return (f"`python -c pass` {fmt_s(p['cpu'])} CPU ({fmt_s(p['wall'])} wall), `python -c \"import numpy\"` "
+            f"{fmt_s(n['cpu'])} CPU ({fmt_s(n['wall'])} wall, one BLAS thread)")
+
+
 def have(tool: str) -> bool:
     return shutil.which(tool) is not None
 

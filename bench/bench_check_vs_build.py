@@ -21,7 +21,7 @@ import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _timing import BIN, ROOT, bench_env, best_of, fmt_s, machine, run_once, save, table  # noqa: E402
+from _timing import BIN, ROOT, baseline, baseline_text, bench_env, fmt_s, machine, run_once, save, table  # noqa: E402
 
 CORPUS = ROOT / "tests" / "corpus"
 BUNDLED, EACH = 1.5, 1.8
@@ -58,9 +58,7 @@ def main(argv=None) -> int:
     ap.add_argument("--before", default="", help="folder with earlier code, its check timed beside")
     a = ap.parse_args(argv)
     env = bench_env()
-    py = sys.executable
-    base = best_of({"python -c pass": [py, "-c", "pass"], "import numpy": [py, "-c", "import numpy"]},
-                   max(a.repeat, 5), env=env)
+    base = baseline(max(a.repeat, 5))
     only = set(filter(None, a.only.split(",")))
     todo = [("bundled MYRAbot", [], {}, BUNDLED)]
     if not a.no_corpus:
@@ -93,10 +91,8 @@ def main(argv=None) -> int:
     print(table(rows, ["robot", "build cpu", "check cpu", "build wall", "check wall", "cpu ratio",
                        "before: ratio (cpu)", "target"]))
     print(f"{met} of {len(res)} timed robots meet the target")
-    print(f"this machine: `python -c pass` {fmt_s(base['python -c pass']['cpu'])} CPU "
-          f"({fmt_s(base['python -c pass']['wall'])} wall), `python -c \"import numpy\"` "
-          f"{fmt_s(base['import numpy']['cpu'])} CPU ({fmt_s(base['import numpy']['wall'])} wall); "
-          f"{m['cores']} cores, {m['cpu']}, Python {m['python']}, {m['date']}, load average {m['load']:.1f}")
+    print(f"this machine: {baseline_text(base)}; {m['cores']} cores, {m['cpu']}, Python {m['python']}, "
+          f"{m['date']}, load average {m['load']:.1f}")
     print(f"saved {save('check_vs_build', {'robots': res, 'baseline': base})}")
     return 0
 

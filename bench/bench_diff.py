@@ -28,7 +28,7 @@ import tempfile
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _timing import BIN, ROOT, bench_env, best_of, fmt_s, save, table  # noqa: E402
+from _timing import BIN, ROOT, baseline, baseline_text, bench_env, best_of, fmt_s, save, table  # noqa: E402
 
 HISTORY = ROOT / "tests" / "fixtures" / "model_history"
 CASES = {"husky_track_narrowed": ("husky_description/urdf/husky.urdf.xacro", []),
@@ -101,12 +101,9 @@ def main(argv=None) -> int:
                 r = res[name]
                 rows.append([case, name, fmt_s(r["wall"]), fmt_s(r["cpu"]),
                              f"{r['wall'] / base['wall']:.2f}×", f"{r['cpu'] / base['cpu']:.2f}×"])
-        py = str(BIN / "python")
-        env = dict(bench_env(), OPENBLAS_NUM_THREADS="1")
-        ref = best_of({"python -c pass": [py, "-c", "pass"], "python -c 'import numpy'": [py, "-c", "import numpy"]},
-                      a.repeat, env=env)
+        ref = baseline(a.repeat)
     print(table(rows, ["revisions", "command", "wall", "cpu", "wall / two builds", "cpu / two builds"]))
-    print("this machine: " + "; ".join(f"{k} {fmt_s(v['cpu'])} cpu, {fmt_s(v['wall'])} wall" for k, v in ref.items()))
+    print(f"this machine: {baseline_text(ref)}")
     worst = max(out[c]["diff"]["wall"] / out[c]["two builds"]["wall"] for c in out)
     worst_cpu = max(out[c]["diff"]["cpu"] / out[c]["two builds"]["cpu"] for c in out)
     print(f"target: diff <= 2x two builds in CPU time; worst {worst_cpu:.2f}x cpu "

@@ -28,7 +28,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from _timing import BIN, bench_env, machine, run_once, save  # noqa: E402
+from _timing import BIN, baseline, baseline_text, bench_env, machine, run_once, save  # noqa: E402
 from gen_tree import tree_urdf  # noqa: E402
 
 CASES = [("star", 20_000), ("chain", 5_000)]
@@ -62,9 +62,7 @@ def main() -> int:
     ap.add_argument("--before", default="", help="folder with earlier code, timed beside (see above)")
     args = ap.parse_args()
     only, kinds = set(args.only.split(",")), set(args.kinds.split(","))
-    py = sys.executable
-    base = interleaved({"python -c pass": [py, "-c", "pass"], "import numpy": [py, "-c", "import numpy"]},
-                       max(5, args.repeat))
+    base = baseline(max(5, args.repeat))
     # inherited by every child: a runaway stops at the cap (MemoryError or SIGKILL: exit < 0, a NO row)
     cap = int(args.mem_gb * 2**30)
     resource.setrlimit(resource.RLIMIT_AS, (cap, cap))
@@ -72,7 +70,7 @@ def main() -> int:
     work = Path(tempfile.mkdtemp(prefix="bench_scale_"))
     exe = str(BIN / "myrabot-desc")
     peer = shutil.which("check_urdf")
-    rows, ok, data = [], True, {"baseline": {k: {"wall": v[0], "cpu": v[1]} for k, v in base.items()}}
+    rows, ok, data = [], True, {"baseline": base}
     for kind, n in CASES:
         if kind not in kinds:
             continue
@@ -118,11 +116,8 @@ def main() -> int:
     m = machine()
     print("| tree | command | wall s | CPU s | exit | target (CPU) | met | note |\n|---|---|---|---|---|---|---|---|")
     print("\n".join(rows))
-    b, n = data["baseline"]["python -c pass"], data["baseline"]["import numpy"]
-    print(f"\nbest of {args.repeat}, interleaved; this machine: `python -c pass` {b['cpu']:.3f} s CPU ({b['wall']:.3f} s "
-          f"wall), `python -c \"import numpy\"` {n['cpu']:.3f} s CPU ({n['wall']:.3f} s wall); {m['cores']} cores, "
-          f"{m['cpu']}, Python {m['python']}, "
-          f"{m['date']}, load average {m['load']:.1f}")
+    print(f"\nbest of {args.repeat}, interleaved; this machine: {baseline_text(base)}; {m['cores']} cores, "
+          f"{m['cpu']}, Python {m['python']}, {m['date']}, load average {m['load']:.1f}")
     print("all targets met" if ok else "targets missed: see the NO rows")
     save("scale", data)
     return 0

@@ -1,12 +1,12 @@
-"""The issue-8 targets in one table: ours against each peer, with the ratio and a verdict.
+"""The speed targets in one table (issues 8 and 29): ours against each peer, with the ratio and a verdict.
 
     .venv/bin/python bench/bench_targets.py [--repeat N] [--write-docs] [--fresh]
 
-Reads the results bench_build.py, bench_load.py and bench_start.py left in
-out/bench/ during this `make bench` run (runs them first when missing, or with
---fresh), times `convert --to sdf` against `ign sdf -p` here, and takes the sim
-figures from the sim developer's bench/bench_sim.py (--json). --write-docs puts
-the table into docs/benchmarks.md between its "targets" markers.
+Reads the results bench_build.py, bench_load.py, bench_start.py, bench_check_vs_build.py and
+bench_scale.py left in out/bench/ during this `make bench` run (runs them first when missing, or
+with --fresh), times `convert --to sdf` against `ign sdf -p` here, and takes the sim figures from
+bench/bench_sim.py (--json). The machine's `python -c pass` and `import numpy` are timed at the end,
+beside the table. --write-docs puts the table into docs/benchmarks.md between its "targets" markers.
 """
 
 from __future__ import annotations
@@ -23,6 +23,8 @@ from _timing import (  # noqa: E402
     BIN,
     OUT,
     ROOT,
+    baseline,
+    baseline_text,
     bench_env,
     best_of,
     fmt_s,
@@ -69,6 +71,48 @@ def sim() -> dict:
     return json.loads(p.stdout[p.stdout.index("{"):])
 
 
+def issue29_rows(st: dict, cb: dict, scale: dict, sm: dict, yes) -> list:
+    """The issue-29 rows: CPU time, which a shared machine disturbs less than wall time."""
+    rows = []
+    if "whole_ratio_cpu" in sm:
+        rows.append(["`sim vuelta --duration 60`, whole command (CPU)", "≤ 0.7× a plain MuJoCo script",
+                     fmt_s(sm["whole_ours_cpu_s"]), f"script: MuJoCo compiles the MJCF, steps 60 s "
+                     f"{fmt_s(sm['whole_plain_cpu_s'])}", f"{sm['whole_ratio_cpu']:.2f}×", yes(sm["whole_met"])])
+    if "ratio_mujoco_over_vuelta_with_preparation" in sm:
+        r = sm["ratio_mujoco_over_vuelta_with_preparation"]
+        rows.append(["`sim vuelta`, in process, robot prepared in the run", "≥ 15× MuJoCo's stepping",
+                     fmt_s(sm["vuelta_full_with_preparation_s"]), f"mj_step {fmt_s(sm['mujoco_step_s'])}",
+                     f"{r:.1f}× faster", yes(r >= 15)])
+    b = cb.get("bundled MYRAbot")
+    if b:
+        rows.append(["`check --no-cache`, bundled MYRAbot (CPU)", "≤ 1.5× its build", fmt_s(b["check"]["cpu"]),
+                     f"`build` {fmt_s(b['build']['cpu'])}", f"{b['cpu_ratio']:.2f}×", yes(b["met"])])
+    corpus = [v for k, v in cb.items() if k != "bundled MYRAbot"]
+    if corpus:
+        lo, hi = min(v["cpu_ratio"] for v in corpus), max(v["cpu_ratio"] for v in corpus)
+        met = sum(v["met"] for v in corpus)
+        rows.append([f"`check --no-cache`, each of {len(corpus)} corpus robots (CPU)", "≤ 1.8× its build",
+                     f"{met} of {len(corpus)} within", "their `build`s", f"{lo:.2f}–{hi:.2f}×",
+                     yes(met == len(corpus))])
+    for kind, label, limit, times in (("star", "20,000-link star", 3.0, "check"),
+                                      ("chain", "5,000-link chain", 1.5, "check")):
+        ours, peer = scale.get(f"{kind}_check"), scale.get(f"{kind}_check_urdf")
+        if ours and peer:
+            r = ours["cpu"] / peer["cpu"]
+            rows.append([f"`{times}`, {label} (CPU)", f"≤ {limit:g}× `check_urdf`", fmt_s(ours["cpu"]),
+                         f"`check_urdf` {fmt_s(peer['cpu'])}", f"{r:.1f}×",
+                         yes(r <= limit and ours["exit"] in (0, 1, 2))])
+    sdf = scale.get("star_sdf")
+    if sdf:
+        rows.append(["`convert --to sdf`, 20,000-link star (CPU)", "≤ 4 s", fmt_s(sdf["cpu"]), "", "",
+                     yes(sdf["cpu"] <= 4.0 and sdf["exit"] == 0)])
+    t = st["times"]
+    over = t["myrabot-desc --help"]["cpu"] - t["python -c pass"]["cpu"]
+    rows.append(["`--help` (CPU)", "≤ python + 50 ms", fmt_s(t["myrabot-desc --help"]["cpu"]),
+                 f"`python -c pass` {fmt_s(t['python -c pass']['cpu'])}", f"+{over * 1000:.0f} ms", yes(over <= 0.050)])
+    return rows
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--repeat", type=int, default=10, help="runs for the convert comparison [10]")
@@ -79,6 +123,8 @@ def main(argv=None) -> int:
     b = result("build", a.fresh, [])["cases"]
     st = result("start", a.fresh, [])
     ld = result("load", a.fresh, [])
+    cb = result("check_vs_build", a.fresh, [])["robots"]
+    scale = result("scale", a.fresh, [])
     cv = convert(a.repeat)
     sm = sim()
     sc = sim_command(3)
@@ -147,7 +193,9 @@ def main(argv=None) -> int:
         rows.append(["`myrabot-desc sim vuelta --duration 60`, whole command", "—", fmt_s(sc["wall"]), "", "", ""])
     else:
         rows.append(["`sim vuelta`", "< 1 s and ≥ 10× MuJoCo", "—", sm.get("error", "bench_sim.py failed"), "", "—"])
+    rows += issue29_rows(st, cb, scale, sm, yes)
 
+    base = baseline()
     m = machine()
     head = ["what", "target", "ours", "peer", "ratio", "met"]
     text = table(rows, head)
@@ -156,11 +204,11 @@ def main(argv=None) -> int:
               f"convert best of {a.repeat}; sim: medians of 5 in process, MuJoCo's stepping median of 5 "
               "from a fresh MjData, its compile not counted (bench_sim.py)")
     meta = (f"Machine: {m['cores']} cores, {m['cpu']}, Python {m['python']}; {m['date']}; "
-            f"load average {m['load']:.1f} at the end of the run (other sessions were using the machine).\n"
-            f"Fresh processes, wall clock, {n_note}.")
+            f"load average {m['load']:.1f} at the end of the run; {baseline_text(base)}.\n"
+            f"Fresh processes, wall clock unless the row says CPU (the child's user + system time), {n_note}.")
     print(text)
     print(meta)
-    save("targets", {"rows": rows, "convert": cv, "sim": sm, "sim_command": sc, "meta": meta})
+    save("targets", {"rows": rows, "convert": cv, "sim": sm, "sim_command": sc, "meta": meta, "baseline": base})
     if a.write_docs:
         doc = DOC.read_text()
         if BEGIN in doc and END in doc:

@@ -11,7 +11,6 @@ its path at build time.
 from __future__ import annotations
 
 import os
-import subprocess
 from pathlib import Path
 
 PACKAGE = Path(__file__).resolve().parents[1]
@@ -19,6 +18,8 @@ BUILD_FILE = PACKAGE / "BUILD_COMMIT"
 
 
 def _git(top: Path, *args: str) -> str | None:
+    import subprocess           # only --version asks git: every other click command loads this module
+
     env = {k: v for k, v in os.environ.items() if not k.startswith("GIT_")}
     try:
         r = subprocess.run(["git", "-C", str(top), *args], capture_output=True, text=True, env=env,

@@ -402,7 +402,7 @@ def _triangles(g):
     got = _TRIANGLES.get(key)
     if got is None:
         try:
-            v, f = meshio.triangles(g.path)
+            v, f = meshio.triangles(g.path, any_order=True)      # a touch test: any face order
         except Exception:        # MeshError, or a reader's own failure: the hull verdict stands
             return None
         v = np.asarray(v, dtype=float) * np.asarray(g.scale, dtype=float)

@@ -571,17 +571,19 @@ def facts(path: Path, scale=(1.0, 1.0, 1.0)) -> MeshFacts:
     return MeshFacts.from_trimesh(m)
 
 
-def triangles(path: Path, notes=None):
+def triangles(path: Path, notes=None, any_order: bool = False):
     """(vertices (n, 3), faces (m, 3)) of one mesh, equal to ``load(path)``'s, read by the lean STL
     and COLLADA readers when they understand the file (no trimesh import: ~0.6 s of a render),
     else by trimesh, and a COLLADA file pycollada half-rejects by ``lenient_dae`` as convert reads
-    it (``notes.warn`` says so); MeshError saying why not."""
+    it (``notes.warn`` says so); MeshError saying why not. ``any_order``: the caller does not depend
+    on the order of the faces (a touch test), so the lean OBJ reader serves too (the same vertices
+    and triangles, another face order)."""
     import numpy as np
 
     path = Path(path)
     ext = path.suffix.lower()
     try:
-        return _triangles(path, ext)
+        return _triangles(path, ext, any_order)
     except MeshError as exc:
         m = lenient_dae(path, notes) if ext == ".dae" and "holds no triangles" in str(exc) else None
         if m is None:
@@ -604,10 +606,12 @@ def lean_triangles(path: Path):
         return None
 
 
-def _triangles(path: Path, ext: str):
+def _triangles(path: Path, ext: str, any_order: bool = False):
     import numpy as np
 
     readers = {".stl": _stl_parts, ".dae": _dae_parts}   # OBJ: same triangles, another face order
+    if any_order:
+        readers[".obj"] = _obj_parts
     if ext in readers:
         precheck(path)
         max_bytes, max_tris = limits()

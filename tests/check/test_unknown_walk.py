@@ -1,0 +1,103 @@
+"""T005/T006's walk: the XML Schema derived from SCHEMA passes exactly the trees the Python walk finds
+nothing in, so skipping the walk for a tree it passes changes no finding (checks/urdf_syntax.py)."""
+
+from __future__ import annotations
+
+import pytest
+
+from helpers import CORPUS, ERD, FIXTURES, corpus_env, corpus_model, corpus_robots
+from myrabot_desc.checks.urdf_syntax import _clean, _problems, _unknowns
+from myrabot_desc.model.loader import load_robot
+from myrabot_desc.safety import parse_xml_bytes
+
+XSI = 'xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance"'
+CLEAN_LINK = ('<link name="a"><inertial><origin xyz="0 0 0"/><mass value="1"/>'
+              '<inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>'
+              '<visual><geometry><mesh filename="m.stl" scale="1 1 1"/></geometry>'
+              '<material name="m"><color rgba="1 0 0 1"/></material></visual></link>')
+
+# (name, document, the walk finds something)
+HOSTILE = [
+    ("clean", f'<robot name="r">{CLEAN_LINK}</robot>', False),
+    ("comments and PIs", f'<?pi a?><robot name="r"><!-- c --><?pi b?>{CLEAN_LINK}<!-- d --></robot>', False),
+    ("text in known elements", '<robot name="r">text<link name="a">more<visual>x</visual></link></robot>', False),
+    ("namespaced elements and attributes",
+     '<robot name="r" xmlns:f="urn:f" f:a="1" xml:lang="en"><f:thing bogus="1"><bogus/></f:thing>'
+     '<link name="a" f:b="2"><f:inner><nonsense/></f:inner></link></robot>', False),
+    ("free-form bodies", '<robot name="r"><gazebo reference="a" any="1"><mu1>1</mu1><x y="z"><deep/></x></gazebo>'
+     '<link name="a"><contact><lateral_friction value="1"/></contact></link>'
+     '<transmission name="t"><joint name="j"/><bogus/></transmission></robot>', False),
+    ("unknown attribute", '<robot name="r"><link name="a" mass="1"/></robot>', True),
+    ("unknown attribute deep", '<robot name="r"><link name="a"><collision><geometry>'
+     '<box size="1 1 1" rpy="0 0 1"/></geometry></collision></link></robot>', True),
+    ("unknown element", '<robot name="r"><gaezebo reference="a"><link name="b" bad="1"/></gaezebo></robot>', True),
+    ("unknown nested element", '<robot name="r"><link name="a"><visual><geometry><box size="1 1 1"><sub/></box>'
+     '</geometry></visual></link></robot>', True),
+    ("known element in the wrong place", '<robot name="r"><link name="a"><origin xyz="0 0 0"/></link></robot>', True),
+    ("element of a free-form tag elsewhere", '<robot name="r"><joint name="j"><gazebo/></joint></robot>', True),
+    ("attribute on the root", '<robot name="r" bogus="1"/>', True),
+    ("namespaced root", '<x:robot xmlns:x="urn:x" name="r"><link name="a" bad="1"/></x:robot>', True),
+    ("namespaced root, clean", '<x:robot xmlns:x="urn:x" name="r"><link name="a"/></x:robot>', False),
+    ("default namespace", '<robot xmlns="urn:x" name="r"><link bad="1"/></robot>', False),
+    ("other root", '<link name="a"><bogus/></link>', True),
+    ("unknown root", '<sdf><bogus/></sdf>', False),
+    ("xsi:type", f'<robot name="r" {XSI}><link name="a" xsi:type="t_gazebo"><bogus/></link></robot>', True),
+    ("xsi:type, clean", f'<robot name="r" {XSI}><link name="a" xsi:type="t_link"/></robot>', False),
+    ("xsi:schemaLocation", f'<robot name="r" {XSI} xsi:noNamespaceSchemaLocation="http://example.com/x.xsd">'
+     '<link name="a" bad="1"/></robot>', True),
+]
+
+
+def _same(root) -> list:
+    """The walk's findings, after checking the schema passes the tree only when the walk finds nothing."""
+    found = _unknowns(root)
+    if _clean().validate(root):
+        assert found == []
+    assert _problems(root) == found
+    return found
+
+
+@pytest.mark.parametrize("name,doc,dirty", HOSTILE, ids=[h[0] for h in HOSTILE])
+def test_hostile_trees(name, doc, dirty):
+    root = parse_xml_bytes(doc.encode(), name)
+    assert bool(_same(root)) == dirty
+
+
+def test_a_clean_robot_is_not_walked():
+    # the point of the schema: a clean <robot> tree passes it (the walk is skipped)
+    for name, doc, dirty in HOSTILE:
+        if not dirty and doc.startswith(("<robot", "<?pi")) and "xsi:" not in doc and 'xmlns="' not in doc:
+            assert _clean().validate(parse_xml_bytes(doc.encode(), name)), name
+
+
+def _exact(root) -> None:
+    """Real models: the schema passes a tree exactly when the walk finds nothing (no needless walk)."""
+    found = _same(root)
+    assert _clean().validate(root) == (not found)
+
+
+def test_example_robot_data_urdfs():
+    files = sorted(ERD.rglob("*.urdf"))
+    if not files:
+        pytest.skip("example-robot-data is not installed")
+    for f in files:
+        _exact(parse_xml_bytes(f.read_bytes(), str(f)))
+
+
+def test_bundled_and_seed_robots():
+    seed = FIXTURES / "seed_myrabot"
+    for src in (None, FIXTURES / "wander_bot" / "urdf" / "robot.xacro", seed / "myrabot_fer_modelo" / "urdf" / "myrabot.urdf.xacro"):
+        _exact(load_robot(src, package_paths=[seed]).root_element)
+
+
+@pytest.mark.skipif(not (CORPUS / "robots.yaml").is_file(), reason="no corpus")
+def test_corpus_robots(monkeypatch):
+    dirty = 0
+    for robot in corpus_robots():
+        with monkeypatch.context() as m:
+            for k, v in corpus_env(robot).items():
+                m.setenv(k, v)
+            root = corpus_model(robot).root_element
+        _exact(root)
+        dirty += bool(_unknowns(root))
+    assert dirty            # some real models have findings: both sides of the schema are exercised

@@ -332,6 +332,14 @@ def _kids(el) -> dict:
     return out
 
 
+def _may_name_packages(root, text: str) -> bool:
+    """False when no attribute of the document ``text`` (parsed as ``root``) can hold ``package:``:
+    the text lacks it, and no character reference (``&#112;``) can spell it. Only for a document whose
+    encoding writes ASCII as ASCII (the text of a file is its bytes read as UTF-8)."""
+    return "package:" in text or "&#" in text or \
+        (root.getroottree().docinfo.encoding or "").upper() not in ("UTF-8", "US-ASCII", "ASCII")
+
+
 def _read(*args) -> Robot:
     """_read_model with the cyclic garbage collector paused: reading allocates ~300,000 long-lived
     records and makes no cycles, and each full collection on the way rescans all of them."""
@@ -358,8 +366,10 @@ def _read_model(root, text, src: Path, locations, package_roots, build_warnings,
     roots = dict(package_roots)
     resolver = None
     # the attributes themselves, as plain strings: a third faster than their elements (in C: 260,000
-    # elements in a big tree)
-    for fn in root.xpath("descendant-or-self::*/@filename", smart_strings=False):
+    # elements in a big tree); and none at all when no value can start with package:// (the scan of
+    # every attribute is most of the cost)
+    named = root.xpath("descendant-or-self::*/@filename", smart_strings=False) if _may_name_packages(root, text) else ()
+    for fn in named:
         parts = split_package_uri(fn) if fn else None
         if parts and parts[0] not in roots:
             if resolver is None:

@@ -86,7 +86,8 @@ def test_example_robot_data_urdfs():
 
 def test_bundled_and_seed_robots():
     seed = FIXTURES / "seed_myrabot"
-    for src in (None, FIXTURES / "wander_bot" / "urdf" / "robot.xacro", seed / "myrabot_fer_modelo" / "urdf" / "myrabot.urdf.xacro"):
+    for src in (None, FIXTURES / "wander_bot" / "urdf" / "robot.xacro",
+                seed / "myrabot_fer_modelo" / "urdf" / "myrabot.urdf.xacro"):
         _exact(load_robot(src, package_paths=[seed]).root_element)
 
 

@@ -102,3 +102,14 @@ def test_corpus_robots(monkeypatch):
         _exact(root)
         dirty += bool(_unknowns(root))
     assert dirty            # some real models have findings: both sides of the schema are exercised
+
+
+def test_ros_blocks_at_robot_level_in_any_namespace(tmp_path):
+    from myrabot_desc.checks import CheckOptions, run_checks
+
+    f = tmp_path / "r.urdf"
+    f.write_text('<robot name="r" xmlns:f="urn:f"><link name="a"/><!-- <ros/> --><?ros x?>\n'
+                 '<ros><namespace>/a</namespace></ros>\n<f:ros><argument>x</argument></f:ros>\n<rosx/>\n'
+                 '<gazebo><ros><namespace>/inside</namespace></ros></gazebo></robot>')
+    found = [d for d in run_checks(load_robot(f), CheckOptions()) if d.code == "T007"]
+    assert [(d.loc.line, d.data["content"]) for d in found] == [(2, "<namespace>/a"), (3, "<argument>x")]

@@ -128,41 +128,7 @@ def _walk(ctx) -> list:
 _FREE = (None, None)
 
 
-@functools.cache
-def _clean():
-    """SCHEMA as an XML Schema that exactly the files with nothing for T005/T006 satisfy (from a
-    <robot> root): libxml2 checks that in C, a few times faster than the walk in Python, and most
-    files are clean. Namespaced elements and attributes are ##other (any namespace), free-form
-    bodies take anything, and blockDefault keeps xsi:type from swapping an element's type."""
-    from lxml import etree
-
-    def name_type(tag):
-        return f'name="{tag}" type="t_{tag}"'
-
-    anything = ('<xs:sequence><xs:any processContents="skip" minOccurs="0" maxOccurs="unbounded"/></xs:sequence>'
-                '<xs:anyAttribute processContents="skip"/>')
-    types = []
-    for tag, (attrs, children) in SCHEMA.items():
-        if children is None:
-            body = anything
-        else:
-            body = ('<xs:choice minOccurs="0" maxOccurs="unbounded">'
-                    + "".join(f"<xs:element {name_type(c)}/>" for c in sorted(children))
-                    + '<xs:any namespace="##other" processContents="skip"/></xs:choice>'
-                    + "".join(f'<xs:attribute name="{a}"/>' for a in sorted(attrs))
-                    + '<xs:anyAttribute namespace="##other" processContents="skip"/>')
-        types.append(f'<xs:complexType name="t_{tag}" mixed="true">{body}</xs:complexType>')
-    return etree.XMLSchema(etree.fromstring(
-        '<xs:schema xmlns:xs="http://www.w3.org/2001/XMLSchema" blockDefault="#all">'
-        f'<xs:element {name_type("robot")}/>{"".join(types)}</xs:schema>'))
-
-
 def _problems(root) -> list:
-    """(element, parent_tag, problem) for every unknown child and attribute under ``root``."""
-    return [] if _clean().validate(root) else _unknowns(root)   # a refusal itself is no finding
-
-
-def _unknowns(root) -> list:
     out = []
     add = out.append
     schema = SCHEMA.get

@@ -7,7 +7,6 @@ the ``myrabot_description`` package shipped with this tool).
 from __future__ import annotations
 
 import re
-from itertools import repeat
 from pathlib import Path
 
 from myrabot_desc.diagnostics import Diagnostic, Loc
@@ -336,8 +335,8 @@ def _may_name_packages(root, text: str) -> bool:
     """False when no attribute of the document ``text`` (parsed as ``root``) can hold ``package:``:
     the text lacks it, and no character reference (``&#112;``) can spell it. Only for a document whose
     encoding writes ASCII as ASCII (the text of a file is its bytes read as UTF-8)."""
-    return "package:" in text or "&#" in text or \
-        (root.getroottree().docinfo.encoding or "").upper() not in ("UTF-8", "US-ASCII", "ASCII")
+    ascii_as_ascii = (root.getroottree().docinfo.encoding or "").upper() in ("UTF-8", "US-ASCII", "ASCII")
+    return "package:" in text or "&#" in text or not ascii_as_ascii
 
 
 def _read(*args) -> Robot:
@@ -484,7 +483,7 @@ def _read_model(root, text, src: Path, locations, package_roots, build_warnings,
                   package_roots=roots, allow_roots=extra, build_warnings=build_warnings, from_xacro=from_xacro,
                   load_issues=r.issues, element_locs=r.loc_of, _elements=r._keep, ros2_control=ros2_control)
     # the elements, names and <child> links read above, rather than a second pass over 40,000 elements
-    robot.declare("link", top["link"], link_names, repeat(None))
+    robot.declare("link", top["link"], link_names)
     robot.declare("joint", top["joint"], joint_names, joint_children)
     return robot
 

@@ -485,10 +485,11 @@ class Robot:
             return tuple(out)
         return list(self.derive(("declared", tag), build))
 
-    def declare(self, tag: str, elements, names, children) -> None:
+    def declare(self, tag: str, elements, names, children=None) -> None:
         """Give ``declared(tag)`` from what the reader read already: the top-level ``<tag>`` elements in
         document order, their names, and (joints) their first ``<child>``'s link."""
-        self.derived[("declared", tag)] = tuple(map(Declared, repeat(tag), names, children, elements, repeat(self)))
+        self.derived[("declared", tag)] = tuple(map(Declared, repeat(tag), names, repeat(None) if children is None
+                                                    else children, elements, repeat(self)))
 
     def loc_of(self, el) -> Loc | None:
         """Source location of an element of ``root_element`` (None when unknown)."""

@@ -331,6 +331,14 @@ def _kids(el) -> dict:
     return out
 
 
+def _may_name_packages(root, text: str) -> bool:
+    """False when no attribute of the document ``text`` (parsed as ``root``) can hold ``package:``:
+    the text lacks it, and no character reference (``&#112;``) can spell it. Only for a document whose
+    encoding writes ASCII as ASCII (the text of a file is its bytes read as UTF-8)."""
+    ascii_as_ascii = (root.getroottree().docinfo.encoding or "").upper() in ("UTF-8", "US-ASCII", "ASCII")
+    return "package:" in text or "&#" in text or not ascii_as_ascii
+
+
 def _read(*args) -> Robot:
     """_read_model with the cyclic garbage collector paused: reading allocates ~300,000 long-lived
     records and makes no cycles, and each full collection on the way rescans all of them."""
@@ -357,8 +365,10 @@ def _read_model(root, text, src: Path, locations, package_roots, build_warnings,
     roots = dict(package_roots)
     resolver = None
     # the attributes themselves, as plain strings: a third faster than their elements (in C: 260,000
-    # elements in a big tree)
-    for fn in root.xpath("descendant-or-self::*/@filename", smart_strings=False):
+    # elements in a big tree); and none at all when no value can start with package:// (the scan of
+    # every attribute is most of the cost)
+    named = root.xpath("descendant-or-self::*/@filename", smart_strings=False) if _may_name_packages(root, text) else ()
+    for fn in named:
         parts = split_package_uri(fn) if fn else None
         if parts and parts[0] not in roots:
             if resolver is None:
@@ -395,8 +405,10 @@ def _read_model(root, text, src: Path, locations, package_roots, build_warnings,
 
     loc, pose, geometry, kids_of = r.loc, r.pose, r.geometry, _kids     # (locals: 20,000 links and joints)
     links: dict[str, Link] = {}
+    link_names = []                     # every <link>'s name as written, for Robot.declared
     for el in top["link"]:
         name = el.get("name")
+        link_names.append(name)
         if not name:
             r.issue(el, "<link> without a name")
             continue
@@ -431,17 +443,20 @@ def _read_model(root, text, src: Path, locations, package_roots, build_warnings,
         links[name] = Link(name, r.inertial(first), tuple(visuals), tuple(collisions), loc(el), el)
 
     joints: dict[str, Joint] = {}
+    joint_names, joint_children = [], []
     vec, nums = r.vec, r.nums
     for el in top["joint"]:
         name = el.get("name")
         jtype = el.get("type", "")
         kids = kids_of(el)
         p, c = kids.get("parent"), kids.get("child")
+        child = c.get("link") if c is not None else None
+        joint_names.append(name)
+        joint_children.append(child)
         if not name:
             r.issue(el, "<joint> without a name")
             continue
         parent = p.get("link") if p is not None else None
-        child = c.get("link") if c is not None else None
         if not parent or not child:
             r.issue(el, f"joint '{name}' needs <parent link=...> and <child link=...>")
             continue
@@ -463,10 +478,14 @@ def _read_model(root, text, src: Path, locations, package_roots, build_warnings,
     transmissions = tuple(_transmission(r, t) for t in top["transmission"])
     ros2_control = tuple(_ros2_control(r, b) for b in control)
 
-    return Robot(name=root.get("name", ""), links=links, joints=joints, materials=materials, gazebo=gazebo,
-                 transmissions=transmissions, root_element=root, source=src, urdf_text=text, loc=r.loc(root),
-                 package_roots=roots, allow_roots=extra, build_warnings=build_warnings, from_xacro=from_xacro, load_issues=r.issues,
-                 element_locs=r.loc_of, _elements=r._keep, ros2_control=ros2_control)
+    robot = Robot(name=root.get("name", ""), links=links, joints=joints, materials=materials, gazebo=gazebo,
+                  transmissions=transmissions, root_element=root, source=src, urdf_text=text, loc=r.loc(root),
+                  package_roots=roots, allow_roots=extra, build_warnings=build_warnings, from_xacro=from_xacro,
+                  load_issues=r.issues, element_locs=r.loc_of, _elements=r._keep, ros2_control=ros2_control)
+    # the elements, names and <child> links read above, rather than a second pass over 40,000 elements
+    robot.declare("link", top["link"], link_names)
+    robot.declare("joint", top["joint"], joint_names, joint_children)
+    return robot
 
 
 # ---------------------------------------------------------------- gazebo extensions

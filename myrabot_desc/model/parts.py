@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from itertools import repeat
 from pathlib import Path
 from typing import Any, NamedTuple
 
@@ -483,6 +484,12 @@ class Robot:
                 add(Declared(tag, el.get("name"), child, el, self))
             return tuple(out)
         return list(self.derive(("declared", tag), build))
+
+    def declare(self, tag: str, elements, names, children=None) -> None:
+        """Give ``declared(tag)`` from what the reader read already: the top-level ``<tag>`` elements in
+        document order, their names, and (joints) their first ``<child>``'s link."""
+        self.derived[("declared", tag)] = tuple(map(Declared, repeat(tag), names, repeat(None) if children is None
+                                                    else children, elements, repeat(self)))
 
     def loc_of(self, el) -> Loc | None:
         """Source location of an element of ``root_element`` (None when unknown)."""

@@ -540,11 +540,9 @@ class Robot:
         return list(maps(self).child_joints.get(link, ()))
 
     def joints_by_parent(self) -> dict[str, list[Joint]]:
-        """Parent link -> the joints hanging from it, in document order (for walking the tree)."""
-        out: dict[str, list[Joint]] = {}
-        for j in self.joints.values():
-            out.setdefault(j.parent, []).append(j)
-        return out
+        """Parent link -> the joints hanging from it, in document order (for walking the tree). Built
+        once per robot and shared (model/tree.maps): read it, never change it."""
+        return maps(self).child_joints
 
     def parent_joint(self, link: str) -> Joint | None:
         return maps(self).parent_joint.get(link)

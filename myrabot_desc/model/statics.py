@@ -595,13 +595,13 @@ def _preorder(robot, W):
             link, up, dep = stack.pop()
             if link in pos:
                 return None
-            pos[link] = len(order)
+            here = pos[link] = len(order)
             order.append(link)
             parent.append(up)
             depth.append(dep)
-            here = pos[link]
-            stack.extend((jj.child, here, dep + 1) for jj in reversed(children.get(link, ()))
-                         if jj.child in W)
+            kids = children.get(link)
+            if kids:                    # (most links are leaves: no generator for them)
+                stack.extend((jj.child, here, dep + 1) for jj in reversed(kids) if jj.child in W)
     if len(order) != len(W):
         return None
     parent = np.array(parent, dtype=np.int64)

@@ -82,9 +82,15 @@ SEVERITY_ORDER = {"error": 0, "warning": 1, "info": 2}
 def sort_diagnostics(diags) -> list:
     """Errors, warnings, info; then by code, file, line (as a number: 19 before 119) and message
     (the report order)."""
+    order = SEVERITY_ORDER.get
+
     def key(d):
         loc = d.loc
-        line = getattr(loc, "line", None)
-        return (SEVERITY_ORDER.get(d.severity, 3), d.code, getattr(loc, "file", str(loc or "")),
-                line if line is not None else -1, d.message)
+        if loc.__class__ is Loc:        # (no str() of it made for nothing: a big robot has 40,000)
+            file, line = loc.file, loc.line
+        else:
+            file, line = getattr(loc, "file", None), getattr(loc, "line", None)
+            if file is None and not hasattr(loc, "file"):
+                file = str(loc or "")
+        return (order(d.severity, 3), d.code, file, line if line is not None else -1, d.message)
     return sorted(diags, key=key)

@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 
 from myrabot_desc.checks.examples import tetrahedron_stl
-from myrabot_desc.checks.rule import Finding, Fix, FixInfo, SetValue, rule
+from myrabot_desc.checks.rule import Finding, Fix, FixInfo, LazyFix, SetValue, rule
 from myrabot_desc.model import shapes as G
 from myrabot_desc.model.kinematics import pose_matrix, pose_stack
 
@@ -185,7 +185,7 @@ def inertia_vs_geometry(ctx):
                 # tuples: the report writes them as lists; the collector stops scanning them (8 lists x 20,000 links)
                 {"link": name, "declared": dd, "computed": cd, "ratios": tuple(ratios),
                  "geometry": s.source, "fix": line, "computed_tensor": comp, "computed_com": com},
-                severity=s.severity, fix=_texts_fix(i, texts, f"inertia of {name} from its {s.source} geometry"))
+                severity=s.severity, fix=LazyFix(_solid_fix, i, texts, name, s.source))
 
 
 def _unrotated(props, origin):
@@ -225,6 +225,10 @@ def tensor_fix(inertial, t, title: str, safety: str = "unsafe") -> Fix:
     """Set the six values of ``inertial``'s <inertia> to tensor ``t`` (4 significant digits, as
     inertia_line prints them)."""
     return _texts_fix(inertial, _six(t), title, safety)
+
+
+def _solid_fix(inertial, texts, name: str, source: str) -> Fix:
+    return _texts_fix(inertial, texts, f"inertia of {name} from its {source} geometry")
 
 
 def _texts_fix(inertial, texts, title: str, safety: str = "unsafe") -> Fix:

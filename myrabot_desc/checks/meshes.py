@@ -17,12 +17,13 @@ def _shell(geometry: str, kind: str = "collision", name: str = "cover") -> str:
 
 
 def _mesh_uses(ctx):
-    """[(link, 'visual'|'collision', item)] for every mesh geometry."""
-    for link in ctx.robot.links.values():
-        for kind, items in (("collision", link.collisions), ("visual", link.visuals)):
-            for it in items:
-                if it.geometry is not None and it.geometry.kind == "mesh":
-                    yield link, kind, it
+    """((link, 'visual'|'collision', item), ...) for every mesh geometry (one walk of the links for
+    the M rules)."""
+    def build():
+        return tuple((link, kind, it) for link in ctx.robot.links.values()
+                     for kind, items in (("collision", link.collisions), ("visual", link.visuals))
+                     for it in items if it.geometry is not None and it.geometry.kind == "mesh")
+    return ctx.fact("mesh_uses", build)
 
 
 @rule("M001", "mesh-file-resolves", "error",

@@ -157,6 +157,25 @@ class Fix:
     title: str = ""                  # "wheelSeparation 0.4 -> 0.3"
 
 
+class LazyFix:
+    """A :class:`Fix` made by ``build(*args)`` when first read, and read as that Fix: for a rule that
+    can find every link of a large model (I006), whose edits only ``--fix`` and ``--diff`` read."""
+
+    __slots__ = ("_build", "_args", "_fix")
+
+    def __init__(self, build: Callable[..., Fix], *args):
+        self._build, self._args, self._fix = build, args, None
+
+    def get(self) -> Fix:
+        if self._fix is None:
+            self._fix = self._build(*self._args)
+        return self._fix
+
+    edits = property(lambda self: self.get().edits)
+    safety = property(lambda self: self.get().safety)
+    title = property(lambda self: self.get().title)
+
+
 @dataclass
 class Finding:
     """What a rule yields: the message with the numbers, where, and machine data."""
@@ -165,7 +184,7 @@ class Finding:
     loc: object = None               # diagnostics.Loc or None
     data: dict = field(default_factory=dict)
     severity: str | None = None      # overrides the rule's default (documented per rule)
-    fix: Fix | None = None           # how --fix repairs it, when the rule knows
+    fix: Fix | LazyFix | None = None  # how --fix repairs it, when the rule knows
 
 
 @dataclass(frozen=True)

@@ -61,7 +61,9 @@ def _sphere_pairs(np, items, min_depth: float) -> list:
     found_i: list = []
     found_j: list = []
     total = 0
-    p, chunk = 0, 1 << 20
+    # chunks of a few times the limit: shapes piled past it are refused after the first, not after a
+    # million candidate distances
+    p, chunk = 0, min(1 << 20, max(1 << 16, 4 * most))
     cum = np.concatenate([[0], np.cumsum(counts)])
     while p < n:
         q = max(p + 1, int(np.searchsorted(cum, cum[p] + chunk, side="right")) - 1)

@@ -177,18 +177,24 @@ def gravity_needs(robot, samples: int = SAMPLES, joints=None) -> list[Need]:
     B = np.cross(A, Q - M[:, None] * P)
     vals = _sample_rows(np, movers, samples)
     turned = [j for j in movers if j.type != "prismatic" and j.name not in followers and len(vals[j.name]) == samples]
+    alone = _alone(robot, movers, names, pos, parent, end, {j.name for j in turned})
+    # of those, one turning about the vertical: its axis's x and y are 0, so each product of its torque
+    # (at rest or turned) is by 0 and its turns change nothing; no rotations for it
+    upright = {n for n in alone if not frames[n][1][0] and not frames[n][1][1]}
+    if upright:
+        alone = [n for n in alone if n not in upright]
+        turned = [j for j in turned if j.name not in upright]
     R_all, R_of = None, {}
     if turned:          # every revolute joint's sampled rotations at once
         R_all = _rotations(np.array([frames[j.name][1] for j in turned]),
                            np.array([vals[j.name] for j in turned])
                            - np.array([rest.get(j.name, 0.0) for j in turned])[:, None])
         R_of = {j.name: k for k, j in enumerate(turned)}
-    alone = _alone(robot, movers, names, pos, parent, end, R_of)
     if alone:
         _turn_alone(np, robot, alone, names, vals, frames, pos, R_all, R_of, Qtot, Mtot, prism, t_rest, r_rest,
                     A, best, where)
-    alone = set(alone)
-    deep = [j for j in movers if j.name not in alone]
+    done = upright.union(alone)
+    deep = [j for j in movers if j.name not in done]
     if deep:
         _Sweep(np, robot, rest, W, names, links, deep, followers, vals, frames, R_all, R_of, pos, parent, levels, end,
                ci, Qtot, Mtot, M, A, B, prism, t_rest, r_rest, torques, best, where).run()
@@ -200,7 +206,7 @@ def gravity_needs(robot, samples: int = SAMPLES, joints=None) -> list[Need]:
     return out
 
 
-def _alone(robot, movers, names, pos, parent, end, R_of) -> list[str]:
+def _alone(robot, movers, names, pos, parent, end, turned) -> list[str]:
     """The turned joints whose torques no other joint changes and that change no other joint's: a
     leaf link's joint with no moving joint above it (a star's spokes, wheels on a fixed base). Their
     turns commute with every other, so they are taken together (_turn_alone)."""
@@ -215,7 +221,7 @@ def _alone(robot, movers, names, pos, parent, end, R_of) -> list[str]:
     out = []
     for j in movers:
         cj = pos[j.child]
-        if j.name in asked and j.name in R_of and end[cj] == cj + 1 and not above[cj]:
+        if j.name in asked and j.name in turned and end[cj] == cj + 1 and not above[cj]:
             out.append(j.name)
     return out
 
@@ -595,13 +601,13 @@ def _preorder(robot, W):
             link, up, dep = stack.pop()
             if link in pos:
                 return None
-            pos[link] = len(order)
+            here = pos[link] = len(order)
             order.append(link)
             parent.append(up)
             depth.append(dep)
-            here = pos[link]
-            stack.extend((jj.child, here, dep + 1) for jj in reversed(children.get(link, ()))
-                         if jj.child in W)
+            kids = children.get(link)
+            if kids:                    # (most links are leaves: no generator for them)
+                stack.extend((jj.child, here, dep + 1) for jj in reversed(kids) if jj.child in W)
     if len(order) != len(W):
         return None
     parent = np.array(parent, dtype=np.int64)

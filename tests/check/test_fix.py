@@ -284,3 +284,33 @@ def test_fix_repairs_the_rules_own_example(code, tmp_path, monkeypatch):
         ff.path.write_bytes(ff.new)
     again = fix_model(f, options=opts, unsafe=True)
     assert not again.applied and not again.files          # idempotent
+
+
+def test_lazy_fix_is_built_once_when_read_and_gives_the_eager_edits(tmp_path):
+    """I006's fix is made only when --fix/--diff reads it, and it is the Fix the rule made eagerly."""
+    from myrabot_desc.checks import check_robot
+    from myrabot_desc.checks.inertia_geometry import tensor_fix
+    from myrabot_desc.checks.registry import load_all
+    from myrabot_desc.checks.rule import Fix, LazyFix, SetValue, document
+    from myrabot_desc.model.loader import load_robot
+
+    made = []
+
+    def build(part, value):
+        made.append(value)
+        return Fix((SetValue(part, "mass", value),), "unsafe", "mass")
+
+    lazy = LazyFix(build, "p", 2.0)
+    assert not made
+    assert (lazy.edits, lazy.safety, lazy.title) == ((SetValue("p", "mass", 2.0),), "unsafe", "mass")
+    assert lazy.get() is lazy.get() and made == [2.0]
+
+    f = tmp_path / "robot.urdf"
+    f.write_text(document(load_all()["I006"].example.bad))
+    robot = load_robot(f)
+    _diags, ctx = check_robot(robot)
+    [(d, fix)] = [(d, fx) for d, fx in ctx.fixes if d.code == "I006"]
+    assert isinstance(fix, LazyFix)
+    eager = tensor_fix(robot.links["chassis"].inertial, d.data["computed_tensor"],
+                       "inertia of chassis from its collision geometry")
+    assert fix.get() == eager and (fix.edits, fix.safety, fix.title) == (eager.edits, eager.safety, eager.title)

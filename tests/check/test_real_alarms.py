@@ -414,6 +414,21 @@ def test_findings_of_one_code_are_in_line_order(tmp_path):
     assert len(lines) == 12 and lines == sorted(lines) and lines[0] < 10 < lines[-1]
 
 
+def test_sort_orders_every_kind_of_location():
+    """Loc with and without a line, no location, and any object holding file/line or neither, in the
+    report's order (severity, code, file, line as a number, message)."""
+    from types import SimpleNamespace
+
+    from myrabot_desc.diagnostics import Diagnostic, Loc
+
+    ds = [Diagnostic("I001", "warning", "b", Loc("a.urdf", 119)), Diagnostic("I001", "warning", "a", Loc("a.urdf", 19)),
+          Diagnostic("I001", "warning", "c", Loc("a.urdf")), Diagnostic("I001", "warning", "d", None),
+          Diagnostic("I001", "warning", "e", SimpleNamespace(file="a.urdf", line=5)),
+          Diagnostic("I001", "warning", "f", "b.urdf:3"), Diagnostic("I001", "error", "g", Loc("z.urdf", 1)),
+          Diagnostic("G001", "warning", "h", Loc("z.urdf", 2))]
+    assert "".join(d.message for d in sort_diagnostics(ds)) == "ghdceabf"
+
+
 # ---------------------------------------------------------------- I010: a collision that covers part of the link
 def test_i010_measures_the_visual_mesh_of_a_link_with_a_partial_collision(tmp_path):
     """Unitree go1/go2 hips: the collision is a cylinder off to one side, the motor (and the centre

@@ -491,3 +491,25 @@ def test_example_robot_data_as_before():
         compare(r, f.name)
         done += 1
     assert done >= 60
+
+
+def test_upright_leaf_joints_as_before(tmp_path):
+    """Leaf joints turning about the vertical (the axis up or down, an origin yawed or not) are not
+    turned; their needs stay 0 at rest, as the reference gives, beside tilted and stacked joints."""
+    inertial = ('<inertial><origin xyz="0.05 0.02 0.1"/><mass value="0.7"/><inertia ixx="1e-3" ixy="0" ixz="0" '
+                'iyy="1e-3" iyz="0" izz="1e-3"/></inertial>')
+    axes, rpys = ["0 0 1", "0 0 -1", "1 0 0", "0 1 1", "0.3 0.2 1"], ["0 0 0", "0 0 0.7", "0.2 0 0"]
+    out = ['<?xml version="1.0"?>', '<robot name="upright">', f'<link name="l0">{inertial}</link>']
+    for i in range(1, 120):
+        parent = f"l{i - 1}" if i % 7 == 0 else "l0"
+        kind = ("revolute", "continuous", "revolute", "prismatic")[i % 4]
+        out += [f'<link name="l{i}">{inertial}</link>',
+                f'<joint name="j{i}" type="{kind}"><parent link="{parent}"/><child link="l{i}"/>'
+                f'<origin xyz="{0.1 * (i % 13)} {0.05 * (i % 5)} 0.02" rpy="{rpys[i % 3]}"/>'
+                f'<axis xyz="{axes[i % 5]}"/><limit lower="-1" upper="1.3" effort="1" velocity="1"/></joint>']
+    f = tmp_path / "upright.urdf"
+    f.write_text("\n".join(out + ["</robot>"]) + "\n")
+    robot = load_robot(str(f))
+    compare(robot, "upright")
+    upright = [n for n in gravity_needs(robot) if n.torque == 0 and n.unit == "N·m"]
+    assert upright and all(n.at_rest == 0 and n.pose_joint is None for n in upright)

@@ -58,3 +58,14 @@ def test_refused_past_the_limit_like_the_dense_form(monkeypatch):
     monkeypatch.setenv("MYRABOT_DESC_MAX_COLLISION_PAIRS", "50")
     items = [_Item((0.0, 0.0, 0.001 * k), 0.1) for k in range(20)]      # 190 pairs, all at one place
     assert _pairs(_sphere_pairs, items, 0.001) == _pairs(_sphere_pairs_dense, items, 0.001) == "refused"
+
+
+def test_candidates_over_several_chunks_like_the_dense_form(monkeypatch):
+    """400 shapes at one x: 79,800 candidates, more than one chunk; their neighbours meet (399 pairs),
+    taken whole under a limit of 1,000 and refused under 300, as the dense form does."""
+    items = [_Item((0.0, 0.5 * k, 0.0), 0.3) for k in range(400)]
+    monkeypatch.setenv("MYRABOT_DESC_MAX_COLLISION_PAIRS", "1000")
+    pairs = _pairs(_sphere_pairs, items, 0.001)
+    assert pairs == _pairs(_sphere_pairs_dense, items, 0.001) and len(pairs) == 399
+    monkeypatch.setenv("MYRABOT_DESC_MAX_COLLISION_PAIRS", "300")
+    assert _pairs(_sphere_pairs, items, 0.001) == _pairs(_sphere_pairs_dense, items, 0.001) == "refused"

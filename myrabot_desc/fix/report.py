@@ -13,19 +13,14 @@ def display_text(text: str) -> str:
     return _CONTROL.sub(lambda m: f"\\x{ord(m.group()):02x}", text)
 
 
-def _line_col(data: bytes, offset: int) -> tuple[int, int]:
-    start = data.rfind(b"\n", 0, offset) + 1
-    return data.count(b"\n", 0, offset) + 1, len(data[start:offset].decode("utf-8", "replace")) + 1
-
-
-def change_data(change, files: dict, status: str) -> dict:
-    """A Change as JSON-ready data. ``files``: shown name -> the bytes the edits' offsets refer to;
-    ``status``: applied (written by --fix), proposed (what --fix would write), unsafe (needs
-    --unsafe-fixes), refused (the rebuilt model did not prove it)."""
+def change_data(change, sources, status: str) -> dict:
+    """A Change as JSON-ready data. ``sources``: the model's sources (model/sources.Sources), whose
+    files the edits' offsets refer to; ``status``: applied (written by --fix), proposed (what --fix
+    would write), unsafe (needs --unsafe-fixes), refused (the rebuilt model did not prove it)."""
     edits = []
     for e in change.edits:
-        data = files.get(e.file, b"")
-        line, col = _line_col(data, e.start)
+        data = sources.data(e.file)
+        line, col = sources.line_col(e.file, e.start)
         edits.append({"file": e.file, "line": line, "column": col, "start": e.start, "end": e.end,
                       "old": data[e.start:e.end].decode("utf-8", "replace"), "new": e.new})
     return {"code": change.code, "message": change.message, "title": change.title, "safety": change.safety,

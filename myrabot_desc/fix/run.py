@@ -145,7 +145,7 @@ def fix_model(path, build: dict | None = None, options=None, select=(), ignore=(
     applied, applied_data, refused = [], [], []
     tried: set = set()
     for _ in range(MAX_PASSES):
-        current = [(d, f) for d, f in ctx.fixes if any(d is x for x in diags)]
+        current = _still_found(ctx.fixes, diags)
         changes, _nf = Planner(robot).plan(current)
         by_msg = {d.message: d for d, _f in current}
         todo = []
@@ -173,11 +173,10 @@ def fix_model(path, build: dict | None = None, options=None, select=(), ignore=(
         if done is None:
             break
         applied.extend(ch.change for ch in todo)
-        applied_data.extend(change_data(ch.change, {e.file: robot.sources.data(e.file) for e in ch.edits},
-                                        "applied") for ch in todo)
+        applied_data.extend(change_data(ch.change, robot.sources, "applied") for ch in todo)
         s.overlay, robot, diags, ctx = done
     # what is left, planned on the fixed model (its offsets are those of the fixed files)
-    left, nf = Planner(robot).plan([(d, f) for d, f in ctx.fixes if any(d is x for x in diags)])
+    left, nf = Planner(robot).plan(_still_found(ctx.fixes, diags))
     refused_keys = {(c.code, c.message) for c, _why in refused}
     unsafe_left = [c for c in left if c.safety == "unsafe" and not unsafe and (c.code, c.message) not in refused_keys]
     files = [FileFix(s.names[p], p, s.original[p], data) for p, data in s.overlay.items()
@@ -228,14 +227,17 @@ def fix_tasks(tasks, unsafe: bool, write: bool = True) -> RunResult:
         res.suggestions = list(fr.context.suggestions)
         done = fr.applied_data if write else [dict(d, status="proposed") for d in fr.applied_data]
         res.fixes = (list(done)
-                     + [change_data(c, _bytes_of(fr.robot, c), "unsafe") for c in fr.unsafe]
+                     + [change_data(c, fr.robot.sources, "unsafe") for c in fr.unsafe]
                      + [not_fixed_data(n) for n in fr.not_fixed]
-                     + [dict(change_data(c, _bytes_of(fr.robot, c), "refused"), reason=why) for c, why in fr.refused])
+                     + [dict(change_data(c, fr.robot.sources, "refused"), reason=why) for c, why in fr.refused])
         results.append(res)
         fixes.append(fr)
     files = [FileFix(names[p], p, originals[p], data) for p, data in overlay.items() if data != originals[p]]
     return RunResult(results, files, fixes)
 
 
-def _bytes_of(robot, change) -> dict:
-    return {e.file: robot.sources.data(e.file) for e in change.edits}
+def _still_found(fixes, diags) -> list:
+    """The (diagnostic, fix) pairs whose diagnostic is one of ``diags`` (the same object: suppressions
+    and --select drop some), by identity in one set (a large model has thousands of each)."""
+    found = {id(d) for d in diags}
+    return [(d, f) for d, f in fixes if id(d) in found]

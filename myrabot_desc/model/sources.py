@@ -24,11 +24,13 @@ found by reading the start tags of the source files at the byte offsets the buil
 from __future__ import annotations
 
 import re
+from bisect import bisect_left
 from pathlib import Path
 from typing import NamedTuple
 
 from myrabot_desc.diagnostics import Loc
 
+_NEWLINE = re.compile(rb"\n")
 _TAG = re.compile(rb"<([^\s/>]+)")
 _ATTR = re.compile(rb"\s*([^\s=/>]+)\s*=\s*(?:\"([^\"]*)\"|'([^']*)')")
 _TAG_END = re.compile(rb"\s*/?>")
@@ -100,11 +102,12 @@ class Origin(NamedTuple):
 class _File:
     """One source file's bytes and the start-tag offsets of its elements."""
 
-    __slots__ = ("name", "path", "data", "_ends")
+    __slots__ = ("name", "path", "data", "_ends", "_newlines")
 
     def __init__(self, name: str, path: Path | None, data: bytes):
         self.name, self.path, self.data = name, path, data
         self._ends = None
+        self._newlines = None
 
     def element_end(self, offset: int) -> int | None:
         """The byte just past the end of the element whose start tag is at ``offset`` (its end tag's
@@ -137,10 +140,14 @@ class _File:
         return self._ends.get(offset)
 
     def line_col(self, offset: int) -> tuple[int, int]:
-        data = self.data
-        line = data.count(b"\n", 0, offset) + 1
-        start = data.rfind(b"\n", 0, offset) + 1
-        return line, len(data[start:offset].decode("utf-8", "replace")) + 1
+        # the newlines' offsets, found once: counting them up to each offset made placing every
+        # value of a large file (--fix, --diff) quadratic in its size
+        nl = self._newlines
+        if nl is None:
+            nl = self._newlines = [m.start() for m in _NEWLINE.finditer(self.data)]
+        k = bisect_left(nl, offset)            # newlines before offset
+        start = nl[k - 1] + 1 if k else 0
+        return k + 1, len(self.data[start:offset].decode("utf-8", "replace")) + 1
 
     def span(self, start: int, end: int) -> Span:
         line, col = self.line_col(start)
@@ -182,6 +189,7 @@ class Sources:
         self._elements: list | None = None
         self._plain_offsets: list | None = None
         self._counts: dict | None = None
+        self._uses: dict | None = None
 
     # -------------------------------------------------------- elements
     def _doc_index(self, el) -> int | None:
@@ -246,6 +254,12 @@ class Sources:
         """The bytes of source file ``name`` as the build read them (b'' when unknown)."""
         f = self._file(name)
         return f.data if f is not None else b""
+
+    def line_col(self, name: str, offset: int) -> tuple[int, int]:
+        """Line and column (characters, from 1) of byte ``offset`` of source file ``name``; (1, 1) when
+        the file is unknown."""
+        f = self._file(name)
+        return f.line_col(offset) if f is not None else (1, 1)
 
     def files(self) -> dict:
         """Shown name -> path of every source file the robot was read from."""
@@ -358,7 +372,10 @@ class Sources:
 
     def uses(self) -> dict:
         """Every value of the URDF by where it is written: (file, start) -> [(handle, attribute)], the
-        element text as '#text'. A literal used by several values (a property, a macro body) has several."""
+        element text as '#text'. A literal used by several values (a property, a macro body) has several.
+        Found once per robot (--fix plans twice on a model no fix changed); read it, never change it."""
+        if self._uses is not None:
+            return self._uses
         found: dict = {}
         for el in self.root.iter():
             if not isinstance(el.tag, str):
@@ -370,6 +387,7 @@ class Sources:
                 o = self.origin(el, a)
                 if o.written is not None:
                     found.setdefault((o.written.file, o.written.start), []).append((el, a))
+        self._uses = found
         return found
 
     @staticmethod

@@ -559,13 +559,27 @@ def _call_name(func) -> str:
     return func.id if isinstance(func, ast.Name) else func.attr if isinstance(func, ast.Attribute) else ""
 
 
-def _is_number(node) -> bool:
-    return isinstance(node, ast.Constant) and type(node.value) in (int, float, bool)
+_ARITHMETIC = (ast.Add, ast.Sub, ast.Mult, ast.Div, ast.FloorDiv, ast.Mod)
+
+
+def _is_number(node, depth: int = 0) -> bool:
+    """A number literal, or ``+ - * / // %`` and unary ``+ -`` of number literals only (``0.1 + 17 *
+    0.001``): a number, no larger than its text allows. Deeper than a few levels it counts as unknown
+    (bounded at run time), which keeps this test linear in the tree's size."""
+    if isinstance(node, ast.Constant):
+        return type(node.value) in (int, float, bool)
+    if depth >= 8:
+        return False
+    if isinstance(node, ast.UnaryOp):
+        return isinstance(node.op, (ast.UAdd, ast.USub)) and _is_number(node.operand, depth + 1)
+    return isinstance(node, ast.BinOp) and isinstance(node.op, _ARITHMETIC) and \
+        _is_number(node.left, depth + 1) and _is_number(node.right, depth + 1)
 
 
 def _needs_bound(node) -> bool:
-    """A node the rewrite changes. A ``*``/``+``/``%`` of two number literals (``17 * 0.001``)
-    cannot grow a sequence, so it is left to Python (and folded)."""
+    """A node the rewrite changes. A ``*``/``+``/``%`` of two numbers made of number literals only
+    (``17 * 0.001``, ``0.1 + 17 * 0.001``: what generated files pass to every macro call) cannot grow
+    a sequence, so it is left to Python (and folded)."""
     if isinstance(node, (ast.Attribute, ast.Lambda, ast.comprehension)):
         return True
     if isinstance(node, ast.Call):

@@ -159,7 +159,9 @@ def test_hector_through_find_is_byte_identical(tmp_path):
 # ------------------------------------------------------------------ safe_eval's vetting by shape
 SHAPE_CASES = ["0.1 + 17 * 0.001", "-3.5e-2 * 2", "(1 + 2) / 4.0", "sin(0.5) * 2", "pi * 0.25", "1 if x else 2",
                "x * 0.5", "2 ** 10", "9**9**9", "1(2)", "(1).__class__", "09", "1_000 + 1", "0x10 * 2", "1j * 2",
-               "[1, 2, 3][1]", "x.real + 1", "abs(-1.5)", "factorial(3)", "1 << 3", "7 % 3"]
+               "[1, 2, 3][1]", "x.real + 1", "abs(-1.5)", "factorial(3)", "1 << 3", "7 % 3",
+               "-(2 * 3) + 1", "2 * 3 * 4 * 5", "0.5 - 0.25 // 2 + 10 % 3 * 2", "'ab' * 3", "(1 + 2) * x",
+               "1 / 0 + 1", "+".join(["1"] * 60), "*".join(["99"] * 40) + " % 7"]
 
 
 @pytest.mark.parametrize("expr", SHAPE_CASES)
@@ -174,6 +176,7 @@ def test_vetting_by_shape_agrees_with_the_full_vetting(expr):
             refusals.append(reason)
             raise S.RefusedExpression(reason)
 
+        S._PREPARED.clear()                     # the compiled expressions are shared by a process's builds
         saved = S._prepare_by_shape
         if not use_shapes:
             S._prepare_by_shape = lambda e, shapes: None
@@ -193,6 +196,21 @@ def test_vetting_by_shape_agrees_with_the_full_vetting(expr):
             S._prepare_by_shape = saved
 
     assert outcome(True) == outcome(False)
+
+
+@pytest.mark.parametrize("expr,bounded", [("0.1 + 17 * 0.001", False), ("-(2 * 3) + 1.5", False),
+                                          ("2 * 3 * 4 * 5 % 7", False), ("x + 1", True), ("'a' * 3", True),
+                                          ("2 ** 3 * 2", True), ("(2 << 3) + 1", True), ("[1] * 3", True),
+                                          ("+".join(["2"] * 30) + " * 3", True)])
+def test_arithmetic_of_number_literals_needs_no_run_time_bound(expr, bounded):
+    """A generated file's ${0.1 + 17 * 0.001}: a number made of number literals cannot grow a sequence,
+    so it is left to Python and its shape is vetted once; anything with a name, a string, a list, ** or
+    <<, or nested deeper than a few levels, is bounded at run time as before."""
+    import ast
+
+    from myrabot_desc.expand.safe_eval import _needs_bound, check_expression
+
+    assert any(_needs_bound(n) for n in ast.walk(check_expression(expr))) == bounded
 
 
 def test_build_cli_writes_what_the_xacro_cli_writes(tmp_path):

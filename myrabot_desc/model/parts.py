@@ -531,22 +531,18 @@ class Robot:
     def rest_pose(self) -> dict[str, float]:
         """Every moving, non-mimic joint at 0, or at its nearer limit when its finite range leaves
         0 out (a quadruped's knee): the pose render, the viewer and the MJCF ``home`` start from.
-        Built once per joints dict (joints are immutable), a fresh copy each call."""
-        import math
-
-        key = (id(self.joints), len(self.joints))
-        cached = self.derived.get("rest_pose")
-        if cached is not None and cached[0] == key:
-            return dict(cached[1])
-        out = {}
-        for j in self.joints.values():
-            if j.type not in ("revolute", "continuous", "prismatic") or j.mimic is not None:
-                continue
-            lo, hi = (j.limit.lower, j.limit.upper) if j.limit is not None and j.type != "continuous" else (None, None)
-            ok = lo is not None and hi is not None and math.isfinite(lo) and math.isfinite(hi) and lo <= hi
-            out[j.name] = min(max(0.0, float(lo)), float(hi)) if ok else 0.0
-        self.derived["rest_pose"] = (key, out)
-        return dict(out)
+        Built once per robot, a fresh copy each call (callers change theirs)."""
+        def build():
+            out = {}
+            for j in self.joints.values():
+                if j.type not in ("revolute", "continuous", "prismatic") or j.mimic is not None:
+                    continue
+                lo, hi = (j.limit.lower, j.limit.upper) if j.limit is not None and j.type != "continuous" \
+                    else (None, None)
+                ok = lo is not None and hi is not None and math.isfinite(lo) and math.isfinite(hi) and lo <= hi
+                out[j.name] = min(max(0.0, float(lo)), float(hi)) if ok else 0.0
+            return out
+        return dict(self.derive("rest_pose", build))
 
     # -------------------------------------------------------- tree helpers
     def child_joints(self, link: str) -> list[Joint]:

@@ -6,7 +6,8 @@ than the xacro CLI); a plain ``diff ...`` runs from commands/fastdiff.py (a diff
 twice the time of two builds, which import no click: ~12 ms of a small robot's ~300 ms diff), and a
 plain ``check ...`` from commands/fastcheck.py (a lint run on every commit: click is a tenth of a
 small robot's check).
-Everything else, including ``--help`` and any command line the plain parser does not take
+The top-level ``--help`` prints click's own text, stored (commands/plain_help.py).
+Everything else, including a command's ``--help`` and any command line the plain parser does not take
 (unusual forms, errors), goes to the click group in commands/main.py, which gives its usual
 output and exit codes.
 
@@ -23,6 +24,8 @@ import os
 import sys
 
 from myrabot_desc.commands import options
+from myrabot_desc.commands.console import guarded, out
+from myrabot_desc.commands.plain_help import top_help
 from myrabot_desc.commands.options import BUILD_OPTS, CHECK_OPTS, DIFF_OPTS, INPUT_OPTS, parse_plain
 
 
@@ -33,6 +36,13 @@ def main(argv=None) -> int:
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     args = sys.argv[1:] if argv is None else list(argv)
     options.ONE_SHOT = argv is None
+    if args in (["--help"], ["-h"]):
+        text = top_help()
+        if text is not None:
+            with guarded():
+                out(text)
+                return 0
+            return 2
     if args[:1] == ["build"] and parse_plain(args[1:], INPUT_OPTS + BUILD_OPTS) is not None:
         from myrabot_desc.commands.fastbuild import fast_build
 

@@ -79,3 +79,42 @@ def _version(ctx, param, value):
 def main():
     """Robot descriptions without ROS: build xacro (old and new), check what is
     wrong and why, convert for today's simulators, and smoke-test the motion."""
+
+
+def render_help() -> str:
+    """The group's ``--help`` as click prints it on a terminal of 80 columns (commands/plain_help.py
+    stores it)."""
+    import contextlib
+    import io
+    import os
+
+    buf, saved = io.StringIO(), os.environ.get("COLUMNS")
+    os.environ["COLUMNS"] = "80"
+    try:
+        with contextlib.redirect_stdout(buf):
+            main(["--help"], prog_name="myrabot-desc", standalone_mode=False)
+    finally:
+        if saved is None:
+            os.environ.pop("COLUMNS")
+        else:
+            os.environ["COLUMNS"] = saved
+    return buf.getvalue()
+
+
+def write_help() -> None:
+    """Store ``render_help()`` in commands/help_text.py, for the click-free ``--help``."""
+    from pathlib import Path
+
+    text = render_help()
+    Path(__file__).with_name("help_text.py").write_text(
+        '"""The top-level ``--help`` text, as click renders it at 80 columns (commands/plain_help.py).\n\n'
+        "Generated: .venv/bin/python -m myrabot_desc.commands.main --write-help (do not edit).\n"
+        '"""\n\nTEXT = ' + repr(text) + "\n")
+
+
+if __name__ == "__main__":
+    import sys
+
+    if sys.argv[1:] != ["--write-help"]:
+        sys.exit("usage: python -m myrabot_desc.commands.main --write-help")
+    write_help()

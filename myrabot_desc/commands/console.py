@@ -7,6 +7,7 @@ nothing here imports click.
 
 from __future__ import annotations
 
+import errno
 import os
 import re
 import sys
@@ -14,6 +15,7 @@ import sys
 from myrabot_desc.errors import InputError, UsageProblem
 from myrabot_desc.sanitize import clean
 
+_FULL = {errno.ENOSPC, errno.EDQUOT, errno.EFBIG}     # a full disk or quota, a file past its size limit
 _ANSI = None            # compiled on first use (a plain build rarely prints a style)
 
 
@@ -76,6 +78,9 @@ class guarded:
             except OSError:
                 pass
             sys.exit(0)
+        if issubclass(exc_type, OSError) and exc.errno in _FULL:   # the disk's, not a bug of ours
+            echo(f"error: cannot write the output ({os.strerror(exc.errno)})")
+            sys.exit(2)
         if issubclass(exc_type, RecursionError):
             echo("error: input nests too deeply (recursion limit reached)")
             sys.exit(2)

@@ -39,10 +39,9 @@ def main(argv=None) -> int:
     if args in (["--help"], ["-h"]):
         text = top_help()
         if text is not None:
-            with guarded():
+            with guarded():          # a full disk or a closed stdout: one line, as every command says it
                 out(text)
-                return 0
-            return 2
+            return 0
     if args[:1] == ["build"] and parse_plain(args[1:], INPUT_OPTS + BUILD_OPTS) is not None:
         from myrabot_desc.commands.fastbuild import fast_build
 
@@ -63,7 +62,8 @@ def main(argv=None) -> int:
             return code
     from myrabot_desc.commands.main import main as cli
 
-    return cli(args=args)
+    with guarded():                  # click's own writing (a --help on a full disk) included
+        return cli(args=args)
 
 
 if __name__ == "__main__":

@@ -47,6 +47,22 @@ def repo_top(path) -> Path | None:
     return None
 
 
+def tracked(top: Path, paths, folder: Path) -> set[Path]:
+    """Those of ``paths`` (absolute, below ``folder``, in the work tree at ``top``) that git tracks:
+    git never ignores a tracked file, whatever a ``.gitignore`` says. One ``git ls-files`` of the
+    folder (a literal path, no fsmonitor hook); empty when git cannot tell."""
+    paths = {Path(p) for p in paths}
+    if not paths:
+        return set()
+    try:
+        out = _git(["--literal-pathspecs", "-c", "core.fsmonitor=false", "ls-files", "-z", "--cached", "--",
+                    os.path.relpath(Path(folder).resolve(), top)], top)
+    except InputError:
+        return set()
+    listed = {(top / n) for n in out.split("\0") if n}
+    return {p for p in paths if p in listed}
+
+
 def commit_of(top: Path, rev: str) -> str:
     """The commit a revision names (InputError when it names none)."""
     if not rev or rev.startswith("-"):

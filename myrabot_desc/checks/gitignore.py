@@ -1,22 +1,18 @@
 """``check -r`` leaves out what git ignores: the ``.gitignore`` files of the folder's repository
 (from its top down to each file's folder) and ``.git/info/exclude``, read with pathspec's
-gitignore rules (a deeper file's rule wins; ``!pattern`` re-includes). Nothing runs git: a folder
-outside any repository reads the ``.gitignore`` files from the given folder down.
+gitignore rules (a deeper file's rule wins; ``!pattern`` re-includes). As in git, a tracked file is
+never ignored: when a rule would leave out a file of a repository, ``git ls-files`` says whether it
+is tracked (a pull request adding a pattern cannot drop a committed robot from the lint). A
+folder outside any repository reads the ``.gitignore`` files from the given folder down.
 """
 
 from __future__ import annotations
 
 from pathlib import Path
 
+from myrabot_desc.vcs import repo_top, tracked
+
 MAX_BYTES = 1_000_000
-
-
-def _top(folder: Path) -> Path:
-    """The repository's top (the nearest folder above holding .git), else ``folder``."""
-    for d in (folder, *folder.parents):
-        if (d / ".git").exists():
-            return d
-    return folder
 
 
 def _spec(path: Path):
@@ -33,7 +29,8 @@ def _spec(path: Path):
 
 class Ignores:
     def __init__(self, folder):
-        self.top = _top(Path(folder).resolve())
+        folder = Path(folder).resolve()
+        self.top = repo_top(folder) or folder      # outside a repository: the folder's own files
         self._specs: dict[Path, object] = {}
 
     def _at(self, d: Path):
@@ -68,6 +65,12 @@ class Ignores:
 
 
 def not_ignored(paths: list, folder) -> list:
-    """``paths`` (files found below ``folder``) less those git ignores."""
+    """``paths`` (files found below ``folder``) less those git ignores (untracked and matched)."""
     ig = Ignores(folder)
-    return [p for p in paths if not ig.ignored(p)]
+    kept = [p for p in paths if not ig.ignored(p)]
+    if len(kept) == len(paths) or not (ig.top / ".git").exists():
+        return kept
+    keep = set(kept)
+    left = {Path(p).resolve(): p for p in paths if p not in keep}
+    keep |= {left[r] for r in tracked(ig.top, left, folder)}
+    return [p for p in paths if p in keep]

@@ -182,6 +182,27 @@ def test_recursive_check_skips_what_git_ignores(tmp_path, monkeypatch):
     assert files == ["generated/keep.urdf", "robots/r.urdf"]
 
 
+def test_a_tracked_model_is_checked_whatever_gitignore_says(tmp_path, monkeypatch):
+    """As in git, .gitignore hides untracked files only: a pull request adding a pattern cannot drop a
+    committed robot from `check -r` (a folder with glob characters in its name included)."""
+    monkeypatch.chdir(tmp_path)
+    git(tmp_path, "init", "-q")
+    for d in ("robots", "odd [x]*"):
+        (tmp_path / d).mkdir()
+        (tmp_path / d / "r.urdf").write_text(OLD_BOT)
+    commit_all(tmp_path, "robots")
+    (tmp_path / "robots" / "scratch.urdf").write_text(OLD_BOT)
+    (tmp_path / ".gitignore").write_text("robots/\n")
+    (tmp_path / "odd [x]*" / ".gitignore").write_text("*.urdf\n")
+    r = invoke("check", "-r", ".", "--format", "json", "--isolated")
+    assert sorted(f["file"] for f in json.loads(r.output)["files"]) == ["odd [x]*/r.urdf", "robots/r.urdf"]
+    r = invoke("check", "robots", "--format", "json", "--isolated")          # a named folder as well
+    assert [f["file"] for f in json.loads(r.output)["files"]] == ["robots/r.urdf"]
+    monkeypatch.setenv("PATH", str(tmp_path / "no-git-here"))     # git missing: the patterns decide
+    r = invoke("check", "-r", ".", "--format", "json", "--isolated")
+    assert r.exit_code == 2 and "ignored by .gitignore" in r.output
+
+
 def test_junit_one_test_per_model_one_failure_per_error(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     (tmp_path / "bad.urdf").write_text(OLD_BOT)

@@ -242,6 +242,7 @@ class Scene:
         self.adjacent = adjacent_bodies(robot, self.body_of)
         self.exclusions = exclusions
         self.read = _mesh_reader(meshes)
+        self.loaded = meshes if callable(meshes) else None   # check's loaded meshes: their faces too
         self.skipped: list = []          # (link, why) of collision shapes left out
         self._shapes: dict = {}          # id(collision) -> coal shape
         self._local: dict = {}           # id(collision) -> bounding box in its own frame
@@ -361,7 +362,7 @@ class Scene:
             if it.mesh is None:
                 objs.append((it.shape, _tf(coal, it.T)))
                 continue
-            tri = _triangles(it.collision.geometry)
+            tri = _triangles(it.collision.geometry, self.loaded)
             if tri is None:
                 return True
             v, f, lo_t, hi_t = tri
@@ -393,9 +394,10 @@ _TRIANGLES: dict = {}        # mesh key -> (vertices, faces, triangle box lows, 
 _MAX_TRIANGLES = 2_000_000   # triangles kept across robots
 
 
-def _triangles(g):
+def _triangles(g, loaded=None):
     """(vertices, faces, each triangle's box low and high corners) of a mesh file with the URDF
-    scale applied, in its own frame; None when unreadable."""
+    scale applied, in its own frame; None when unreadable. ``loaded``: geometry -> the mesh check
+    has read already (model/meshes.MeshFacts, scale applied), whose triangles serve as they are."""
     import numpy as np
 
     key = _mesh_key(g)
@@ -403,12 +405,16 @@ def _triangles(g):
         return None
     got = _TRIANGLES.get(key)
     if got is None:
-        try:
-            v, f = meshio.triangles(g.path, any_order=True)      # a touch test: any face order
-        except Exception:        # MeshError, or a reader's own failure: the hull verdict stands
-            return None
-        v = np.asarray(v, dtype=float) * np.asarray(g.scale, dtype=float)
-        f = np.asarray(f, dtype=np.int64)
+        m = loaded(g) if loaded is not None else None
+        if getattr(m, "faces", None) is not None:       # the same triangles; a touch test needs no order
+            v, f = np.asarray(m.vertices, dtype=float), np.asarray(m.faces, dtype=np.int64)
+        else:
+            try:
+                v, f = meshio.triangles(g.path, any_order=True)      # a touch test: any face order
+            except Exception:        # MeshError, or a reader's own failure: the hull verdict stands
+                return None
+            v = np.asarray(v, dtype=float) * np.asarray(g.scale, dtype=float)
+            f = np.asarray(f, dtype=np.int64)
         corners = v[f]
         got = (v, f, corners.min(axis=1), corners.max(axis=1))
         while _TRIANGLES and sum(len(x[1]) for x in _TRIANGLES.values()) + len(got[1]) > _MAX_TRIANGLES:

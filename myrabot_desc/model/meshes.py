@@ -493,15 +493,17 @@ class _NotLean(Exception):
 
 
 class MeshFacts:
-    """A mesh as check uses it, with trimesh's attribute names (vertices, bounds, extents, volume,
-    center_mass, moment_inertia, is_watertight, is_winding_consistent, is_volume) and ``n_faces``.
-    The faces themselves are not kept: every fact that needs them is computed at load."""
+    """A mesh as check uses it, with trimesh's attribute names (vertices, faces, bounds, extents,
+    volume, center_mass, moment_inertia, is_watertight, is_winding_consistent, is_volume) and
+    ``n_faces``. The faces are kept for the self-collision test's triangles (read once for every
+    rule)."""
 
-    __slots__ = ("vertices", "n_faces", "volume", "center_mass", "moment_inertia", "is_watertight",
+    __slots__ = ("vertices", "faces", "n_faces", "volume", "center_mass", "moment_inertia", "is_watertight",
                  "is_winding_consistent", "reader", "_bounds")
 
     def __init__(self, vertices, faces, reader: str):
         self.vertices = vertices
+        self.faces = faces
         self.n_faces = len(faces)
         self.reader = reader
         self.is_watertight, self.is_winding_consistent = _watertight(faces)
@@ -514,7 +516,8 @@ class MeshFacts:
 
         self = cls.__new__(cls)
         self.vertices = np.asarray(mesh.vertices, dtype=np.float64)
-        self.n_faces = len(mesh.faces)
+        self.faces = np.asarray(mesh.faces, dtype=np.int64)
+        self.n_faces = len(self.faces)
         self.reader = "trimesh"
         self.is_watertight, self.is_winding_consistent = bool(mesh.is_watertight), bool(mesh.is_winding_consistent)
         self.volume = float(mesh.volume)

@@ -93,10 +93,10 @@ def load_mesh(g):
 
 
 def _nbytes(m) -> int:
-    """Memory of a cached mesh: its vertex array (the facts keep nothing else of size)."""
+    """Memory of a cached mesh: its vertex and face arrays (the facts keep nothing else of size)."""
     if isinstance(m, str) or m is None:
         return 0
-    return m.vertices.nbytes
+    return m.vertices.nbytes + m.faces.nbytes
 
 
 def _load_mesh(g):

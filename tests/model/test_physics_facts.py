@@ -95,6 +95,24 @@ def test_concave_hull_overlap_is_told_from_a_real_one():
     assert not o[("r_shoulder_pan_link", "r_upper_arm_link")].hull_only
 
 
+def test_check_reads_a_mesh_once_for_inertia_and_the_triangle_test(monkeypatch):
+    """With meshes loaded (check --inertia), the touch test takes the loaded mesh's triangles: PR2's
+    meshes are each read once, and the overlaps are those of reading the files again."""
+    from myrabot_desc.model import collisions, meshes, shapes
+
+    r = load_robot(ERD / "pr2_description/urdf/pr2.urdf")
+    want = [(o.link_a, o.link_b, o.depth, o.hull_only) for o in self_collisions(r)]
+    collisions._TRIANGLES.clear()
+    shapes._MESHES.clear()
+    shapes._CACHED[0] = 0
+    reads = []
+    real = meshes._read
+    monkeypatch.setattr(meshes, "_read", lambda path, limit: reads.append(str(path)) or real(path, limit))
+    got = [(o.link_a, o.link_b, o.depth, o.hull_only) for o in self_collisions(r, meshes=shapes.load_mesh)]
+    assert got == want and any(h for *_, h in got)
+    assert reads and len(reads) == len(set(reads))
+
+
 def test_srdf_exclusions_mark_the_pairs_they_allow():
     r = load_robot(ERD / "panda_description/urdf/panda.urdf")
     o = Scene(r, True, load_srdf(ERD / "panda_description/srdf/panda.srdf")).overlaps(r.rest_pose())

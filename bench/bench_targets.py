@@ -78,11 +78,11 @@ def issue29_rows(st: dict, cb: dict, scale: dict, sm: dict, yes) -> list:
         rows.append(["`sim vuelta --duration 60`, whole command (CPU)", "≤ 0.7× a plain MuJoCo script",
                      fmt_s(sm["whole_ours_cpu_s"]), f"script: MuJoCo compiles the MJCF, steps 60 s "
                      f"{fmt_s(sm['whole_plain_cpu_s'])}", f"{sm['whole_ratio_cpu']:.2f}×", yes(sm["whole_met"])])
-    if "ratio_mujoco_over_vuelta_with_preparation" in sm:
-        r = sm["ratio_mujoco_over_vuelta_with_preparation"]
-        rows.append(["`sim vuelta`, in process, robot prepared in the run", "≥ 15× MuJoCo's stepping",
-                     fmt_s(sm["vuelta_full_with_preparation_s"]), f"mj_step {fmt_s(sm['mujoco_step_s'])}",
-                     f"{r:.1f}× faster", yes(r >= 15)])
+    if "ratio_mujoco_over_vuelta_with_preparation_cpu" in sm:
+        r = sm["ratio_mujoco_over_vuelta_with_preparation_cpu"]
+        rows.append(["`sim vuelta`, in process, robot prepared in the run (CPU, medians)", "≥ 15× MuJoCo's stepping",
+                     fmt_s(sm["vuelta_full_with_preparation_cpu_s"]), f"mj_step {fmt_s(sm['mujoco_step_cpu_s'])}",
+                     f"{r:.1f}× faster (wall {sm['ratio_mujoco_over_vuelta_with_preparation']:.1f}×)", yes(r >= 15)])
     b = cb.get("bundled MYRAbot")
     if b:
         rows.append(["`check --no-cache`, bundled MYRAbot (CPU)", "≤ 1.5× its build", fmt_s(b["check"]["cpu"]),

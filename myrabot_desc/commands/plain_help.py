@@ -3,7 +3,7 @@
 The text is the click group's own help, rendered by click and stored in commands/help_text.py.
 Click draws help at the terminal's width capped at 80 columns, so on any terminal of 80 columns
 or more (and when stdout is not a terminal: click's fallback is 80) the stored text is exactly
-what click prints; a narrower terminal goes to click. tests/commands/test_plain_help.py renders
+what click prints; a narrower terminal goes to click. tests/expand/test_plain_help.py renders
 the help with click and compares; after changing the group's docstring, epilog, options, a
 command's one-line help or a limit, regenerate the stored text with
 

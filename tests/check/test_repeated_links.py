@@ -9,7 +9,7 @@ from myrabot_desc.checks.context import Context
 from myrabot_desc.checks.inertia_geometry import hull_points
 from myrabot_desc.model.loader import load_robot
 
-CODES = ("I006", "I007", "I008", "I010")
+CODES = ("I004", "I005", "I006", "I007", "I008", "I010")
 
 # (box size, collision origin, inertial origin, mass, ixx=iyy=izz): each written as the first
 # spelling in the shared robot and with one of the others in the robot that shares nothing
@@ -19,23 +19,18 @@ KINDS = [
     ('<box size="0.02 0.02 0.02"/>', "", '<origin rpy="0 0 0.5"/>', "0.1", "1e-4"),
     ('<cylinder radius="0.05" length="0.2"/>', '<origin xyz="0 0 0.1" rpy="0.3 0 0"/>', "", "2", "1"),
 ]
-SPELLINGS = {"0.02": ["2e-2", "0.020", "+0.02"], "0.01": ["1e-2", "0.010", "+0.01"], "0.1": ["1e-1", "0.10", "+0.1"],
-             "0.5": ["5e-1", "0.50", "+0.5"], "1e-4": ["0.0001", "1E-4", "1.0e-4"], "0.05": ["5e-2", "0.050", "+0.05"],
-             "0.2": ["2e-1", "0.20", "+0.2"], "2": ["2.0", "2e0", "+2"], "1": ["1.0", "1e0", "+1"],
-             "0.3": ["3e-1", "0.30", "+0.3"], "0 0 0.1": ["0 0 1e-1", "0 0 0.10", "0 0 +0.1"]}
+# tensors I004 and I005 judge: (ixx iyy izz, ixy): a rod-like triangle violation, a negative moment
+TENSORS = [("0.002 0 0", "0"), ("9e-08 3.5e-08 1e-08", "6.3e-08")]
 
 
 def _respell(text: str, k: int) -> str:
-    """``text`` with each number written another way (the k-th of its spellings)."""
+    """``text`` with each number in its attributes written another way (one of three, by ``k``)."""
     import re
 
-    def one(m):
-        v = m.group(1)
-        alt = SPELLINGS.get(v)
-        if alt is None:
-            alt = [" ".join(SPELLINGS.get(p, [p, p, p])[k % 3] for p in v.split())] * 3
-        return f'="{alt[k % 3]}"'
-    return re.sub(r'="([^"]*)"', one, text)
+    def number(m):
+        v = m.group(0)
+        return ["0" + v if v[0] != "-" else v, "+" + v, f"{float(v):e}"][k % 3]
+    return re.sub(r'="([^"]*)"', lambda m: '="' + re.sub(r"[-+]?[\d.]+(?:e[-+]?\d+)?", number, m.group(1)) + '"', text)
 
 
 def _urdf(tmp_path, name: str, shared: bool, copies: int = 3):
@@ -53,6 +48,16 @@ def _urdf(tmp_path, name: str, shared: bool, copies: int = 3):
             out.append(f'<link name="l{n}">{body}</link>')
             out.append(f'<joint name="j{n}" type="revolute"><parent link="base"/><child link="l{n}"/>'
                        '<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="100" velocity="1"/></joint>')
+            n += 1
+    for moments, ixy in TENSORS:
+        for c in range(3):
+            ixx, iyy, izz = moments.split()
+            body = (f'<inertial><mass value="0.001"/><inertia ixx="{ixx}" ixy="{ixy}" ixz="0" iyy="{iyy}" iyz="0" '
+                    f'izz="{izz}"/></inertial>')
+            if not shared:
+                body = _respell(body, n)
+            out.append(f'<link name="l{n}">{body}</link>')
+            out.append(f'<joint name="j{n}" type="fixed"><parent link="base"/><child link="l{n}"/></joint>')
             n += 1
     out.append("</robot>")
     p = tmp_path / name
@@ -77,7 +82,7 @@ def test_repeated_links_give_the_findings_of_links_that_share_nothing(tmp_path):
         want, want_suggestions = _findings(alone, **opts)
         assert got == want
         assert suggestions == want_suggestions
-        assert {c for c, *_ in got} == {"I006", "I007", "I010"}
+        assert {c for c, *_ in got} == {"I004", "I005", "I006", "I007", "I010"}
         # every copy is reported, not only the first of each kind
         assert sum(1 for c, *_ in got if c == "I006") == len(KINDS) * 3
 

@@ -8,6 +8,7 @@ from myrabot_desc.checks.inertia_geometry import Solid, inertia_line, solids, te
 from myrabot_desc.checks.rule import Finding, Fix, FixInfo, InsertInto, SetValue, rule
 from myrabot_desc.model import drive as D
 from myrabot_desc.model.inertia import principal_moments
+from myrabot_desc.model.tree import maps
 
 TRIANGLE_TOL = 1e-3      # relative: a + b >= c (1 - tol); URDF files round to ~6 digits
 ZERO_MOMENT = 1e-12      # kg·m²: below this a moment is rounding noise (1 g at 0.03 mm); MuJoCo's mjMINVAL is 1e-15
@@ -59,8 +60,9 @@ def moving_link_mass(ctx):
     """
     r = ctx.robot
     virtual = D.virtual_joints(r)
+    parent_joint = maps(r).parent_joint.get         # r.parent_joint without its lookup of the maps per link
     for head, m in ctx.body_mass.items():
-        pj = r.parent_joint(head)
+        pj = parent_joint(head)
         if pj is None or pj.type == "fixed" or m > 0:
             continue
         geo = _has_geometry(ctx, head)
@@ -97,8 +99,9 @@ def massless_moving_frame(ctx):
     mass and inertia (for instance 1 g and 1e-6 kg·m²), or merge it into its child.
     """
     r = ctx.robot
+    parent_joint = maps(r).parent_joint.get
     for head, m in ctx.body_mass.items():
-        pj = r.parent_joint(head)
+        pj = parent_joint(head)
         if pj is None or pj.type == "fixed" or m > 0 or _has_geometry(ctx, head):
             continue
         below = [j.child for j in r.child_joints(head)]

@@ -431,6 +431,8 @@ def _hull_items(link):
     link (cheap, lenient); when meshes are involved only the collision shapes (visual meshes are
     the slow ones to load), else the visuals."""
     cols = [c for c in link.collisions if c.geometry is not None]
+    if not link.visuals:            # (most links of a big model): the collisions, meshes or not
+        return cols or None
     vis = [v for v in link.visuals if v.geometry is not None]
     items = cols + vis
     if any(it.geometry.kind == "mesh" for it in items):
@@ -486,19 +488,25 @@ def origin_inside(ctx):
 
     pts_of = hull_points(ctx)
     by_size: dict[int, list] = {}
-    for name in solids(ctx):
-        if pts_of[name] is not None:
-            by_size.setdefault(len(pts_of[name]), []).append(name)
+    key_of = {}                         # links that repeat their points and origin (shared objects) tested once
+    for name, s in solids(ctx).items():
+        pts = pts_of[name]
+        if pts is not None:
+            key = key_of[name] = (id(pts), id(s.link.inertial.origin.xyz))
+            group = by_size.setdefault(len(pts), {})
+            if key not in group:
+                group[key] = name
     outside = set()
-    for names in by_size.values():      # the test below, for all links at once (same arithmetic)
+    for group in by_size.values():      # the test below, for all links at once (same arithmetic)
+        names = list(group.values())
         pts = np.array([pts_of[n] for n in names], dtype=float)
         lo, hi = pts.min(1), pts.max(1)
         margin = (0.1 * (hi - lo).max(1) + 0.005)[:, None]
         p = np.array([ctx.robot.links[n].inertial.origin.xyz for n in names], dtype=float)
         gap = np.maximum(np.maximum(lo - margin - p, p - hi - margin), 0)
-        outside.update(n for n, g in zip(names, gap.max(1).tolist()) if g > 0)
+        outside.update(key for key, g in zip(group, gap.max(1).tolist()) if g > 0)
     for name, s in solids(ctx).items():
-        if name not in outside:
+        if key_of.get(name) not in outside:
             continue
         pts = _with_visuals(ctx, s.link, pts_of[name])
         lo, hi = pts.min(0), pts.max(0)

@@ -168,7 +168,7 @@ def safe_parser(huge_tree: bool = False, **options):
 def check_xml_bytes(data: bytes, name: str) -> None:
     """The checks before any XML parser sees the bytes: empty, a DTD or entity declaration
     near the start, binary data. (The parsers refuse a DTD found later themselves.)"""
-    if not data.strip():
+    if not data or data.isspace():      # (strip() would copy the whole file)
         raise InputError("empty file", Loc(name))
     head = data[:4096].lstrip()
     if b"<!DOCTYPE" in data[:65536] or b"<!ENTITY" in data[:65536]:

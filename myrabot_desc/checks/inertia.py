@@ -8,6 +8,7 @@ from myrabot_desc.checks.inertia_geometry import Solid, inertia_line, solids, te
 from myrabot_desc.checks.rule import Finding, Fix, FixInfo, InsertInto, SetValue, rule
 from myrabot_desc.model import drive as D
 from myrabot_desc.model.inertia import principal_moments
+from myrabot_desc.model.tree import maps
 
 TRIANGLE_TOL = 1e-3      # relative: a + b >= c (1 - tol); URDF files round to ~6 digits
 ZERO_MOMENT = 1e-12      # kg·m²: below this a moment is rounding noise (1 g at 0.03 mm); MuJoCo's mjMINVAL is 1e-15
@@ -59,8 +60,9 @@ def moving_link_mass(ctx):
     """
     r = ctx.robot
     virtual = D.virtual_joints(r)
+    parent_joint = maps(r).parent_joint.get         # r.parent_joint without its lookup of the maps per link
     for head, m in ctx.body_mass.items():
-        pj = r.parent_joint(head)
+        pj = parent_joint(head)
         if pj is None or pj.type == "fixed" or m > 0:
             continue
         geo = _has_geometry(ctx, head)
@@ -97,8 +99,9 @@ def massless_moving_frame(ctx):
     mass and inertia (for instance 1 g and 1e-6 kg·m²), or merge it into its child.
     """
     r = ctx.robot
+    parent_joint = maps(r).parent_joint.get
     for head, m in ctx.body_mass.items():
-        pj = r.parent_joint(head)
+        pj = parent_joint(head)
         if pj is None or pj.type == "fixed" or m > 0 or _has_geometry(ctx, head):
             continue
         below = [j.child for j in r.child_joints(head)]
@@ -142,21 +145,35 @@ def positive_definite(ctx):
     inertia below mjMINVAL. Fix: the solid-body values (`--inertia --suggest`).
     """
     moments = principal(ctx)
+    kinds: dict = {}            # id(moments) -> "negative", "zero" or None: links share their moments (principal)
     for link in ctx.robot.links.values():
         i = link.inertial
         if i is None or i.mass <= 0:
             continue
         ev = moments[link.name]
-        scale = max(max(abs(e) for e in ev), 1e-300)
-        if min(ev) < -1e-9 * scale and -min(ev) > ZERO_MOMENT:
+        kind = kinds.get(id(ev), False)
+        if kind is False:
+            kind = kinds[id(ev)] = _definiteness(i, ev)
+        if kind == "negative":
             yield Finding(f"link {link.name}: inertia not positive definite, principal moments "
                           + "/".join(f"{e:.4g}" for e in ev), i.loc or link.loc,
                           {"link": link.name, "principal": list(ev)}, fix=geometry_fix(ctx, link))
-        elif min(ev) <= max(1e-12 * scale, ZERO_MOMENT) and triangle_gap(i, ev) is None:
+        elif kind == "zero":
             if ctx.moving(link.name):         # (0, 0, c) is no rod: I005 reports it
                 yield Finding(f"link {link.name} ({i.mass:g} kg) has a zero principal moment of inertia "
                               f"({'/'.join(f'{e:.3g}' for e in ev)}): a point mass or a rod", i.loc or link.loc,
                               {"link": link.name, "principal": list(ev)}, severity="warning")
+
+
+def _definiteness(i, ev) -> str | None:
+    """"negative" for principal moments ``ev`` (of inertial ``i``, mass > 0) with a clearly negative
+    one, "zero" for a zero one that is no triangle violation (I005's), else None."""
+    scale = max(max(abs(e) for e in ev), 1e-300)
+    if min(ev) < -1e-9 * scale and -min(ev) > ZERO_MOMENT:
+        return "negative"
+    if min(ev) <= max(1e-12 * scale, ZERO_MOMENT) and triangle_gap(i, ev) is None:
+        return "zero"
+    return None
 
 
 @rule("I005", "inertia-triangle", "error",
@@ -178,11 +195,15 @@ def triangle(ctx):
     the solid-body values for the link's shape (`check --inertia --suggest`).
     """
     moments = principal(ctx)
+    gaps: dict = {}             # id(moments) -> their gap: links share their moments (principal)
     for link in ctx.robot.links.values():
         i = link.inertial
         if i is None or i.mass <= 0:
             continue
-        gap = triangle_gap(i, moments[link.name])
+        ev = moments[link.name]
+        gap = gaps.get(id(ev), False)
+        if gap is False:
+            gap = gaps[id(ev)] = triangle_gap(i, ev)
         if gap is not None:
             a, b, c = gap
             yield Finding(f"link {link.name}: impossible inertia, principal moments {a:.4g} + {b:.4g} = {a + b:.4g} "
@@ -282,9 +303,21 @@ def placeholder(ctx):
 def principal(ctx) -> dict:
     """link -> principal moments (ascending) of every link with a positive mass, computed once for
     I004, I005 and P003."""
-    return ctx.fact("principal", lambda: {link.name: principal_moments(link.inertial)
-                                          for link in ctx.robot.links.values()
-                                          if link.inertial is not None and link.inertial.mass > 0})
+    def build():
+        # links repeat their tensors (a macro's copies), which the loader reads into the same value
+        # objects: one eigenproblem per distinct six, the moments shared (read them, never change them)
+        same: dict = {}
+        out = {}
+        for link in ctx.robot.links.values():
+            i = link.inertial
+            if i is not None and i.mass > 0:
+                key = (id(i.ixx), id(i.ixy), id(i.ixz), id(i.iyy), id(i.iyz), id(i.izz))
+                m = same.get(key)
+                if m is None:
+                    m = same[key] = (principal_moments(i), i)    # (the inertial keeps the key's objects alive)
+                out[link.name] = m[0]
+        return out
+    return ctx.fact("principal", build)
 
 
 def triangle_gap(i, moments=None):

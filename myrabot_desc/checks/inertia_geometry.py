@@ -43,25 +43,26 @@ class Solid:
 
     __slots__ = ("link", "source", "items", "props", "why_not", "marker", "desc")   # 20,000 of them in a star
 
-    def __init__(self, ctx, link):
+    def __init__(self, ctx, link, same: dict | None = None):
         self.link = link
         self.source, self.items = ctx.shapes(link, "collision")
         self.props = None
         self.why_not = None
         self.marker = False
-        self.desc = ", ".join(G.describe(it.geometry) for it in self.items[:3]) + (" ..." if len(self.items) > 3 else "")
+        if len(self.items) == 1:        # most links: one primitive, unrotated (no numpy for it)
+            mass = link.inertial.mass if link.inertial else 0.0
+            one = _one_shape(self.items[0], mass if mass > 0 else 1.0, same)
+            self.desc = one[0]
+            if one[1] is not NotImplemented:
+                self.props, self.marker = one[1], one[2]
+                return
+        else:
+            self.desc = (", ".join(G.describe(it.geometry) for it in self.items[:3])
+                         + (" ..." if len(self.items) > 3 else ""))
         if not self.items:
             self.why_not = "no geometry"
             return
         mass = link.inertial.mass if link.inertial else 0.0
-        if len(self.items) == 1:        # most links: one primitive, unrotated (no numpy for it)
-            g = self.items[0].geometry
-            props = G.placed_primitive(g, self.items[0].origin, mass if mass > 0 else 1.0)
-            if props is not NotImplemented:
-                self.props = props
-                sz = G.size_of(g)
-                self.marker = sz is not None and sz < MARKER_SIZE
-                return
         parts = []
         for it in self.items:
             g = it.geometry
@@ -102,10 +103,33 @@ class Solid:
         return R.T @ (np.array(self.props.com, dtype=float) - p), t
 
 
+def _one_shape(item, mass: float, same: dict | None) -> tuple:
+    """(description, placed_primitive's props or NotImplemented, marker) of a link's one shape at
+    ``mass``. ``same``: the results by the identity of the values they come from: the links of one
+    macro repeat their shape, origin and mass, which the loader reads into the same objects (an
+    identity is never a -0.0 taken for 0.0); the objects are kept with the result, so no id is reused."""
+    g, o = item.geometry, item.origin
+    key = (g.__class__, *map(id, g), id(o.xyz), id(o.rpy), id(mass))
+    hit = same.get(key) if same is not None else None
+    if hit is None:
+        props = G.placed_primitive(g, o, mass)
+        marker = False
+        if props is not NotImplemented:
+            sz = G.size_of(g)
+            marker = sz is not None and sz < MARKER_SIZE
+        hit = (G.describe(g), props, marker, (g, o, mass))
+        if same is not None:
+            same[key] = hit
+    return hit
+
+
 def solids(ctx) -> dict:
     """link -> its Solid, for every link with mass (built once per robot and mesh option)."""
-    return ctx.fact("solids", lambda: {link.name: Solid(ctx, link) for link in ctx.robot.links.values()
-                                       if link.inertial and link.inertial.mass > 0}, meshes=True)
+    def build():
+        same: dict = {}
+        return {link.name: Solid(ctx, link, same) for link in ctx.robot.links.values()
+                if link.inertial and link.inertial.mass > 0}
+    return ctx.fact("solids", build, meshes=True)
 
 
 def fmt(x: float) -> str:
@@ -139,8 +163,14 @@ def inertia_vs_geometry(ctx):
     solid = [(name, s) for name, s in solids(ctx).items() if s.props is not None]
     if not solid:
         return
-    framed = [_unrotated(s.props, s.link.inertial.origin) for _, s in solid]
-    rest = [k for k, f in enumerate(framed) if f is None]
+    # links repeat (the same props and origin objects: _one_shape, the loader): each frame and
+    # comparison is made once per distinct set of the objects it reads (kept alive by the links)
+    frame_key = [(id(s.props), id(s.link.inertial.origin.xyz), id(s.link.inertial.origin.rpy)) for _, s in solid]
+    first: dict = {}
+    for k, key in enumerate(frame_key):
+        first.setdefault(key, k)
+    framed_of = {key: _unrotated(solid[k][1].props, solid[k][1].link.inertial.origin) for key, k in first.items()}
+    rest = [k for key, k in first.items() if framed_of[key] is None]
     if rest:
         import numpy as np
 
@@ -154,38 +184,52 @@ def inertia_vs_geometry(ctx):
         coms = (Rt @ (np.array([solid[k][1].props.com for k in rest], dtype=float) - p)[:, :, None])[:, :, 0]
         cf, mf = comps.ravel().tolist(), coms.ravel().tolist()      # flat: no list per row per link
         for n, k in enumerate(rest):
-            framed[k] = (cf[9 * n:9 * n + 9], tuple(mf[3 * n:3 * n + 3]))
+            framed_of[frame_key[k]] = (cf[9 * n:9 * n + 9], tuple(mf[3 * n:3 * n + 3]))
     suggest = ctx.opts.suggest
-    inf = math.inf
-    for (name, s), (t9, com) in zip(solid, framed):
-        comp = (tuple(t9[0:3]), tuple(t9[3:6]), tuple(t9[6:9]))
+    compared: dict = {}
+    for (name, s), fkey in zip(solid, frame_key):
         i = s.link.inertial
-        texts = _six(comp)
-        line = _line(texts)
+        key = (fkey, id(i.ixx), id(i.iyy), id(i.izz), id(i.mass), s.desc)
+        c = compared.get(key)
+        if c is None:
+            c = compared[key] = _compare(i, s.desc, framed_of[fkey])
+        texts, line, tail, data = c
         if suggest:
             ctx.suggestions.append((name, line))
-        dd, cd = (float(i.ixx), float(i.iyy), float(i.izz)), (t9[0], t9[4], t9[8])
-        ratios = []
-        worst = -inf
-        for d, c in zip(dd, cd):
-            if c <= 0 or d <= 0:
-                r = inf if (c <= 0) != (d <= 0) else 1.0
-            else:
-                r = d / c
-            ratios.append(r)
-            w = max(r, 1 / r) if r > 0 else inf
-            if w > worst:
-                worst = w
-        if worst > RATIO_LIMIT:
+        if tail is not None:
             yield Finding(
-                f"link {name}: inertia ixx/iyy/izz {dd[0]:.3g}/{dd[1]:.3g}/{dd[2]:.3g} kg·m², but a solid "
-                f"{s.desc} of {i.mass:g} kg gives {cd[0]:.3g}/{cd[1]:.3g}/{cd[2]:.3g} "
-                f"(ratio {_ratio(ratios[0])}/{_ratio(ratios[1])}/{_ratio(ratios[2])}); fix: {line}",
-                i.loc or s.link.loc,
+                f"link {name}: {tail}", i.loc or s.link.loc,
                 # tuples: the report writes them as lists; the collector stops scanning them (8 lists x 20,000 links)
-                {"link": name, "declared": dd, "computed": cd, "ratios": tuple(ratios),
-                 "geometry": s.source, "fix": line, "computed_tensor": comp, "computed_com": com},
+                {"link": name, "declared": data[0], "computed": data[1], "ratios": data[2], "geometry": s.source,
+                 "fix": line, "computed_tensor": data[3], "computed_com": data[4]},
                 severity=s.severity, fix=LazyFix(_solid_fix, i, texts, name, s.source))
+
+
+def _compare(i, desc: str, framed) -> tuple:
+    """(the six texts, the <inertia/> line, the message after "link NAME: " or None when within
+    RATIO_LIMIT, (declared, computed, ratios, tensor, com)) of inertial ``i`` against its solid."""
+    t9, com = framed
+    comp = (tuple(t9[0:3]), tuple(t9[3:6]), tuple(t9[6:9]))
+    texts = _six(comp)
+    line = _line(texts)
+    dd, cd = (float(i.ixx), float(i.iyy), float(i.izz)), (t9[0], t9[4], t9[8])
+    ratios = []
+    worst = -math.inf
+    for d, c in zip(dd, cd):
+        if c <= 0 or d <= 0:
+            r = math.inf if (c <= 0) != (d <= 0) else 1.0
+        else:
+            r = d / c
+        ratios.append(r)
+        w = max(r, 1 / r) if r > 0 else math.inf
+        if w > worst:
+            worst = w
+    tail = None
+    if worst > RATIO_LIMIT:
+        tail = (f"inertia ixx/iyy/izz {dd[0]:.3g}/{dd[1]:.3g}/{dd[2]:.3g} kg·m², but a solid "
+                f"{desc} of {i.mass:g} kg gives {cd[0]:.3g}/{cd[1]:.3g}/{cd[2]:.3g} "
+                f"(ratio {_ratio(ratios[0])}/{_ratio(ratios[1])}/{_ratio(ratios[2])}); fix: {line}")
+    return texts, line, tail, (dd, cd, tuple(ratios), comp, com)
 
 
 def _unrotated(props, origin):
@@ -259,50 +303,61 @@ def radius_of_gyration(ctx):
     import numpy as np
 
     pts_of = hull_points(ctx)
-    by_size: dict[int, list] = {}          # links grouped by point count: one stacked product per group
+    # links that repeat their points (hull_points shares them), inertial origin, tensor and mass
+    # (the loader's shared values) are measured once: the key's objects stay alive with the links
+    key_of = {}
+    found: dict = {}                        # key -> (the message after "link NAME: ", its data) or None
+    by_size: dict[int, list] = {}          # one link per key, grouped by point count: one stacked product per group
     for name, s in solids(ctx).items():
-        if pts_of[name] is not None:
-            by_size.setdefault(len(pts_of[name]), []).append(s)
-    where = {}                              # link -> (its group's flat results, its index there)
+        pts = pts_of[name]
+        if pts is not None:
+            i = s.link.inertial
+            key = (id(pts), id(i.origin.xyz), id(i.origin.rpy), id(i.ixx), id(i.ixy), id(i.ixz), id(i.iyy),
+                   id(i.iyz), id(i.izz), id(i.mass))
+            if key not in found:
+                found[key] = None
+                by_size.setdefault(len(pts), []).append((key, s))
+            key_of[name] = key
+    sqrt = math.sqrt
     for group in by_size.values():
-        pts = np.array([pts_of[s.link.name] for s in group], dtype=float)
-        T = pose_stack(s.link.inertial.origin for s in group)
+        pts = np.array([pts_of[s.link.name] for _, s in group], dtype=float)
+        T = pose_stack(s.link.inertial.origin for _, s in group)
         local = (pts - T[:, None, :3, 3]) @ T[:, :3, :3]           # points in the inertial frame
         tensors: list[float] = []
-        for s in group:
+        for _, s in group:
             i = s.link.inertial
             tensors.extend((i.ixx, i.ixy, i.ixz, i.ixy, i.iyy, i.iyz, i.ixz, i.iyz, i.izz))   # Inertial.tensor()
         ev, vec = np.linalg.eigh(np.array(tensors, dtype=float).reshape(-1, 3, 3))
         sq = (local ** 2).sum(2)
         reach = np.stack([np.sqrt(np.maximum(sq - (local @ vec[:, :, k:k + 1])[:, :, 0] ** 2, 0)).max(1)
                           for k in range(3)], axis=1)
-        flat = (ev.ravel().tolist(), np.swapaxes(vec, 1, 2).ravel().tolist(), reach.ravel().tolist())
-        for n, s in enumerate(group):
-            where[s.link.name] = (flat, n)
-    sqrt = math.sqrt
+        ev, axes, reaches = ev.ravel().tolist(), np.swapaxes(vec, 1, 2).ravel().tolist(), reach.ravel().tolist()
+        for n, (key, s) in enumerate(group):
+            i = s.link.inertial
+            mass = i.mass
+            worst = None
+            for b in range(3 * n, 3 * n + 3):
+                e = ev[b]
+                if e <= 0:
+                    continue
+                reach = reaches[b]
+                kg = sqrt(e / mass)
+                if kg > 1.1 * reach + 1e-4 and (worst is None or kg / max(reach, 1e-9) > worst[0]):
+                    worst = (kg / max(reach, 1e-9), kg, reach, e, axes[3 * b:3 * b + 3])
+            if worst:
+                _, kg, reach, moment, u = worst
+                worst = (f"radius of gyration √({moment:.3g}/{i.mass:g}) = {kg:.3g} m about axis "
+                         f"({u[0]:.2g} {u[1]:.2g} {u[2]:.2g}), but no point of the geometry is farther than "
+                         f"{reach:.3g} m from that axis", kg, reach, float(moment))
+            found[key] = worst
     for name, s in solids(ctx).items():
-        at = where.get(name)
-        if at is None:
-            continue
-        link = s.link
-        i = link.inertial
-        (ev, axes, reaches), n = at
-        mass = i.mass
-        worst = None
-        for b in range(3 * n, 3 * n + 3):
-            e = ev[b]
-            if e <= 0:
-                continue
-            reach = reaches[b]
-            kg = sqrt(e / mass)
-            if kg > 1.1 * reach + 1e-4 and (worst is None or kg / max(reach, 1e-9) > worst[0]):
-                worst = (kg / max(reach, 1e-9), kg, reach, e, axes[3 * b:3 * b + 3])
+        key = key_of.get(name)
+        worst = found[key] if key is not None else None
         if worst:
-            _, kg, reach, moment, u = worst
-            yield Finding(f"link {name}: radius of gyration √({moment:.3g}/{i.mass:g}) = {kg:.3g} m about axis "
-                          f"({u[0]:.2g} {u[1]:.2g} {u[2]:.2g}), but no point of the geometry is farther than "
-                          f"{reach:.3g} m from that axis", i.loc or link.loc,
-                          {"link": name, "radius_of_gyration": kg, "reach": reach, "moment": float(moment)},
+            link = s.link
+            tail, kg, reach, moment = worst
+            yield Finding(f"link {name}: {tail}", link.inertial.loc or link.loc,
+                          {"link": name, "radius_of_gyration": kg, "reach": reach, "moment": moment},
                           severity=s.severity)
 
 
@@ -321,30 +376,38 @@ def _stack_hull_points(ctx) -> dict:
     import numpy as np
 
     parts: dict[str, list | None] = {}
-    by_size: dict = {}      # point count or "box" -> [(points in the shape frame or box size, origin, link, slot, key)]
+    by_size: dict = {}      # point count or "box" -> [(points in the shape frame or box size, origin, key)]
+    placed_of: dict = {}    # key -> its placed points, one array for the links that repeat a primitive
+    wanted = []             # (link, [key of each shape])
     for name, s in solids(ctx).items():
         items = _hull_items(s.link)
-        todo = []
+        keys = []
         for it in items or ():
-            g = it.geometry
+            g, o = it.geometry, it.origin
             if g.kind == "mesh":
                 mesh = ctx.mesh(g) if ctx.opts.load_meshes else None
                 if mesh is None or isinstance(mesh, str):
                     items = None
                     break
+                key = (len(placed_of), )                # a mesh's shape is its own
                 local = np.asarray(mesh.vertices)    # the rules use extremes only: no hull needed (nor scipy)
-            elif g.kind == "box":
-                todo.append((g.size, it.origin, name, len(todo), "box"))   # corners made below, all at once
-                continue
+                size = len(local)
             else:
-                local = G.surface_points(g, 32)
-            todo.append((local, it.origin, name, len(todo), len(local)))
-        if not items:
-            parts[name] = None
-            continue
-        parts[name] = [None] * len(todo)
-        for t in todo:
-            by_size.setdefault(t[4], []).append(t)
+                # the same shape and origin objects (a macro's links: the loader shares their values)
+                # give the same points: placed once (the objects stay alive with the links)
+                key = (g.__class__, *map(id, g), id(o.xyz), id(o.rpy))
+                if key in placed_of:
+                    keys.append(key)
+                    continue
+                if g.kind == "box":     # corners made below, all at once
+                    local, size = g.size, "box"
+                else:
+                    local = G.surface_points(g, 32)
+                    size = len(local)
+            placed_of[key] = None
+            by_size.setdefault(size, []).append((local, o, key))
+            keys.append(key)
+        parts[name] = None if not items else keys
     for key, group in by_size.items():
         if key == "box":
             # surface_points' corners (x outer, z inner), each coordinate s / 2 or -(s / 2) as there
@@ -355,10 +418,12 @@ def _stack_hull_points(ctx) -> dict:
             local = np.array([t[0] for t in group], dtype=float)
         T = pose_stack(t[1] for t in group)
         placed = local @ np.swapaxes(T[:, :3, :3], 1, 2) + T[:, None, :3, 3]
-        for (_, _, name, slot, _), pts in zip(group, placed):
-            parts[name][slot] = pts
+        placed.flags.writeable = False      # rows shared by the links that repeat a shape
+        for t, pts in zip(group, placed):
+            placed_of[t[2]] = pts
     # one shape: its rows as they are (vstack would copy them, 20,000 times in a star)
-    return {name: (None if p is None else p[0] if len(p) == 1 else np.vstack(p)) for name, p in parts.items()}
+    return {name: (None if k is None else placed_of[k[0]] if len(k) == 1 else np.vstack([placed_of[x] for x in k]))
+            for name, k in parts.items()}
 
 
 def _hull_items(link):
@@ -366,6 +431,8 @@ def _hull_items(link):
     link (cheap, lenient); when meshes are involved only the collision shapes (visual meshes are
     the slow ones to load), else the visuals."""
     cols = [c for c in link.collisions if c.geometry is not None]
+    if not link.visuals:            # (most links of a big model): the collisions, meshes or not
+        return cols or None
     vis = [v for v in link.visuals if v.geometry is not None]
     items = cols + vis
     if any(it.geometry.kind == "mesh" for it in items):
@@ -421,19 +488,25 @@ def origin_inside(ctx):
 
     pts_of = hull_points(ctx)
     by_size: dict[int, list] = {}
-    for name in solids(ctx):
-        if pts_of[name] is not None:
-            by_size.setdefault(len(pts_of[name]), []).append(name)
+    key_of = {}                         # links that repeat their points and origin (shared objects) tested once
+    for name, s in solids(ctx).items():
+        pts = pts_of[name]
+        if pts is not None:
+            key = key_of[name] = (id(pts), id(s.link.inertial.origin.xyz))
+            group = by_size.setdefault(len(pts), {})
+            if key not in group:
+                group[key] = name
     outside = set()
-    for names in by_size.values():      # the test below, for all links at once (same arithmetic)
+    for group in by_size.values():      # the test below, for all links at once (same arithmetic)
+        names = list(group.values())
         pts = np.array([pts_of[n] for n in names], dtype=float)
         lo, hi = pts.min(1), pts.max(1)
         margin = (0.1 * (hi - lo).max(1) + 0.005)[:, None]
         p = np.array([ctx.robot.links[n].inertial.origin.xyz for n in names], dtype=float)
         gap = np.maximum(np.maximum(lo - margin - p, p - hi - margin), 0)
-        outside.update(n for n, g in zip(names, gap.max(1).tolist()) if g > 0)
+        outside.update(key for key, g in zip(group, gap.max(1).tolist()) if g > 0)
     for name, s in solids(ctx).items():
-        if name not in outside:
+        if key_of.get(name) not in outside:
             continue
         pts = _with_visuals(ctx, s.link, pts_of[name])
         lo, hi = pts.min(0), pts.max(0)

@@ -322,10 +322,12 @@ def center_of_mass(robot: Robot, q: dict[str, float] | None = None) -> tuple[flo
     if links:   # the products stacked (same bits as one per link); the sums in link order, as before
         W = np.array([T[link.name] for link in links], dtype=float) @ pose_stack(link.inertial.origin for link in links)
         ps = W[:, :3, 3].ravel().tolist()
+        a0 = a1 = a2 = 0.0
         for k, link in enumerate(links):
             m = link.inertial.mass
             total += m
-            acc = [acc[0] + m * ps[3 * k], acc[1] + m * ps[3 * k + 1], acc[2] + m * ps[3 * k + 2]]
+            a0, a1, a2 = a0 + m * ps[3 * k], a1 + m * ps[3 * k + 1], a2 + m * ps[3 * k + 2]
+        acc = [a0, a1, a2]
     acc = np.array(acc)
     return total, (acc / total if total > 0 else np.full(3, np.nan))
 

@@ -154,8 +154,7 @@ def gravity_needs(robot, samples: int = SAMPLES, joints=None) -> list[Need]:
     every = [j.name for j in movers]
     frames = _joint_frames(np, robot, W, every)
     ci = np.array([pos[robot.joints[n].child] for n in names])        # each asked joint's child, in preorder
-    P = np.array([frames[n][0] for n in names])
-    A = np.array([frames[n][1] for n in names])
+    P, A = frames.rows(names)
     prism = np.array([robot.joints[n].type == "prismatic" for n in names])
     M, Q = Mtot[ci], Qtot[ci]
     g = np.array([0.0, 0.0, -GRAVITY])
@@ -180,13 +179,16 @@ def gravity_needs(robot, samples: int = SAMPLES, joints=None) -> list[Need]:
     alone = _alone(robot, movers, names, pos, parent, end, {j.name for j in turned})
     # of those, one turning about the vertical: its axis's x and y are 0, so each product of its torque
     # (at rest or turned) is by 0 and its turns change nothing; no rotations for it
-    upright = {n for n in alone if not frames[n][1][0] and not frames[n][1][1]}
+    upright = set()
+    if alone:
+        a = frames.rows(alone)[1]
+        upright = {n for n, flat in zip(alone, ((a[:, 0] == 0) & (a[:, 1] == 0)).tolist()) if flat}
     if upright:
         alone = [n for n in alone if n not in upright]
         turned = [j for j in turned if j.name not in upright]
     R_all, R_of = None, {}
     if turned:          # every revolute joint's sampled rotations at once
-        R_all = _rotations(np.array([frames[j.name][1] for j in turned]),
+        R_all = _rotations(frames.rows([j.name for j in turned])[1],
                            np.array([vals[j.name] for j in turned])
                            - np.array([rest.get(j.name, 0.0) for j in turned])[:, None])
         R_of = {j.name: k for k, j in enumerate(turned)}
@@ -199,9 +201,10 @@ def gravity_needs(robot, samples: int = SAMPLES, joints=None) -> list[Need]:
         _Sweep(np, robot, rest, W, names, links, deep, followers, vals, frames, R_all, R_of, pos, parent, levels, end,
                ci, Qtot, Mtot, M, A, B, prism, t_rest, r_rest, torques, best, where).run()
     out = []
+    best_of, rest_of = best.tolist(), t_rest.tolist()     # the floats float() of each gives, in one call
     for k, n in enumerate(names):
         j = robot.joints[n]
-        out.append(Need(n, float(best[k]), float(t_rest[k]), where[k][0], float(where[k][1]), effort_of(j),
+        out.append(Need(n, best_of[k], rest_of[k], where[k][0], float(where[k][1]), effort_of(j),
                         "N" if j.type == "prismatic" else "N·m"))
     return out
 
@@ -234,7 +237,7 @@ def _turn_alone(np, robot, alone, names, vals, frames, pos, R_all, R_of, Qtot, M
     K = np.array([k_of[n] for n in alone])
     cj = np.array([pos[robot.joints[n].child] for n in alone])
     R = R_all[[R_of[n] for n in alone]]                                    # (J, samples, 3, 3)
-    p0 = np.array([frames[n][0] for n in alone])
+    p0 = frames.rows(alone)[0]
     t = p0[:, None, :] - (R @ p0[:, None, :, None])[..., 0]
     shift = ((Qtot[cj][:, None, None, :] @ np.swapaxes(R, -1, -2))[:, :, 0, :] + Mtot[cj][:, None, None] * t
              - Qtot[cj][:, None, :])
@@ -620,7 +623,28 @@ def _preorder(robot, W):
     return order, pos, parent, levels, end
 
 
-def _joint_frames(np, robot, W, names) -> dict:
+class _Frames:
+    """joint -> (its origin, its unit axis) in the world: rows of two arrays, a joint's made when it
+    is asked for (a view per joint is 40,000 objects in a 20,000-link star); ``rows`` gives many
+    joints' at once, the same floats as stacking their rows."""
+
+    __slots__ = ("index", "origins", "axes")
+
+    def __init__(self, names, origins, axes):
+        self.index = {n: k for k, n in enumerate(names)}
+        self.origins, self.axes = origins, axes
+
+    def __getitem__(self, name):
+        k = self.index[name]
+        return self.origins[k], self.axes[k]
+
+    def rows(self, names):
+        """(origins, axes) of the joints ``names`` (at least one), one row each."""
+        k = [self.index[n] for n in names]
+        return self.origins[k], self.axes[k]
+
+
+def _joint_frames(np, robot, W, names) -> dict | _Frames:
     """joint -> (its origin, its unit axis) in the world, from the link poses ``W``."""
     if not names:
         return {}
@@ -630,7 +654,7 @@ def _joint_frames(np, robot, W, names) -> dict:
     axes = (F[:, :3, :3] @ np.array([j.axis for j in joints], dtype=float).reshape(-1, 3, 1))[:, :, 0]
     norms = np.array(_norms(axes.tolist()))[:, None]
     unit = np.where(norms > 0, axes / np.where(norms > 0, norms, 1.0), axes)
-    return dict(zip(names, zip(F[:, :3, 3], unit)))
+    return _Frames(names, F[:, :3, 3], unit)
 
 
 def _subtree_sums(values, parent, levels):

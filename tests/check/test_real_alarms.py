@@ -285,6 +285,9 @@ def test_xacro_by_content_not_by_a_declared_namespace(tmp_path):
     assert is_xacro(Path("r.gazebo"), b'<robot xmlns:x="http://www.ros.org/wiki/xacro"><x:include filename="a"/></robot>')
     assert is_xacro(Path("r.urdf"), b'<robot name="$(arg name)"/>')
     assert is_xacro(Path("r.urdf.xacro"), None) and not is_xacro(Path("r.urdf"), None)
+    assert not is_xacro(Path("r.urdf"), b'<robot name="r"><link name="a"/></robot>')   # no "$", no "xacro"
+    # a comment's removal joins what is around it: "$" then "{" is a substitution
+    assert is_xacro(Path("r.urdf"), b'<robot name="$<!-- c -->{n}"/>')
 
 
 # ---------------------------------------------------------------- P003 points at the joint

@@ -513,3 +513,18 @@ def test_upright_leaf_joints_as_before(tmp_path):
     compare(robot, "upright")
     upright = [n for n in gravity_needs(robot) if n.torque == 0 and n.unit == "N·m"]
     assert upright and all(n.at_rest == 0 and n.pose_joint is None for n in upright)
+
+
+def test_joint_frames_rows_are_each_joints_rows(tmp_path):
+    """gravity_needs takes many joints' frames at once (_Frames.rows): the same floats, to the bit,
+    as stacking each joint's own (origin, axis)."""
+    star = tmp_path / "star.urdf"
+    star.write_text(_tree_urdf("star", 60))
+    for robot in (load_robot(None), load_robot(star)):
+        W = S.world_transforms(robot, robot.rest_pose())
+        names = [j.name for j in robot.joints.values() if j.type in S.MOVING and j.parent in W and j.child in W]
+        frames = S._joint_frames(np, robot, W, names)
+        for some in (names, names[::-2], names[:1]):
+            origins, axes = frames.rows(some)
+            assert origins.tobytes() == np.array([frames[n][0] for n in some]).tobytes()
+            assert axes.tobytes() == np.array([frames[n][1] for n in some]).tobytes()

@@ -39,3 +39,11 @@ def test_scan_skipped_only_without_a_possible_uri():
     assert may('<robot name="r"><!-- package: in a comment --></robot>')
     assert may('<robot name="r&#32;x"/>')
     assert may('<?xml version="1.0" encoding="ISO-8859-1"?><robot name="r"/>')
+
+
+@pytest.mark.parametrize("data", [b"", b" ", b"\n\t\r\x0b\x0c  \n"])
+def test_blank_file_is_empty(data):
+    from myrabot_desc.errors import InputError
+
+    with pytest.raises(InputError, match="empty file"):
+        parse_xml_bytes(data, "x")

@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
+import gc
+
 import click
 
 from myrabot_desc.checks import CheckOptions, check_robot
 from myrabot_desc.checks.registry import EXTERNAL, load_all
+from myrabot_desc.commands import options
 from myrabot_desc.commands.common import input_options
 from myrabot_desc.commands.console import guarded, no_mujoco_log
 from myrabot_desc.commands.extras import require
@@ -84,6 +87,10 @@ def convert_cmd(inputs, target, output, lump, uri_style, layout, base, scene, re
     0 converted; 2 the input could not be processed or has errors (a
     file:line line for each, nothing written).
     """
+    if options.ONE_SHOT:
+        # a process that ends with this conversion: the collector would only rescan the model's
+        # records (no cycles worth finding) over and over while the output is built
+        gc.disable()
     with guarded():
         if target == "mjcf":
             require("mjcf", "convert --to mjcf")
@@ -101,6 +108,7 @@ def convert_cmd(inputs, target, output, lump, uri_style, layout, base, scene, re
             _write_report(report, report_path, quiet)
             if output != "-":
                 click.echo(f"wrote {output} ({result.summary})", err=True)
+            _keep(robot, report, result)
             return
         opts = SdfOptions(lump=lump, uri_style=uri_style)
         if target == "world":
@@ -116,6 +124,20 @@ def convert_cmd(inputs, target, output, lump, uri_style, layout, base, scene, re
         if output != "-":
             click.echo(f"wrote {output} ({len(res.links)} links, {len(res.joints)} joints, {len(res.frames)} "
                        f"frames, {len(res.sensors)} sensors)", err=True)
+        _keep(robot, report, res, text)
+
+
+_KEPT: list = []
+
+
+def _keep(*made) -> None:
+    """In a one-shot process, what the conversion made stays referenced (from a frozen cycle the
+    final collection skips) until the process ends: freeing the model, the report and the output
+    tree object by object on return and at exit is only work; the OS takes the memory back at once."""
+    if options.ONE_SHOT:
+        _KEPT.extend(made)
+        _KEPT.append(_KEPT)
+        gc.freeze()
 
 
 def _report(notes, quiet):

@@ -178,9 +178,10 @@ def check_errors(robot) -> list:
 def refusals(robot) -> list:
     """Why convert refuses ``robot``: the preflight's own reasons (a tree it cannot walk, a collision
     mesh no reader takes, an <inertial> without <inertia>), then check's errors at other places."""
-    found = problems(robot)
+    tree_found = tree_problems(robot)
+    found = problems(robot, tree_found)
     seen = {p.loc for p in found}
     # the preflight words the tree's faults itself (every root, every second parent): check's T001
     # and T002 would say them again
-    skip = ("T001 ", "T002 ") if tree_problems(robot) else ()
+    skip = ("T001 ", "T002 ") if tree_found else ()
     return found + [p for p in check_errors(robot) if p.loc not in seen and not p.message.startswith(skip or "\0")]

@@ -50,10 +50,18 @@ def num(x: float) -> str:
 # A model repeats its numbers (0, 1, a link's size...): each one's text is formatted once. Keys are
 # floats only; equal floats (0.0 and -0.0 included) have the same text. Bounded for long processes.
 _NUM_TEXT: dict = {}
+_NUMS_TEXT: dict = {}
 _NUM_TEXT_MAX = 1 << 16
 
 
 def nums(values) -> str:
+    if type(values) is tuple:       # a vector as the model holds it (an axis, a size): often repeated
+        s = _NUMS_TEXT.get(values)
+        if s is None:
+            s = " ".join([num(v) for v in values])
+            if len(_NUMS_TEXT) < _NUM_TEXT_MAX:
+                _NUMS_TEXT[values] = s
+        return s
     return " ".join([num(v) for v in values])
 
 

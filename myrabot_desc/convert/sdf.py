@@ -423,8 +423,9 @@ def _emitters(robot, model, host, host_T, kept, notes) -> list:
     """The lights and projectors of the links' <gazebo> blocks, into the SDF link that hosts their
     link (as ``ign sdf -p`` does), the pose carried through fixed-joint lumping; [(emitter, host or None)]."""
     out = []
-    links = {el.get("name"): el for el in model.findall("link")}
-    for e in emitters(robot):
+    found = emitters(robot)
+    links = {el.get("name"): el for el in model.findall("link")} if found else {}
+    for e in found:
         n = host.get(e.reference)
         el = links.get(n) if n in kept else None
         if el is None:

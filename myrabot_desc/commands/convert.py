@@ -12,7 +12,7 @@ from myrabot_desc.commands import options
 from myrabot_desc.commands.common import input_options
 from myrabot_desc.commands.console import guarded, no_mujoco_log
 from myrabot_desc.commands.extras import require
-from myrabot_desc.convert.mjcf import convert_mjcf
+from myrabot_desc.convert.mjcf import check_size, convert_mjcf
 from myrabot_desc.convert.preflight import Problem, problems, refuse_or_record, tree_problems
 from myrabot_desc.convert.report import Report
 from myrabot_desc.convert.sdf import SdfOptions, to_sdf
@@ -95,11 +95,14 @@ def convert_cmd(inputs, target, output, lump, uri_style, layout, base, scene, re
         if target == "mjcf":
             require("mjcf", "convert --to mjcf")
         robot = inputs.load()
+        _keep(robot)
         report = Report(target, str(robot.source) if robot.source else "")
         found = refusals(robot) if robot.links else []
         if not allow_errors:
             refuse_or_record(found, False)
         if target == "mjcf":
+            if robot.links:
+                check_size(robot)       # a model over the limit is refused before importing MuJoCo
             no_mujoco_log()
             result = convert_mjcf(robot, output, base=base, scene="scene.xml" if scene else None, report=report,
                                   allow_errors=allow_errors)
@@ -108,7 +111,7 @@ def convert_cmd(inputs, target, output, lump, uri_style, layout, base, scene, re
             _write_report(report, report_path, quiet)
             if output != "-":
                 click.echo(f"wrote {output} ({result.summary})", err=True)
-            _keep(robot, report, result)
+            _keep(report, result)
             return
         opts = SdfOptions(lump=lump, uri_style=uri_style)
         if target == "world":
@@ -124,7 +127,7 @@ def convert_cmd(inputs, target, output, lump, uri_style, layout, base, scene, re
         if output != "-":
             click.echo(f"wrote {output} ({len(res.links)} links, {len(res.joints)} joints, {len(res.frames)} "
                        f"frames, {len(res.sensors)} sensors)", err=True)
-        _keep(robot, report, res, text)
+        _keep(report, res, text)
 
 
 _KEPT: list = []
@@ -135,8 +138,9 @@ def _keep(*made) -> None:
     final collection skips) until the process ends: freeing the model, the report and the output
     tree object by object on return and at exit is only work; the OS takes the memory back at once."""
     if options.ONE_SHOT:
+        if not _KEPT:
+            _KEPT.append(_KEPT)
         _KEPT.extend(made)
-        _KEPT.append(_KEPT)
         gc.freeze()
 
 

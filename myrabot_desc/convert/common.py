@@ -15,10 +15,17 @@ class Notes:
     """Warnings gathered during a conversion (printed on stderr by the CLI)."""
 
     warnings: list[str] = field(default_factory=list)
+    # the texts already in ``warnings``: a model with a warning per joint (mimics, planar joints)
+    # would otherwise compare each new one with all the others
+    _seen: set = field(default_factory=set, init=False, repr=False, compare=False)
+
+    def __post_init__(self):
+        self._seen.update(self.warnings)
 
     def warn(self, message: str, loc=None) -> None:
         text = f"{loc}: warning: {message}" if loc else f"warning: {message}"
-        if text not in self.warnings:
+        if text not in self._seen:
+            self._seen.add(text)
             self.warnings.append(text)
 
 

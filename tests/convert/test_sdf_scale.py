@@ -164,3 +164,33 @@ def test_mjcf_over_the_body_limit_is_refused_before_mujoco_is_imported(tmp_path)
     p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert "EXIT 2" in p.stdout and "MUJOCO False" in p.stdout, (p.stdout, p.stderr)
     assert "the robot has 5 links, over the 3 that `convert --to mjcf` takes" in p.stderr
+
+
+def test_notes_keep_each_warning_once_in_order():
+    from myrabot_desc.convert.common import Notes
+
+    n = Notes(["warning: first"])
+    for k in (3, 1, 3, 2, 1):
+        n.warn(f"w{k}", f"f.urdf:{k}")
+    n.warn("first")
+    assert n.warnings == ["warning: first", "f.urdf:3: warning: w3", "f.urdf:1: warning: w1",
+                          "f.urdf:2: warning: w2"]
+    assert Notes() == Notes() and repr(Notes()) == "Notes(warnings=[])"
+
+
+def test_dropped_gazebo_elements_numbered_per_reference():
+    from myrabot_desc.convert.common import Notes
+    from myrabot_desc.convert.gazebo import GazeboProps
+
+    src = ('<robot name="r"><link name="a"/><link name="b"/>'
+           + '<gazebo reference="a"><foo>1</foo></gazebo>' * 3 + '<gazebo reference="b"><foo>1</foo></gazebo>'
+           + '</robot>')
+    import tempfile
+    from pathlib import Path
+
+    with tempfile.TemporaryDirectory() as d:
+        p = Path(d) / "r.urdf"
+        p.write_text(src)
+        props = GazeboProps(load_robot(p), Notes())
+    assert [(ref, label) for ref, label, _ in props.dropped] == [("a", "foo"), ("a", "foo #2"), ("a", "foo #3"),
+                                                                  ("b", "foo")]

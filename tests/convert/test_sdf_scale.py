@@ -40,17 +40,29 @@ def _star(n: int) -> str:
 
 
 def _sdf_cpu(tmp_path, n: int) -> tuple[float, str]:
+    """The best of two conversions' CPU, the collector off (a test process's heap is large and
+    unrelated: its passes would be timed with the conversion)."""
+    import gc
+
     src = tmp_path / f"star{n}.urdf"
     src.write_text(_star(n))
-    robot = load_robot(src)
-    with cpu_time() as t:
-        text, res = to_sdf(robot)
-    assert len(res.sensors) == n - 1
-    return t.seconds, text
+    best = math.inf
+    for _ in range(2):
+        robot = load_robot(src)
+        gc.collect()
+        gc.disable()
+        try:
+            with cpu_time() as t:
+                text, res = to_sdf(robot)
+        finally:
+            gc.enable()
+        assert len(res.sensors) == n - 1
+        best = min(best, t.seconds)
+    return best, text
 
 
 def test_sdf_of_a_star_with_a_sensor_on_every_link_grows_linearly(tmp_path):
-    """Four times the links and sensors cost about four times the CPU (quadratic was thirteen)."""
+    """Four times the links and sensors cost about four times the CPU (quadratic was twelve)."""
     _sdf_cpu(tmp_path, 50)                     # imports and first-use caches out of the timing
     small, _ = _sdf_cpu(tmp_path, 600)
     large, text = _sdf_cpu(tmp_path, 2400)

@@ -2,14 +2,17 @@
 
 from __future__ import annotations
 
+import gc
+
 import click
 
 from myrabot_desc.checks import CheckOptions, check_robot
 from myrabot_desc.checks.registry import EXTERNAL, load_all
+from myrabot_desc.commands import options
 from myrabot_desc.commands.common import input_options
 from myrabot_desc.commands.console import guarded, no_mujoco_log
 from myrabot_desc.commands.extras import require
-from myrabot_desc.convert.mjcf import convert_mjcf
+from myrabot_desc.convert.mjcf import check_size, convert_mjcf
 from myrabot_desc.convert.preflight import Problem, problems, refuse_or_record, tree_problems
 from myrabot_desc.convert.report import Report
 from myrabot_desc.convert.sdf import SdfOptions, to_sdf
@@ -84,15 +87,22 @@ def convert_cmd(inputs, target, output, lump, uri_style, layout, base, scene, re
     0 converted; 2 the input could not be processed or has errors (a
     file:line line for each, nothing written).
     """
+    if options.ONE_SHOT:
+        # a process that ends with this conversion: the collector would only rescan the model's
+        # records (no cycles worth finding) over and over while the output is built
+        gc.disable()
     with guarded():
         if target == "mjcf":
             require("mjcf", "convert --to mjcf")
         robot = inputs.load()
+        _keep(robot)
         report = Report(target, str(robot.source) if robot.source else "")
         found = refusals(robot) if robot.links else []
         if not allow_errors:
             refuse_or_record(found, False)
         if target == "mjcf":
+            if robot.links:
+                check_size(robot)       # a model over the limit is refused before importing MuJoCo
             no_mujoco_log()
             result = convert_mjcf(robot, output, base=base, scene="scene.xml" if scene else None, report=report,
                                   allow_errors=allow_errors)
@@ -101,6 +111,7 @@ def convert_cmd(inputs, target, output, lump, uri_style, layout, base, scene, re
             _write_report(report, report_path, quiet)
             if output != "-":
                 click.echo(f"wrote {output} ({result.summary})", err=True)
+            _keep(report, result)
             return
         opts = SdfOptions(lump=lump, uri_style=uri_style)
         if target == "world":
@@ -116,6 +127,21 @@ def convert_cmd(inputs, target, output, lump, uri_style, layout, base, scene, re
         if output != "-":
             click.echo(f"wrote {output} ({len(res.links)} links, {len(res.joints)} joints, {len(res.frames)} "
                        f"frames, {len(res.sensors)} sensors)", err=True)
+        _keep(report, res, text)
+
+
+_KEPT: list = []
+
+
+def _keep(*made) -> None:
+    """In a one-shot process, what the conversion made stays referenced (from a frozen cycle the
+    final collection skips) until the process ends: freeing the model, the report and the output
+    tree object by object on return and at exit is only work; the OS takes the memory back at once."""
+    if options.ONE_SHOT:
+        if not _KEPT:
+            _KEPT.append(_KEPT)
+        _KEPT.extend(made)
+        gc.freeze()
 
 
 def _report(notes, quiet):
@@ -156,9 +182,10 @@ def check_errors(robot) -> list:
 def refusals(robot) -> list:
     """Why convert refuses ``robot``: the preflight's own reasons (a tree it cannot walk, a collision
     mesh no reader takes, an <inertial> without <inertia>), then check's errors at other places."""
-    found = problems(robot)
+    tree_found = tree_problems(robot)
+    found = problems(robot, tree_found)
     seen = {p.loc for p in found}
     # the preflight words the tree's faults itself (every root, every second parent): check's T001
     # and T002 would say them again
-    skip = ("T001 ", "T002 ") if tree_problems(robot) else ()
+    skip = ("T001 ", "T002 ") if tree_found else ()
     return found + [p for p in check_errors(robot) if p.loc not in seen and not p.message.startswith(skip or "\0")]

@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 from lxml import etree
 
 from myrabot_desc.model import values as V
-from myrabot_desc.model.transforms import rpy_of
+from myrabot_desc.model.transforms import EYE3, rpy_of
 
 
 @dataclass
@@ -15,10 +15,17 @@ class Notes:
     """Warnings gathered during a conversion (printed on stderr by the CLI)."""
 
     warnings: list[str] = field(default_factory=list)
+    # the texts already in ``warnings``: a model with a warning per joint (mimics, planar joints)
+    # would otherwise compare each new one with all the others
+    _seen: set = field(default_factory=set, init=False, repr=False, compare=False)
+
+    def __post_init__(self):
+        self._seen.update(self.warnings)
 
     def warn(self, message: str, loc=None) -> None:
         text = f"{loc}: warning: {message}" if loc else f"warning: {message}"
-        if text not in self.warnings:
+        if text not in self._seen:
+            self._seen.add(text)
             self.warnings.append(text)
 
 
@@ -31,14 +38,37 @@ def warn_load_issues(robot, notes: Notes, fate: str = "left out of the conversio
 
 def num(x: float) -> str:
     """Shortest stable text for a float: 12 significant digits, no -0, no 1e-17 noise."""
-    x = float(x)
+    if type(x) is float:
+        s = _NUM_TEXT.get(x)
+        if s is not None:
+            return s
+    else:
+        x = float(x)
     if -1e-12 < x < 1e-12:
         return "0"
     s = f"{x:.12g}"
-    return "0" if s == "-0" else s
+    if s == "-0":
+        s = "0"
+    if len(_NUM_TEXT) < _NUM_TEXT_MAX:
+        _NUM_TEXT[x] = s
+    return s
+
+
+# A model repeats its numbers (0, 1, a link's size...): each one's text is formatted once. Keys are
+# floats only; equal floats (0.0 and -0.0 included) have the same text. Bounded for long processes.
+_NUM_TEXT: dict = {}
+_NUMS_TEXT: dict = {}
+_NUM_TEXT_MAX = 1 << 16
 
 
 def nums(values) -> str:
+    if type(values) is tuple:       # a vector as the model holds it (an axis, a size): often repeated
+        s = _NUMS_TEXT.get(values)
+        if s is None:
+            s = " ".join([num(v) for v in values])
+            if len(_NUMS_TEXT) < _NUM_TEXT_MAX:
+                _NUMS_TEXT[values] = s
+        return s
     return " ".join([num(v) for v in values])
 
 
@@ -50,6 +80,8 @@ def to_float(text, default=None):
 def pose_text(T) -> str:
     """An SDF <pose> text of a transform (see model/transforms.py)."""
     R, p = T
+    if R == EYE3:       # no rotation (signed zeros included): rpy_of's angles are all zeros
+        return nums(p) + " 0 0 0"
     return nums(list(p) + list(rpy_of(R)))
 
 

@@ -41,6 +41,7 @@ class GazeboProps:
         self.preserved = preserved_joints(robot)
         unknown: dict[str, object] = {}
         self.dropped: list[tuple[str, str, object]] = []  # (reference, element with its name, loc), each one
+        self._dropped_labels: set[tuple[str, str]] = set()  # its (reference, label) pairs
         self.commented: list[tuple[str, object]] = []     # (plugin name, node) of classic plugins in blobs
         for block in robot.gazebo:
             ref = block.reference
@@ -77,8 +78,9 @@ class GazeboProps:
         ref = ref or "model"
         label = base = f"{child.tag} '{name}'" if name else child.tag
         k = 2
-        while any(r == ref and lb == label for r, lb, _ in self.dropped):
+        while (ref, label) in self._dropped_labels:
             label, k = f"{base} #{k}", k + 1
+        self._dropped_labels.add((ref, label))
         self.dropped.append((ref, label, child.loc or loc))
 
     def get(self, ref) -> dict[str, str]:

@@ -108,8 +108,11 @@ def triangle_problem(path, size: int | None = None) -> str | None:
     return meshio.unreadable(path)
 
 
-def problems(robot) -> list[Problem]:
-    return tree_problems(robot) + value_problems(robot) + inertial_problems(robot) + mesh_problems(robot)
+def problems(robot, tree_found: list[Problem] | None = None) -> list[Problem]:
+    """Every reason to refuse ``robot``; ``tree_found``: its tree_problems when already known."""
+    if tree_found is None:
+        tree_found = tree_problems(robot)
+    return tree_found + value_problems(robot) + inertial_problems(robot) + mesh_problems(robot)
 
 
 def refuse_or_record(found: list[Problem], allow: bool, report=None, notes=None) -> None:

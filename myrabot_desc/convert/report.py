@@ -92,20 +92,31 @@ class Report:
 
 def seed(report: Report, robot) -> None:
     """Every element of the source, first as 'kept'; the converters then say what changed."""
+    entries = report._entries
+
+    def kept(kind, name, loc, detail=""):
+        # Report.set's rule without its check of the fate: an entry without a loc keeps the old one
+        key = (kind, name)
+        if loc is None:
+            old = entries.get(key)
+            loc = old.loc if old else None
+        entries[key] = Entry(kind, name, "kept", detail, loc)
+
     for link in robot.links.values():
-        report.set("link", link.name, "kept", loc=link.loc)
+        name = link.name
+        kept("link", name, link.loc)
         if link.inertial is not None:
-            report.set("inertial", link.name, "kept", loc=link.inertial.loc)
+            kept("inertial", name, link.inertial.loc)
         for k, v in enumerate(link.visuals):
-            report.set("visual", part_name(link.name, k), "kept", loc=v.loc)
+            kept("visual", part_name(name, k), v.loc)
         for k, c in enumerate(link.collisions):
-            report.set("collision", part_name(link.name, k), "kept", loc=c.loc)
+            kept("collision", part_name(name, k), c.loc)
     for j in robot.joints.values():
-        report.set("joint", j.name, "kept", loc=j.loc)
+        kept("joint", j.name, j.loc)
         if j.mimic is not None:
-            report.set("mimic", j.name, "kept", f"of '{j.mimic.joint}'", loc=j.loc)
+            kept("mimic", j.name, j.loc, f"of '{j.mimic.joint}'")
     for t in robot.transmissions:
-        report.set("transmission", t.name or "?", "kept", loc=t.loc)
+        kept("transmission", t.name or "?", t.loc)
 
 
 def part_name(link: str, k: int) -> str:

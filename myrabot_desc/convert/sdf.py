@@ -20,6 +20,8 @@ from myrabot_desc.convert.common import (
     Notes,
     comment,
     element_of,
+    num,
+    nums,
     pose_text,
     pretty,
     sub,
@@ -47,6 +49,9 @@ from myrabot_desc.model.transforms import (
 )
 
 SDF_VERSION = "1.9"
+# the per-link and per-joint elements are made with lxml's own call: sub()'s conversions are for
+# values of any type, these are known
+_SE = etree.SubElement
 # Placeholder for massless links: 1 g with the inertia of a 5 cm sphere. Enough for DART to
 # treat the body as regular, negligible next to any real part of a robot.
 TINY_MASS = 1e-3
@@ -84,12 +89,12 @@ def _inertial_el(parent, members, host_T, repairs, repairs_by_link):
         parts.append((ine, compose(host_T[m.name], pose_T(ine.origin)), tensor))
     if not parts:
         return None
-    el = sub(parent, "inertial")
+    el = _SE(parent, "inertial")
     if len(parts) == 1:
         ine, T, t = parts[0]
         if not is_identity(T):
-            sub(el, "pose", pose_text(T))
-        sub(el, "mass", ine.mass)
+            _SE(el, "pose").text = pose_text(T)
+        _SE(el, "mass").text = num(ine.mass)
     else:
         # parallel axis theorem about the combined centre of mass, in the host link's axes
         M = sum(i.mass for i, _, _ in parts)
@@ -106,18 +111,22 @@ def _inertial_el(parent, members, host_T, repairs, repairs_by_link):
         if not is_identity(T):
             sub(el, "pose", pose_text(T))
         sub(el, "mass", M)
-    inertia = sub(el, "inertia")
-    for k, (a, b) in (("ixx", (0, 0)), ("ixy", (0, 1)), ("ixz", (0, 2)), ("iyy", (1, 1)), ("iyz", (1, 2)),
-                      ("izz", (2, 2))):
-        sub(inertia, k, t[a][b])
+    inertia = _SE(el, "inertia")
+    (xx, xy, xz), (_, yy, yz), (_, _, zz) = t
+    _SE(inertia, "ixx").text = num(xx)
+    _SE(inertia, "ixy").text = num(xy)
+    _SE(inertia, "ixz").text = num(xz)
+    _SE(inertia, "iyy").text = num(yy)
+    _SE(inertia, "iyz").text = num(yz)
+    _SE(inertia, "izz").text = num(zz)
     return el
 
 
 def _geometry_el(parent, geo, uris):
-    g = sub(parent, "geometry")
+    g = _SE(parent, "geometry")
     kind = getattr(geo, "kind", None)
     if kind == "box":
-        sub(sub(g, "box"), "size", geo.size)
+        _SE(_SE(g, "box"), "size").text = nums(geo.size)
     elif kind == "cylinder":
         c = sub(g, "cylinder")
         sub(c, "radius", geo.radius)
@@ -220,20 +229,24 @@ def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = Non
     sensor_outs.extend(systems.sensors)
 
     parent_joint = {j.child: j for j in emitted_joints}
+    kept_set = set(kept)
+    link_sensors: dict[str, list] = {}              # host link -> its sensors, in sensor_outs' order
+    for so in sensor_outs:
+        if so.link in host and host[so.link] in kept_set:
+            link_sensors.setdefault(host[so.link], []).append(so)
     massless = []
     repairs = []
     repairs_by_link: dict[str, str] = {}
     sensor_names = []
     for n in kept:
-        link = robot.links[n]
-        el = sub(model, "link", name=n)
+        el = _SE(model, "link", name=n)
         pj = parent_joint.get(n)
         if pj is not None and pj.type not in ("floating", "planar"):
             if pj.parent in world_links:
                 if not pj.origin.is_identity:
-                    sub(el, "pose", pose_text(pose_T(pj.origin)))
+                    _SE(el, "pose").text = pose_text(pose_T(pj.origin))
             else:
-                sub(el, "pose", relative_to=joint_names[pj.name])
+                _SE(el, "pose", relative_to=joint_names[pj.name])
         props.apply_link(el, n)
         if _inertial_el(el, members[n], host_T, repairs, repairs_by_link) is None:
             massless.append(n)
@@ -265,38 +278,37 @@ def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = Non
                 if c.geometry is None:
                     continue
                 cname = _part_name(n, m.name, c.name, "collision", k, lumped)
-                ce = sub(el, "collision", name=cname)
+                ce = _SE(el, "collision", name=cname)
                 P = compose(T, pose_T(c.origin))
                 if not is_identity(P):
-                    sub(ce, "pose", pose_text(P))
+                    _SE(ce, "pose").text = pose_text(P)
                 _geometry_el(ce, c.geometry, uris)
                 props.apply_collision(ce, m.name)
         link_sensor_names: set[str] = set()
-        for so in sensor_outs:
-            if so.link in host and host[so.link] == n:
-                for text in so.comments:
-                    comment(el, text)
-                se = so.sdf
-                if se is None:
-                    continue
-                P = compose(host_T[so.link], so.T)
-                old = se.find("pose")
-                if old is not None:
-                    se.remove(old)
-                if not is_identity(P):
-                    se.insert(0, etree.Element("pose"))
-                    se[0].text = pose_text(P)
-                base, k = se.get("name") or "sensor", 2
-                while se.get("name") in link_sensor_names:      # sdformat: unique in a link
-                    se.set("name", f"{base}_{k}")
-                    k += 1
-                if se.get("name") != base:
-                    notes.warn(f"two sensors named '{base}' on link '{n}': the second is '{se.get('name')}'")
-                link_sensor_names.add(se.get("name"))
-                el.append(se)
-                sensor_names.append(se.get("name"))
+        for so in link_sensors.get(n, ()):
+            for text in so.comments:
+                comment(el, text)
+            se = so.sdf
+            if se is None:
+                continue
+            P = compose(host_T[so.link], so.T)
+            old = se.find("pose")
+            if old is not None:
+                se.remove(old)
+            if not is_identity(P):
+                se.insert(0, etree.Element("pose"))
+                se[0].text = pose_text(P)
+            base, k = se.get("name") or "sensor", 2
+            while se.get("name") in link_sensor_names:      # sdformat: unique in a link
+                se.set("name", f"{base}_{k}")
+                k += 1
+            if se.get("name") != base:
+                notes.warn(f"two sensors named '{base}' on link '{n}': the second is '{se.get('name')}'")
+            link_sensor_names.add(se.get("name"))
+            el.append(se)
+            sensor_names.append(se.get("name"))
     for so in sensor_outs:
-        if so.link not in host or host[so.link] not in kept:
+        if so.link not in host or host[so.link] not in kept_set:
             notes.warn(f"sensor on '{so.link}' dropped: that link is not in the model")
     emitter_fates = _emitters(robot, model, host, host_T, kept, notes)
     if props.commented:
@@ -326,31 +338,31 @@ def build_model(robot, opts: SdfOptions | None = None, notes: Notes | None = Non
             continue
         if j.child in world_links:
             continue
-        type_ = {"continuous": "revolute"}.get(j.type, j.type)
-        je = sub(model, "joint", name=jn, type=type_)
+        type_ = "revolute" if j.type == "continuous" else j.type
+        je = _SE(model, "joint", name=jn, type=type_)
         if j.parent in world_links:
             parent = "world"
         else:
             parent = host[j.parent]
-            sub(je, "pose", pose_text(compose(host_T[j.parent], pose_T(j.origin))), relative_to=parent)
-        sub(je, "parent", parent)
-        sub(je, "child", j.child)
+            _SE(je, "pose", relative_to=parent).text = pose_text(compose(host_T[j.parent], pose_T(j.origin)))
+        _SE(je, "parent").text = parent
+        _SE(je, "child").text = j.child
         axis = None
         if j.type != "fixed":
-            axis = sub(je, "axis")
-            sub(axis, "xyz", j.axis)
+            axis = _SE(je, "axis")
+            _SE(axis, "xyz").text = nums(j.axis)
             lim = j.limit
             if lim is not None:
-                le = etree.Element("limit")
-                if j.type != "continuous" and lim.lower is not None and lim.upper is not None:
-                    sub(le, "lower", lim.lower)
-                    sub(le, "upper", lim.upper)
-                if lim.effort is not None:
-                    sub(le, "effort", lim.effort)
-                if lim.velocity is not None:
-                    sub(le, "velocity", lim.velocity)
-                if len(le):
-                    axis.append(le)
+                bounds = j.type != "continuous" and lim.lower is not None and lim.upper is not None
+                if bounds or lim.effort is not None or lim.velocity is not None:
+                    le = _SE(axis, "limit")
+                    if bounds:
+                        _SE(le, "lower").text = num(lim.lower)
+                        _SE(le, "upper").text = num(lim.upper)
+                    if lim.effort is not None:
+                        _SE(le, "effort").text = num(lim.effort)
+                    if lim.velocity is not None:
+                        _SE(le, "velocity").text = num(lim.velocity)
             if j.dynamics is not None and (j.dynamics.damping or j.dynamics.friction):
                 d = sub(axis, "dynamics")
                 sub(d, "damping", j.dynamics.damping)
@@ -411,8 +423,9 @@ def _emitters(robot, model, host, host_T, kept, notes) -> list:
     """The lights and projectors of the links' <gazebo> blocks, into the SDF link that hosts their
     link (as ``ign sdf -p`` does), the pose carried through fixed-joint lumping; [(emitter, host or None)]."""
     out = []
-    links = {el.get("name"): el for el in model.findall("link")}
-    for e in emitters(robot):
+    found = emitters(robot)
+    links = {el.get("name"): el for el in model.findall("link")} if found else {}
+    for e in found:
         n = host.get(e.reference)
         el = links.get(n) if n in kept else None
         if el is None:
@@ -475,6 +488,7 @@ def _report_sdf(robot, report, opts, host, world_links, frame_names, joint_names
     """The fate of every source element in the SDF (seed() marked them all kept)."""
 
     lumped = {j.name for j in lumped_joints}
+    massless = set(massless)
     for n, link in robot.links.items():
         if n in world_links:
             report.set("link", n, "translated", "the URDF 'world' link is the SDF world: joints to it attach there")

@@ -287,7 +287,13 @@ def _imu_body(p):
 
 def _imu_sensor(robot, link):
     """The first SDF ``<sensor type="imu">`` on a link, or None."""
-    return next((s for s in robot.sensors() if s.dialect == "sdf" and s.type == "imu" and s.reference == link), None)
+    def build():
+        out: dict = {}
+        for s in robot.sensors():
+            if s.dialect == "sdf" and s.type == "imu":
+                out.setdefault(s.reference, s)
+        return out
+    return robot.derive("convert.imu_sensors", build).get(link)
 
 
 def imu_sensor_on(p, robot) -> str | None:
@@ -300,8 +306,15 @@ def imu_sensor_on(p, robot) -> str | None:
 def _folded_imu_plugins(sensor, robot):
     if sensor.type != "imu" or _imu_sensor(robot, sensor.reference) is not sensor:
         return ()
-    return tuple(p for g in robot.gazebo for p in g.plugins
-                 if P.kind(p) == "imu" and _imu_body(p) == sensor.reference)
+
+    def build():        # body -> its IMU plugins, in document order
+        out: dict = {}
+        for g in robot.gazebo:
+            for p in g.plugins:
+                if P.kind(p) == "imu":
+                    out.setdefault(_imu_body(p), []).append(p)
+        return out
+    return tuple(robot.derive("convert.imu_plugins", build).get(sensor.reference, ()))
 
 
 def imu_from_plugin(p, robot, notes) -> SensorOut | None:

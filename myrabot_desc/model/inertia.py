@@ -88,6 +88,12 @@ def repaired(ine) -> tuple[Mat3, bool]:
     I = tensor(ine)
     if ine.mass <= 0:
         return I, False
+    if ine.ixy == 0.0 and ine.ixz == 0.0 and ine.iyz == 0.0:
+        # a diagonal tensor (most URDF inertias) that is no point mass and needs no repair: the
+        # tests below on eigh3's sort of the same three floats, without the decomposition
+        a, b, c = sorted((float(ine.ixx), float(ine.iyy), float(ine.izz)))
+        if a > 0 and c > 1e-12 and not a + b < c - 1e-9 * c:
+            return I, False
     if max(abs(x) for r in I for x in r) <= 1e-12:
         # a point mass: give it the inertia of a solid sphere of water of that mass
         r = (3 * ine.mass / (4 * math.pi * 1000.0)) ** (1 / 3)

@@ -71,7 +71,7 @@ def convert_mjcf(robot, output: str, base: str = "auto", scene: str | None = "sc
     notes = Notes()
     if not robot.links:
         raise InputError("the model has no links: nothing to convert", robot.loc)
-    _check_size(robot)
+    check_size(robot)
     report = report if report is not None else Report("mjcf")
     seed(report, robot)
     warn_load_issues(robot, notes, "the URDF default used in its place")
@@ -186,7 +186,7 @@ def _print_safe_inertias(mujoco, spec, model) -> None:
         body.explicitinertial = True
 
 
-def _check_size(robot) -> None:
+def check_size(robot) -> None:
     """Refuse a body chain MuJoCo cannot take, or more bodies than the limit, before spending
     seconds in its compiler: MuJoCo's compile and the search for bodies touching at rest grow
     faster than the link count."""

@@ -62,11 +62,12 @@ def _sdf_cpu(tmp_path, n: int) -> tuple[float, str]:
 
 
 def test_sdf_of_a_star_with_a_sensor_on_every_link_grows_linearly(tmp_path):
-    """Four times the links and sensors cost about four times the CPU (quadratic was twelve)."""
+    """Four times the links and sensors cost about four times the CPU (quadratic was twelve; the
+    limit leaves room for a loaded machine, where linear code measured up to 7.6)."""
     _sdf_cpu(tmp_path, 50)                     # imports and first-use caches out of the timing
     small, _ = _sdf_cpu(tmp_path, 600)
     large, text = _sdf_cpu(tmp_path, 2400)
-    assert large / small < 7.5, (small, large)
+    assert large / small < 9, (small, large)
     assert text.count("<sensor ") == 2399 and '<sensor name="imu2399" type="imu">' in text
 
 

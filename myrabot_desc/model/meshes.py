@@ -356,13 +356,28 @@ def vertices(path: Path, loc=None):
                 v = rec["v"].reshape(-1, 3).astype(np.float64)
                 if not np.isfinite(v).all():
                     raise MeshError(f"{path.name} has vertices that are not finite numbers (NaN or inf)")
-                return np.unique(v, axis=0)
+                return unique_rows(v)
         v, _f = _triangles(path, path.suffix.lower())    # the lean readers; trimesh for other formats
     except OSError as exc:
         raise InputError(f"mesh cannot read {path.name}: {exc.strerror}", loc) from None
     except MeshError as exc:
         raise InputError(f"mesh {exc}", loc) from None
     return np.asarray(v)
+
+
+def unique_rows(v):
+    """``np.unique(v, axis=0)`` of finite (n, 3) points, bit for bit, by one lexsort: several times
+    faster on small meshes (numpy sorts the rows as records). A -0.0 makes the representative of
+    equal rows depend on numpy's sort, so such an array goes to numpy itself."""
+    import numpy as np
+
+    if len(v) == 0 or (np.signbit(v) & (v == 0)).any():
+        return np.unique(v, axis=0)
+    s = v[np.lexsort((v[:, 2], v[:, 1], v[:, 0]))]
+    keep = np.empty(len(s), dtype=bool)
+    keep[0] = True
+    keep[1:] = (s[1:] != s[:-1]).any(axis=1)
+    return s[keep]
 
 
 def _NoFiles():

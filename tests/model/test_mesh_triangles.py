@@ -93,3 +93,23 @@ def test_check_inertia_of_an_obj_robot_imports_no_trimesh():
     p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300, cwd=ROOT)
     assert "meshes themselves do not touch" in p.stdout and "LeftWristYawLink overlaps" in p.stdout
     assert p.stderr.split()[-2:] == ["0", "False"], p.stderr[-500:]     # warnings only: exit 0
+
+
+def test_unique_rows_is_numpys_bit_for_bit():
+    """meshes.unique_rows (the binary STL path of ``vertices``) gives np.unique(axis=0)'s array, in
+    its order and bits, with duplicates, ties on the first columns, -0.0 and an empty array."""
+    rng = np.random.default_rng(7)
+    cases = [np.zeros((0, 3)), np.array([[1.0, 2.0, 3.0]])]
+    for n in (2, 10, 200, 5000):
+        grid = rng.integers(-3, 4, size=(n, 3)).astype(float) * 0.25        # many equal rows and ties
+        cases += [grid, grid + rng.normal(0, 1e-9, size=grid.shape), rng.normal(size=(n, 3))]
+    signed = cases[3].copy()
+    signed[::7, 0] = -0.0
+    cases.append(signed)
+    for v in cases:
+        want, got = np.unique(v, axis=0), meshes.unique_rows(v)
+        assert got.shape == want.shape and got.tobytes() == want.tobytes()
+    for path in SAMPLE:
+        if path.suffix.lower() == ".stl":
+            v = meshes.triangles(path)[0]
+            assert meshes.unique_rows(v).tobytes() == np.unique(v, axis=0).tobytes()

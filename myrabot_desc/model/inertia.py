@@ -94,6 +94,12 @@ def repaired(ine) -> tuple[Mat3, bool]:
         a, b, c = sorted((float(ine.ixx), float(ine.iyy), float(ine.izz)))
         if a > 0 and c > 1e-12 and not a + b < c - 1e-9 * c:
             return I, False
+    return decomposed_repair(ine, I)
+
+
+def decomposed_repair(ine, I) -> tuple[Mat3, bool]:
+    """``repaired`` of a massive Inertial ``ine`` (tensor ``I``) by the eigen-decomposition: every
+    tensor, diagonal ones included (the shortcut above gives its answer without it)."""
     if max(abs(x) for r in I for x in r) <= 1e-12:
         # a point mass: give it the inertia of a solid sphere of water of that mass
         r = (3 * ine.mass / (4 * math.pi * 1000.0)) ** (1 / 3)
@@ -110,6 +116,8 @@ def repaired(ine) -> tuple[Mat3, bool]:
     a, b, c = w
     if a + b < c - tol:
         f = c / (a + b) * (1 + 1e-9)    # a hair over, so rounding never lands below
+        if math.isinf(f):               # subnormal a and b: c / (a + b) overflows, their shares do not
+            a, b, f = a / (a + b), b / (a + b), c * (1 + 1e-9)
         # A rod (moments 1.4e-15, 1.256e-4, 1.2560011e-4): raised alike, the smallest stays
         # negligible and the hair over makes b exceed c by more than a, breaking b <= a + c; and
         # 1.4e-15 is written as 0. The smallest gets a floor of 1e-6 of the largest, a margin on

@@ -12,6 +12,7 @@ import subprocess
 import sys
 from types import SimpleNamespace
 
+import pytest
 from click.testing import CliRunner
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -22,7 +23,7 @@ from myrabot_desc.commands.main import main
 from myrabot_desc.convert import common
 from myrabot_desc.convert.common import num, nums
 from myrabot_desc.convert.sdf import to_sdf
-from myrabot_desc.model.inertia import MIN_FRACTION, eigh3, from_eigen, repaired, tensor
+from myrabot_desc.model.inertia import decomposed_repair, repaired, tensor
 from myrabot_desc.model.loader import load_robot
 
 
@@ -101,27 +102,7 @@ def test_num_cache_is_bounded(monkeypatch):
 def _repaired_by_decomposition(ine):
     """model/inertia.repaired without its diagonal shortcut: every tensor through eigh3."""
     I = tensor(ine)
-    if ine.mass <= 0:
-        return I, False
-    if max(abs(x) for r in I for x in r) <= 1e-12:
-        r = (3 * ine.mass / (4 * math.pi * 1000.0)) ** (1 / 3)
-        m = 0.4 * ine.mass * r * r
-        return ((m, 0.0, 0.0), (0.0, m, 0.0), (0.0, 0.0, m)), True
-    w, V = eigh3(I)
-    scale = max(max(abs(x) for x in w), 1e-12)
-    tol = 1e-9 * scale
-    changed = False
-    if w[0] <= 0:
-        w = [max(x, MIN_FRACTION * scale) for x in w]
-        changed = True
-    a, b, c = w
-    if a + b < c - tol:
-        f = c / (a + b) * (1 + 1e-9)
-        w = [max(a * f, MIN_FRACTION * c), b * f, c]
-        changed = True
-    if not changed:
-        return I, False
-    return from_eigen(w, V), True
+    return (I, False) if ine.mass <= 0 else decomposed_repair(ine, I)
 
 
 moment = st.one_of(st.floats(-1.0, 10.0, allow_nan=False), st.sampled_from([0.0, -0.0, 1e-13, 1e-12, 2e-12, 1.0]))
@@ -132,6 +113,15 @@ moment = st.one_of(st.floats(-1.0, 10.0, allow_nan=False), st.sampled_from([0.0,
 def test_repaired_diagonal_shortcut_gives_the_decomposition_answer(xx, yy, zz, mass):
     ine = SimpleNamespace(mass=mass, ixx=xx, ixy=0.0, ixz=0.0, iyy=yy, iyz=0.0, izz=zz)
     assert repaired(ine) == _repaired_by_decomposition(ine)
+    assert all(math.isfinite(x) for row in repaired(ine)[0] for x in row)
+
+
+def test_subnormal_moments_are_repaired_to_finite_numbers():
+    """A rod whose two small moments are subnormal (c / (a + b) overflows) gets c shared as any rod."""
+    ine = SimpleNamespace(mass=1.0, ixx=1.0, ixy=0.0, ixz=0.0, iyy=5e-324, iyz=0.0, izz=5e-324)
+    (t, changed) = repaired(ine)
+    assert changed and all(math.isfinite(x) for row in t for x in row)
+    assert sorted(t[k][k] for k in range(3)) == pytest.approx([0.5, 0.5, 1.0], rel=1e-6)
 
 
 def test_repaired_diagonal_edges():

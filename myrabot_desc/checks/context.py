@@ -7,7 +7,7 @@ from dataclasses import dataclass
 from myrabot_desc.diagnostics import Loc
 from myrabot_desc.model import shapes as geometry
 from myrabot_desc.model import tree
-from myrabot_desc.model.kinematics import world_transforms
+from myrabot_desc.model.kinematics import rest_poses, world_transforms
 
 
 @dataclass
@@ -52,6 +52,12 @@ class Context:
     def world(self) -> dict:
         """link -> 4x4 world pose at q = 0 with the root at the origin."""
         return self.fact("world", lambda: world_transforms(self.robot))
+
+    @property
+    def poses(self) -> dict:
+        """link -> (R, p) world pose at q = 0 (model/transforms.py), pure Python: ``world`` without
+        numpy, for the rules that need a few frames of an ordinary robot."""
+        return rest_poses(self.robot)
 
     @property
     def tree_ok(self) -> bool:

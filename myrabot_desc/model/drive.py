@@ -50,6 +50,7 @@ from myrabot_desc.errors import InputError
 from myrabot_desc.expand.packages import resource_roots
 from myrabot_desc.expand.yaml_load import load_path
 from myrabot_desc.model import values as V
+from myrabot_desc.model.kinematics import rest_poses
 from myrabot_desc.model.shapes import surface_points
 from myrabot_desc.model.transforms import IDENTITY, compose, pose_T, rotate
 from myrabot_desc.safety import display, limit
@@ -538,22 +539,8 @@ def is_mobile(robot) -> bool:
 
 # ------------------------------------------------------------------ geometry (pure Python)
 def link_transforms(robot) -> dict:
-    """World transform (R, p) of every link at q = 0 with each root at the origin (built once)."""
-    def build():
-        out = {}
-        todo = list(robot.roots)
-        for r in todo:
-            out[r] = IDENTITY
-        children = robot.joints_by_parent()
-        while todo:
-            link = todo.pop()
-            for j in children.get(link, []):
-                if j.child in out:
-                    continue
-                out[j.child] = compose(out[link], pose_T(j.origin))
-                todo.append(j.child)
-        return out
-    return robot.derive("drive.link_transforms", build)
+    """World transform (R, p) of every link at q = 0 with the root at the origin (model/kinematics)."""
+    return rest_poses(robot)
 
 
 def _unit(v):

@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING
 
 from myrabot_desc.errors import InputError
 from myrabot_desc.model.parts import Joint, Pose, Robot
+from myrabot_desc.model.transforms import IDENTITY, Tf, compose, pose_T
 
 if TYPE_CHECKING:
     import numpy as np
@@ -155,6 +156,22 @@ def world_transforms(robot: Robot, q: dict[str, float] | None = None, root_pose:
             robot.derived["world_transforms"] = cached
         return dict(cached[1])
     return _world_transforms(robot, q, root_pose)
+
+
+def rest_poses(robot: Robot) -> dict[str, Tf]:
+    """``world_transforms(robot)`` in pure Python: link -> (R, p) (model/transforms.py) at q = 0 with
+    the root at the origin, built once per robot. The same walk places the same links by the same
+    joints; the products round as Python's floats do (within an ulp or so of numpy's stacked ones).
+    What check's rules, the drive model and convert read of an ordinary robot: importing numpy for a
+    few hundred 4x4 products costs more than the rules themselves."""
+    def build():
+        order, via, _ = robot.derive("kinematics.walk", lambda: _walk(robot, robot.joints_by_parent()))
+        out: dict[str, Tf] = {}
+        for link in order:
+            j = via[link]
+            out[link] = IDENTITY if j is None else compose(out[j.parent], pose_T(j.origin))
+        return out
+    return robot.derive("kinematics.rest_poses", build)
 
 
 def _at_zero(robot: Robot, q: dict) -> bool:

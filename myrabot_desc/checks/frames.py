@@ -8,6 +8,7 @@ from myrabot_desc.checks.rule import Finding, Fix, FixInfo, InsertAfter, InsertI
 from myrabot_desc.checks.urdf_syntax import local, suggest
 from myrabot_desc.model import values as V
 from myrabot_desc.model.gazebo import preserved_joints
+from myrabot_desc.model.transforms import matmul3, transpose3
 
 FRAME_PARAMS = ("bodyName", "frameName", "frameId", "frame_name", "robotBaseFrame", "robot_base_frame",
                 "gz_frame_id", "ignition_frame_id", "optical_frame_id")
@@ -183,10 +184,8 @@ def optical_frame(ctx):
     plugin's frameName / frame_name. A frame named `*_optical_frame` (or `*_optical`) is judged
     by its name too, camera plugin or not: under its parent it needs that rotation.
     """
-    import numpy as np
-
     r = ctx.robot
-    W = ctx.world
+    W = ctx.poses
     judged = set()
     for s in r.sensors():
         if not _is_camera(s) or s.reference not in W:
@@ -195,45 +194,49 @@ def optical_frame(ctx):
         if frame not in W:
             continue                     # S002 reports unknown frames
         judged.add(frame)
-        R = W[s.reference][:3, :3].T @ W[frame][:3, :3]      # frame axes in the sensor link's frame
-        z, x = R[:, 2], R[:, 0]
-        if z @ np.array([1.0, 0, 0]) > 0.98 and x @ np.array([0, -1.0, 0]) > 0.98:
+        R = matmul3(transpose3(W[s.reference][0]), W[frame][0])      # frame axes in the sensor link's frame
+        z, x = [row[2] for row in R], [row[0] for row in R]
+        if _optical(z, x):
             continue
         loc = next((p.loc for p in s.plugins if p.loc), s.loc)
         yield Finding(f"camera {s.name} stamps images in {frame} ({how}), whose z axis is "
                       f"({_r(z[0])} {_r(z[1])} {_r(z[2])}) in {s.reference}; the camera looks along {s.reference}'s +x, "
                       f"so the image frame should be an optical frame (z forward): add a frame with "
                       f"rpy=\"-1.5708 0 -1.5708\" under {s.reference} and use it (REP-103)", loc,
-                      {"sensor": s.name, "frame": frame, "z_axis": z.tolist(),
+                      {"sensor": s.name, "frame": frame, "z_axis": z,
                        "fix": {"parent": s.reference, "rpy": [-math.pi / 2, 0.0, -math.pi / 2]}},
                       fix=_optical_fix(r, s, how))
     yield from _named_optical_frames(r, W, judged)
+
+
+def _optical(z, x) -> bool:
+    """Are these the axes of a REP-103 optical frame in a body frame: z along +x, x along -y?"""
+    return z[0] > 0.98 and -x[1] > 0.98
 
 
 def _named_optical_frames(r, W, judged):
     """S003 by REP-103's naming: a frame named ``*_optical_frame`` (or ``*_optical``) is an optical
     frame whatever plugin uses it, so under a body frame (x forward) its z is the parent's +x and its
     x the parent's -y. A frame under another optical frame (same axes) passes."""
-    import numpy as np
-
     for name in r.links:
         if name in judged or name not in W or not name.endswith(("_optical_frame", "_optical")):
             continue
         pj = r.parent_joint(name)
         if pj is None or pj.parent not in W:
             continue
-        R = W[pj.parent][:3, :3].T @ W[name][:3, :3]
-        z, x = R[:, 2], R[:, 0]
-        if z @ np.array([1.0, 0, 0]) > 0.98 and x @ np.array([0, -1.0, 0]) > 0.98:
+        R = matmul3(transpose3(W[pj.parent][0]), W[name][0])
+        z, x = [row[2] for row in R], [row[0] for row in R]
+        if _optical(z, x):
             continue
-        if pj.parent.endswith(("_optical_frame", "_optical")) and np.allclose(R, np.eye(3), atol=0.02):
-            continue
+        if pj.parent.endswith(("_optical_frame", "_optical")) and all(
+                abs(R[i][k] - (1.0 if i == k else 0.0)) <= 0.02 + 1e-05 * (i == k) for i in range(3) for k in range(3)):
+            continue                     # np.allclose(R, I, atol=0.02)'s test
         yield Finding(f"frame {name} is named as a REP-103 optical frame (z forward, x right, y down), but its z "
                       f"axis is ({_r(z[0])} {_r(z[1])} {_r(z[2])}) and its x axis ({_r(x[0])} {_r(x[1])} {_r(x[2])}) "
                       f"in {pj.parent} (joint {pj.name}); under a body frame (x forward) it needs "
                       f"rpy=\"-1.5708 0 -1.5708\" (z along {pj.parent}'s +x, x along its -y)", pj.loc,
-                      {"frame": name, "parent": pj.parent, "joint": pj.name, "z_axis": z.tolist(),
-                       "x_axis": x.tolist(), "fix": {"parent": pj.parent, "rpy": [-math.pi / 2, 0.0, -math.pi / 2]}})
+                      {"frame": name, "parent": pj.parent, "joint": pj.name, "z_axis": z,
+                       "x_axis": x, "fix": {"parent": pj.parent, "rpy": [-math.pi / 2, 0.0, -math.pi / 2]}})
 
 
 def _optical_fix(robot, sensor, how: str) -> Fix | None:

@@ -10,11 +10,12 @@ from myrabot_desc.checks.rule import Finding, Fix, FixInfo, InsertAfter, SetValu
 from myrabot_desc.errors import InputError
 from myrabot_desc.model import drive as D
 from myrabot_desc.model.inertia import principal_moments
-from myrabot_desc.model.kinematics import center_of_mass, pose_matrix
+from myrabot_desc.model.kinematics import center_of_mass
 from myrabot_desc.model.parts import JOINT_TYPES
 from myrabot_desc.model.pin_model import MAX_DOF
 from myrabot_desc.model.shapes import surface_points
-from myrabot_desc.model.support import lowest, placed_collisions, signed_distance, stance
+from myrabot_desc.model.support import collision_shapes, lowest, signed_distance, stance
+from myrabot_desc.model.transforms import compose, pose_T
 from myrabot_desc.model.tree import MAX_TREE_DEPTH, depth
 
 _FINGER = """<link name="finger">{inertial}</link>
@@ -31,9 +32,23 @@ SPAWN_TOL = 0.002        # m: penetration Gazebo resolves without a visible jump
 
 
 def _collision_world(ctx):
-    """model/support.placed_collisions with check's mesh cache (mesh shapes only with --inertia/--meshes)."""
+    """(link, collision item, world pose (R, p), mesh) of every collision shape at q = 0
+    (model/support.collision_shapes; mesh shapes only with --inertia/--meshes, from check's cache)."""
+    P = ctx.poses
+    for link, it, mesh in collision_shapes(ctx.robot, P, (lambda g, loc: ctx.mesh(g)) if ctx.opts.load_meshes else None):
+        yield link, it, compose(P[link.name], pose_T(it.origin)), mesh
 
-    return placed_collisions(ctx.robot, ctx.world, (lambda g, loc: ctx.mesh(g)) if ctx.opts.load_meshes else None)
+
+def _placed_points(g, pose, n: int, mesh):
+    """``surface_points(g, n, mesh)`` placed by the world pose (R, p): [(x, y, z)]."""
+    (r0, r1, r2), p = pose
+    pts = surface_points(g, n, mesh)
+    return [(r0[0] * x + r0[1] * y + r0[2] * z + p[0], r1[0] * x + r1[1] * y + r1[2] * z + p[1],
+             r2[0] * x + r2[1] * y + r2[2] * z + p[2]) for x, y, z in (pts.tolist() if hasattr(pts, "tolist") else pts)]
+
+
+def _sign(x: float) -> float:
+    return 1.0 if x > 0 else -1.0 if x < 0 else x
 
 
 def support(ctx):
@@ -41,7 +56,7 @@ def support(ctx):
     use), or None without collision geometry or mass."""
 
     return ctx.fact("support", lambda: stance(ctx.robot, meshes=ctx.mesh if ctx.opts.load_meshes else False,
-                                              world=ctx.world), meshes=True)
+                                              world=ctx.poses), meshes=True)
 
 
 @rule("P001", "static-support", "error",
@@ -75,7 +90,7 @@ def static_support(ctx):
     d = signed_distance(hull, com[:2])
     if d >= 0.005 or (len(hull) >= 3 and d > 0):
         return
-    data = {"com": com.tolist(), "contacts": names, "polygon": [list(p) for p in hull], "distance": d}
+    data = {"com": list(com), "contacts": names, "polygon": [list(p) for p in hull], "distance": d}
     if len(hull) <= 2:
         xs = sorted({round(p[0], 4) for p in hull})
         line = f" (x {xs[0]:.3g})" if len(xs) == 1 else ""
@@ -108,46 +123,46 @@ def _caster_fix(ctx, hull, com, zmin) -> Fix | None:
     """P001's fix for two wheels on a line: a caster under the link the wheels hang from, on the side
     of the centre of mass, 80% of the way from the axle to that side's edge of the body, touching the
     ground (placed in that link's frame, so a fix that raises the link keeps it on the ground)."""
-    import numpy as np
-
     r = ctx.robot
     wheel_joints = [r.joints[n] for n in D.wheel_joints(r) if n in r.joints]
     parents = {j.parent for j in wheel_joints}
     if len(parents) != 1 or len(wheel_joints) < 2:
         return None
     parent = parents.pop()
-    if parent not in ctx.world:
+    if parent not in ctx.poses:
         return None
-    p0, p1 = np.asarray(hull[0], float), np.asarray(hull[1], float)
-    u = p1 - p0
-    if np.linalg.norm(u) < 1e-6:
+    (x0, y0), (x1, y1) = hull[0], hull[1]
+    ux, uy = x1 - x0, y1 - y0
+    norm = math.sqrt(ux * ux + uy * uy)
+    if norm < 1e-6:
         return None
-    u /= np.linalg.norm(u)
-    n = np.array([-u[1], u[0]])
-    side = np.sign((com[:2] - p0) @ n) or -1.0
+    ux, uy = ux / norm, uy / norm
+    nx, ny = -uy, ux
+    side = _sign((com[0] - x0) * nx + (com[1] - y0) * ny) or -1.0
     skip = {j.child for j in wheel_joints}
     reach, bottom = 0.0, None
-    for link, it, T, mesh in _collision_world(ctx):
+    for link, it, pose, mesh in _collision_world(ctx):
         if link.name in skip:
             continue
-        pts = np.asarray(surface_points(it.geometry, 16, mesh))
-        w = pts @ T[:3, :3].T + T[:3, 3]
-        along = ((w[:, :2] - p0) @ n) * side
-        reach = max(reach, float(along.max()))
-        below = w[along > 0.0]
-        if len(below):
-            bottom = float(below[:, 2].min()) if bottom is None else min(bottom, float(below[:, 2].min()))
+        w = _placed_points(it.geometry, pose, 16, mesh)
+        along = [((wx - x0) * nx + (wy - y0) * ny) * side for wx, wy, _ in w]
+        reach = max(reach, max(along))
+        below = [q[2] for q, a in zip(w, along) if a > 0.0]
+        if below:
+            bottom = min(below) if bottom is None else min(bottom, min(below))
     if reach < 0.02:                 # no body geometry on that side: as far as the track is wide
-        reach = float(np.linalg.norm(p1 - p0)) / 2
+        reach = norm / 2
     clearance = (bottom - zmin) if bottom is not None else 2 * CASTER_RADIUS
     radius = CASTER_RADIUS if not 0 < clearance < 2 * CASTER_RADIUS else clearance / 2
-    at = p0 + u * float((com[:2] - p0) @ u) + n * side * 0.8 * reach
-    world = np.array([at[0], at[1], zmin + radius, 1.0])
-    local = np.linalg.inv(ctx.world[parent]) @ world
+    t = (com[0] - x0) * ux + (com[1] - y0) * uy
+    at = (x0 + ux * t + nx * side * 0.8 * reach, y0 + uy * t + ny * side * 0.8 * reach, zmin + radius)
+    R, p = ctx.poses[parent]
+    d = (at[0] - p[0], at[1] - p[1], at[2] - p[2])
+    local = [R[0][k] * d[0] + R[1][k] * d[1] + R[2][k] * d[2] for k in range(3)]     # the parent's frame: R^T (at - p)
     name, k = "caster_link", 2
     while name in r.links:
         name, k = f"caster_link_{k}", k + 1
-    xyz = " ".join(f"{round(float(v), 4):g}" for v in local[:3])
+    xyz = " ".join(f"{round(float(v), 4):g}" for v in local)
     geo = f'<geometry><sphere radius="{round(radius, 4):g}"/></geometry>'
     text = (f'<link name="{name}">\n  <visual>{geo}</visual>\n  <collision>{geo}</collision>\n</link>\n'
             f'<joint name="{name.replace("_link", "_joint")}" type="fixed">\n  <parent link="{parent}"/>\n'
@@ -158,37 +173,35 @@ def _caster_fix(ctx, hull, com, zmin) -> Fix | None:
 def _tip(ctx, hull, com, zmin):
     """(angle in degrees, link): the body pivots about the wheel axle (the wheels roll) toward its
     centre of mass until another collision shape touches the ground; None if nothing would."""
-    import numpy as np
-
     r = ctx.robot
+    P = ctx.poses
     wheel_joints = [r.joints[n] for n in D.wheel_joints(ctx.robot) if n in r.joints]
-    centres = [(ctx.world[j.parent] @ pose_matrix(j.origin))[:3, 3] for j in wheel_joints if j.parent in ctx.world]
+    centres = [compose(P[j.parent], pose_T(j.origin))[1] for j in wheel_joints if j.parent in P]
     if len(centres) < 2:
         return None
     c0, c1 = centres[0], centres[-1]
-    u = (c1[:2] - c0[:2])
-    if np.linalg.norm(u) < 1e-9:
+    ux, uy = c1[0] - c0[0], c1[1] - c0[1]
+    norm = math.sqrt(ux * ux + uy * uy)
+    if norm < 1e-9:
         return None
-    u = u / np.linalg.norm(u)
-    n = np.array([-u[1], u[0]])
-    side = np.sign((com[:2] - c0[:2]) @ n) or 1.0
+    ux, uy = ux / norm, uy / norm
+    nx, ny = -uy, ux
+    side = _sign((com[0] - c0[0]) * nx + (com[1] - c0[1]) * ny) or 1.0
     axle_h = (c0[2] + c1[2]) / 2 - zmin
     skip = {j.child for j in wheel_joints}
     best = None
-    for link, it, T, mesh in _collision_world(ctx):
+    for link, it, pose, mesh in _collision_world(ctx):
         if link.name in skip:
             continue
-        g = it.geometry
-        pts = np.asarray(surface_points(g, 32, mesh))
-        w = pts @ T[:3, :3].T + T[:3, 3]
-        d = ((w[:, :2] - c0[:2]) @ n) * side          # horizontal distance behind the axle, on the tipping side
-        hz = w[:, 2] - zmin - axle_h                   # height relative to the axle
-        R = np.hypot(d, hz)
-        ok = (d > 1e-6) & (R > axle_h)
-        if not ok.any():
-            continue
-        theta = np.degrees(np.arccos(np.clip(-axle_h / R[ok], -1, 1)) - np.arctan2(d[ok], hz[ok])).min()
-        if theta > 0.01 and (best is None or theta < best[0]):
+        theta = None
+        for wx, wy, wz in _placed_points(it.geometry, pose, 32, mesh):
+            d = ((wx - c0[0]) * nx + (wy - c0[1]) * ny) * side     # horizontal distance behind the axle, tipping side
+            hz = wz - zmin - axle_h                                  # height relative to the axle
+            R = math.hypot(d, hz)
+            if d > 1e-6 and R > axle_h:
+                a = math.degrees(math.acos(min(max(-axle_h / R, -1.0), 1.0)) - math.atan2(d, hz))
+                theta = a if theta is None else min(theta, a)
+        if theta is not None and theta > 0.01 and (best is None or theta < best[0]):
             best = (float(theta), link.name)
     return best
 
@@ -212,7 +225,7 @@ def spawn_penetration(ctx):
     if not ctx.tree_ok or not D.is_mobile(ctx.robot):
         return
 
-    below = [(z, name) for z, _, name in lowest(ctx.robot, ctx.world, ctx.mesh if ctx.opts.load_meshes else False)
+    below = [(z, name) for z, _, name in lowest(ctx.robot, ctx.poses, ctx.mesh if ctx.opts.load_meshes else False)
              if z < -SPAWN_TOL]
     if below:
         below.sort()

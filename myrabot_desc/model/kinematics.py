@@ -328,25 +328,36 @@ def joint_world_transforms(robot: Robot, q: dict[str, float] | None = None) -> d
     return {j.name: links[j.parent] @ pose_matrix(j.origin) for j in robot.joints.values() if j.parent in links}
 
 
-def center_of_mass(robot: Robot, q: dict[str, float] | None = None) -> tuple[float, np.ndarray]:
-    """Total mass and centre of mass (world frame) of every link with an inertial."""
-    import numpy as np
+def center_of_mass(robot: Robot, q: dict[str, float] | None = None) -> tuple[float, tuple]:
+    """Total mass and centre of mass (world frame, (x, y, z)) of every link with an inertial. At rest
+    (no ``q``, or every joint at 0) from ``rest_poses``, in pure Python (check asks for it)."""
+    if not q or _at_zero(robot, q):
+        P = rest_poses(robot)
+        places = {}
+        for name, link in robot.links.items():
+            if link.inertial is not None and name in P and link.inertial.mass > 0:
+                (r0, r1, r2), p = P[name]
+                x, y, z = link.inertial.origin.xyz
+                places[name] = (r0[0] * x + r0[1] * y + r0[2] * z + p[0], r1[0] * x + r1[1] * y + r1[2] * z + p[1],
+                                r2[0] * x + r2[1] * y + r2[2] * z + p[2])
+    else:
+        import numpy as np
 
-    T = world_transforms(robot, q)
-    links = [link for name, link in robot.links.items()
-             if link.inertial is not None and name in T and link.inertial.mass > 0]
-    total, acc = 0.0, [0.0, 0.0, 0.0]
-    if links:   # the products stacked (same bits as one per link); the sums in link order, as before
-        W = np.array([T[link.name] for link in links], dtype=float) @ pose_stack(link.inertial.origin for link in links)
-        ps = W[:, :3, 3].ravel().tolist()
-        a0 = a1 = a2 = 0.0
-        for k, link in enumerate(links):
-            m = link.inertial.mass
-            total += m
-            a0, a1, a2 = a0 + m * ps[3 * k], a1 + m * ps[3 * k + 1], a2 + m * ps[3 * k + 2]
-        acc = [a0, a1, a2]
-    acc = np.array(acc)
-    return total, (acc / total if total > 0 else np.full(3, np.nan))
+        T = world_transforms(robot, q)
+        links = [link for name, link in robot.links.items()
+                 if link.inertial is not None and name in T and link.inertial.mass > 0]
+        places = {}
+        if links:   # the products stacked (same bits as one per link)
+            W = np.array([T[link.name] for link in links], dtype=float) @ pose_stack(link.inertial.origin for link in links)
+            places = dict(zip((link.name for link in links), map(tuple, W[:, :3, 3].tolist())))
+    total = a0 = a1 = a2 = 0.0
+    for name, (x, y, z) in places.items():     # the sums in link order
+        m = robot.links[name].inertial.mass
+        total += m
+        a0, a1, a2 = a0 + m * x, a1 + m * y, a2 + m * z
+    if not total > 0:
+        return total, (math.nan, math.nan, math.nan)
+    return total, (a0 / total, a1 / total, a2 / total)
 
 
 def centers_of_mass(robot: Robot, q: dict) -> tuple[float, np.ndarray]:

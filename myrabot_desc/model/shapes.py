@@ -212,32 +212,37 @@ def surface_points(g, n: int = 32, mesh=None, loc=None):
     raise InputError(f"unsupported geometry {g.kind}", loc)
 
 
-def lowest_points(g, T, mesh=None, tol: float = 1e-3):
-    """(min z, [xyz points within tol of it]) of a shape placed by world pose T, or None."""
-    import numpy as np
-
-    R, p = T[:3, :3], T[:3, 3]
+def lowest_points(g, R, p, mesh=None, tol: float = 1e-3):
+    """(min z, [(x, y, z) points within tol of it]) of a shape placed by the world pose (R, p)
+    (R a 3x3 as rows), or None. Primitives in pure Python (check's P rules run without numpy), a
+    mesh's vertices (``mesh``: loaded) with numpy."""
     if g.kind == "sphere":
-        return p[2] - g.radius, [p - [0, 0, g.radius]]
+        return p[2] - g.radius, [(p[0] - 0.0, p[1] - 0.0, p[2] - g.radius)]
     if g.kind == "box":
         sx, sy, sz = (s / 2 for s in g.size)
-        pts = np.array([[a, b, c] for a in (-sx, sx) for b in (-sy, sy) for c in (-sz, sz)]) @ R.T + p
+        (a, b, c), (d, e, f), (h, i, j) = R
+        pts = [(a * x + b * y + c * z + p[0], d * x + e * y + f * z + p[1], h * x + i * y + j * z + p[2])
+               for x in (-sx, sx) for y in (-sy, sy) for z in (-sz, sz)]
     elif g.kind == "cylinder":
-        axis = R[:, 2]
-        down = np.array([0.0, 0.0, -1.0]) - axis * (-axis[2])        # -z with the axis part removed
-        n = np.linalg.norm(down)
-        rim = []
+        axis = (R[0][2], R[1][2], R[2][2])
+        down = (0.0 - axis[0] * -axis[2], 0.0 - axis[1] * -axis[2], -1.0 - axis[2] * -axis[2])  # -z, axis part removed
+        n = math.sqrt(down[0] * down[0] + down[1] * down[1] + down[2] * down[2])
         if n > 1e-9:                                                  # tilted or horizontal: one rim point per cap
-            rim = [down / n * g.radius]
+            rim = [tuple(v / n * g.radius for v in down)]
         else:                                                         # upright: sample the bottom circle
-            u, v = R[:, 0], R[:, 1]
-            rim = [g.radius * (math.cos(t) * u + math.sin(t) * v) for t in np.linspace(0, 2 * math.pi, 16, endpoint=False)]
-        pts = np.array([p + s * axis * g.length / 2 + r for s in (-1, 1) for r in rim])
+            u, v = (R[0][0], R[1][0], R[2][0]), (R[0][1], R[1][1], R[2][1])
+            step = 2 * math.pi / 16
+            rim = [tuple(g.radius * (math.cos(t) * u[k] + math.sin(t) * v[k]) for k in range(3))
+                   for t in (k * step for k in range(16))]
+        pts = [tuple(p[k] + s * axis[k] * g.length / 2 + r[k] for k in range(3)) for s in (-1, 1) for r in rim]
     elif mesh is not None and not isinstance(mesh, str):
-        pts = np.asarray(mesh.vertices) @ R.T + p
+        import numpy as np
+
+        w = np.asarray(mesh.vertices) @ np.asarray(R, dtype=float).T + np.asarray(p, dtype=float)
+        pts = [tuple(q) for q in w.tolist()]
     else:
         return None
-    zmin = float(pts[:, 2].min())
+    zmin = min(q[2] for q in pts)
     return zmin, [q for q in pts if q[2] <= zmin + tol]
 
 

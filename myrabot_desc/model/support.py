@@ -24,6 +24,7 @@ from typing import NamedTuple
 
 from myrabot_desc.model.hull2d import convex_hull
 from myrabot_desc.model.kinematics import center_of_mass, pose_matrix, world_transforms
+from myrabot_desc.model.transforms import compose, pose_T
 from myrabot_desc.model.shapes import lowest_points, surface_points
 
 CONTACT_TOL = 0.005      # m: geometry this close to the lowest point holds the robot up (see above)
@@ -34,7 +35,7 @@ class Support(NamedTuple):
     contacts: dict                       # link name -> [(x, y, z)] points within CONTACT_TOL of the ground
     polygon: list                        # convex hull of the contacts' (x, y), counter-clockwise
     lowest: str | None                   # the link whose geometry is lowest
-    com: object = None                   # (stance) (3,) numpy centre of mass at the same configuration
+    com: tuple | None = None             # (stance) (x, y, z) centre of mass at the same configuration
     mass: float | None = None            # (stance) total mass
     margin: float | None = None          # (stance) distance of the projected centre of mass to the polygon's edge, + inside
 
@@ -104,24 +105,34 @@ def placed_collisions(robot, world, mesh_of=None):
         yield link, it, world[link.name] @ pose_matrix(it.origin), mesh
 
 
-def lowest(robot, world, meshes=True):
-    """[(min z, [points within CONTACT_TOL of it], link name)] of every collision shape placed by
-    ``world`` (link -> 4x4, from model.kinematics.world_transforms)."""
-    import numpy as np
+def _pose(T):
+    """(R as rows, p) of a world pose given as (R, p) (model/kinematics.rest_poses) or as a 4x4 array
+    (world_transforms)."""
+    if type(T) is tuple:
+        return T
+    return T[:3, :3].tolist(), T[:3, 3].tolist()
 
-    read = _mesh_reader(meshes)
+
+def lowest(robot, world, meshes=True):
+    """[(min z, [(x, y, z) points within CONTACT_TOL of it], link name)] of every collision shape
+    placed by ``world`` (link -> (R, p) from model.kinematics.rest_poses, or a 4x4 array from
+    world_transforms). Primitives in pure Python: without meshes, nothing here imports numpy."""
+    read = _mesh_reader(meshes) if meshes else None
     out = []
-    for link, it, T, v in placed_collisions(robot, world, read):
+    for link, it, v in collision_shapes(robot, world, read):
+        R, p = compose(_pose(world[link.name]), pose_T(it.origin))
         if v is not None:
             if not len(v):
                 continue
-            w = v @ T[:3, :3].T + T[:3, 3]
+            import numpy as np
+
+            w = v @ np.asarray(R, dtype=float).T + np.asarray(p, dtype=float)
             z = float(w[:, 2].min())
-            out.append((z, list(w[w[:, 2] <= z + CONTACT_TOL]), link.name))
+            out.append((z, [tuple(q) for q in w[w[:, 2] <= z + CONTACT_TOL].tolist()], link.name))
             continue
-        lp = lowest_points(it.geometry, T, None, CONTACT_TOL)
+        lp = lowest_points(it.geometry, R, p, None, CONTACT_TOL)
         if lp is not None:
-            out.append((float(lp[0]), [np.asarray(p, dtype=float) for p in lp[1]], link.name))
+            out.append((float(lp[0]), lp[1], link.name))
     return out
 
 
@@ -186,5 +197,21 @@ def signed_distances(polygon, xy):
 
 
 def signed_distance(polygon, p) -> float:
-    """``signed_distances`` of one (x, y) point."""
-    return float(signed_distances(polygon, [p[:2]])[0])
+    """``signed_distances`` of one (x, y) point, with the same formulas in pure Python."""
+    px, py = float(p[0]), float(p[1])
+    if not polygon:
+        return -math.inf
+    P = [(float(a), float(b)) for a, b in polygon]
+    if len(P) == 1:
+        return -math.hypot(px - P[0][0], py - P[0][1])
+    edges = list(zip(P, P[1:] + P[:1])) if len(P) > 2 else [(P[0], P[1])]
+    d, inside = math.inf, True
+    for (ax, ay), (bx, by) in edges:
+        dx, dy = bx - ax, by - ay
+        L = dx * dx + dy * dy
+        t = 0.0 if L == 0 else min(max(((px - ax) * dx + (py - ay) * dy) / L, 0.0), 1.0)
+        d = min(d, math.hypot(px - ax - t * dx, py - ay - t * dy))
+        inside = inside and dx * (py - ay) - dy * (px - ax) >= 0
+    if len(P) < 3:
+        return -d
+    return d if inside else -d

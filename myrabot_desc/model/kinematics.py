@@ -374,7 +374,10 @@ def centers_of_mass(robot: Robot, q: dict) -> tuple[float, np.ndarray]:
             q[j.name] = q[j.mimic.joint] * j.mimic.multiplier + j.mimic.offset
     children = robot.joints_by_parent()
     order, via, kids = _walk(robot, children)
-    eye = np.broadcast_to(np.eye(4), (n, 4, 4))
+    # A link no joint of ``q`` moves has one pose for every configuration: it is computed once, as a
+    # (1, 4, 4) stack that broadcasts (the same per-matrix kernel, so the same bits as n copies).
+    # sim's arm moves a few links of the robot's dozens.
+    eye = np.eye(4)[None]
     out: dict[str, np.ndarray] = {link: eye for link in order if via[link] is None}
     level = list(out)
     while level:
@@ -383,20 +386,23 @@ def centers_of_mass(robot: Robot, q: dict) -> tuple[float, np.ndarray]:
             break
         moving = [j for j in joints if j.type in _MOVING]
         norm = dict(zip(map(id, moving), _norms([j.axis for j in moving])))
-        flat: list[float] = []
-        for j in joints:
-            flat.extend(_motion_flat(j, norm.get(id(j), 0.0), 0.0))
-        M = np.broadcast_to(np.array(flat, dtype=float).reshape(1, -1, 4, 4), (n, len(joints), 4, 4)).copy()
-        for k, j in enumerate(joints):
-            if j.name in q:
-                nj = norm.get(id(j), 0.0)
-                M[:, k] = np.array([_motion_flat(j, nj, float(v)) for v in q[j.name]], dtype=float).reshape(-1, 4, 4)
-        parents = np.stack([out[j.parent] for j in joints], axis=1)
-        T = parents @ pose_stack(j.origin for j in joints) @ M
-        level = []
-        for k, j in enumerate(joints):
-            out[j.child] = T[:, k]
-            level.append(j.child)
+        still = [j for j in joints if j.name not in q and len(out[j.parent]) == 1]
+        moved = [j for j in joints if j.name in q or len(out[j.parent]) != 1]
+        for group, size in ((still, 1), (moved, n)):
+            if not group:
+                continue
+            flat: list[float] = []
+            for j in group:
+                flat.extend(_motion_flat(j, norm.get(id(j), 0.0), 0.0))
+            M = np.broadcast_to(np.array(flat, dtype=float).reshape(1, -1, 4, 4), (size, len(group), 4, 4)).copy()
+            for k, j in enumerate(group):
+                if j.name in q:
+                    M[:, k] = _motions(j, norm.get(id(j), 0.0), q[j.name])
+            parents = np.stack([np.broadcast_to(out[j.parent], (size, 4, 4)) for j in group], axis=1)
+            T = parents @ pose_stack(j.origin for j in group) @ M
+            for k, j in enumerate(group):
+                out[j.child] = T[:, k]
+        level = [j.child for j in joints]
     links = [link for name, link in robot.links.items()
              if link.inertial is not None and name in out and link.inertial.mass > 0]
     total, acc = 0.0, np.zeros((n, 3))
@@ -405,6 +411,30 @@ def centers_of_mass(robot: Robot, q: dict) -> tuple[float, np.ndarray]:
         total += m
         acc = acc + m * (out[link.name] @ pose_matrix(link.inertial.origin))[:, :3, 3]
     return total, (acc / total if total > 0 else np.full((n, 3), np.nan))
+
+
+def _motions(joint: Joint, n: float, values) -> np.ndarray:
+    """``_motion_flat(joint, n, v)`` of every v in ``values`` as an (len, 4, 4) array, with the same
+    float operations elementwise (the sines and cosines by math, as there)."""
+    import numpy as np
+
+    k = len(values)
+    out = np.zeros((k, 4, 4))
+    out[:, 0, 0] = out[:, 1, 1] = out[:, 2, 2] = out[:, 3, 3] = 1.0
+    if joint.type in ("revolute", "continuous"):
+        if n == 0:
+            return out
+        x, y, z = (float(v) / n for v in joint.axis)
+        c = np.array([math.cos(v) for v in values.tolist()])
+        s = np.array([math.sin(v) for v in values.tolist()])
+        C = 1 - c
+        out[:, 0, 0], out[:, 0, 1], out[:, 0, 2] = c + x * x * C, x * y * C - z * s, x * z * C + y * s
+        out[:, 1, 0], out[:, 1, 1], out[:, 1, 2] = y * x * C + z * s, c + y * y * C, y * z * C - x * s
+        out[:, 2, 0], out[:, 2, 1], out[:, 2, 2] = z * x * C - y * s, z * y * C + x * s, c + z * z * C
+    elif joint.type == "prismatic" and n:
+        for r, a in enumerate(joint.axis):
+            out[:, r, 3] = float(a) / n * values
+    return out
 
 
 def require_tree(robot: Robot) -> str:

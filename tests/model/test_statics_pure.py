@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import math
 import os
+import random
 import subprocess
 import sys
 
@@ -14,6 +15,7 @@ import pytest
 from helpers import ERD, ROOT, corpus_model, corpus_robots
 from myrabot_desc.model import statics as S
 from myrabot_desc.model.loader import load_robot
+from test_gravity_needs_reference import planar_urdf, random_urdf
 
 
 def _close(a: float, b: float, scale: float) -> bool:
@@ -76,6 +78,32 @@ def test_asked_joints_and_a_pose_off_zero(tmp_path):
     assert any(j.mimic is not None for j in r.joints.values())
     solo = load_robot(ERD / "solo_description/robots/solo12.urdf")
     assert same_needs(solo, "solo12")
+
+
+@pytest.mark.parametrize("shape", ["chain", "star", "branchy", "random"])
+def test_random_trees(tmp_path, shape):
+    """Every kind of moving joint, vertical, horizontal and tilted axes, limits leaving 0 out, zero
+    and missing masses, mimic joints (the reference test's trees)."""
+    rng = random.Random(shape)
+    pure = 0
+    for trial in range(30):
+        f = tmp_path / f"{shape}{trial}.urdf"
+        f.write_text(random_urdf(rng, rng.choice([2, 3, 5, 12, 30, 60]), shape))
+        r = load_robot(str(f))
+        pure += same_needs(r, f"{shape} {trial}")
+        if trial % 5 == 0:
+            same_needs(r, f"{shape} {trial} some", joints={j for j in r.joints if rng.random() < 0.5})
+    assert pure >= 20
+
+
+@pytest.mark.parametrize("axis", ["0 1 0", "1 0 0", "0 0.6 0.8"])
+@pytest.mark.parametrize("spread", [False, True])
+def test_planar_chains_tie_alike(tmp_path, axis, spread):
+    """Joints about one horizontal axis: a joint's own turn ties with every turn above it, and the
+    worst pose is the tie-breaking's (the first turn, in file order, beyond 1e-9 (1 + maximum))."""
+    f = tmp_path / "p.urdf"
+    f.write_text(planar_urdf(50, axis, spread))
+    assert same_needs(load_robot(str(f)), axis)
 
 
 def test_large_robots_take_numpy(tmp_path):

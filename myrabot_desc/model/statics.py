@@ -11,10 +11,11 @@ to hold its own limb lifted; standing on the feet is ``sim settle``'s question.
 The torque on joint i is ``a_i . (M_i (C_i - p_i) x g)`` (``a_i`` its axis and ``p_i`` its origin
 in the world, ``M_i`` and ``C_i`` the mass and centre of mass of everything below it), the force
 on a prismatic joint ``a_i . M_i g``: Pinocchio's generalized gravity ``computeGeneralizedGravity``
-for a fixed base, which tests/check/test_statics.py compares it with. It is computed here with
-numpy from the model's own kinematics (model/kinematics.py): moving one joint moves its subtree
-rigidly, so each sample is a few small array products, and ``check`` does not pay Pinocchio's
-import (a fifth of a one-robot check) for it.
+for a fixed base, which tests/model/test_physics_facts.py compares it with. It is computed here from
+the model's own kinematics (model/kinematics.py): moving one joint moves its subtree rigidly, so
+each sample is a few small products, and ``check`` does not pay Pinocchio's import (a fifth of a
+one-robot check) for it. An ordinary robot takes them in pure Python (``_gravity_needs_py``: numpy's
+import would cost more than the sweep), a large one with numpy (``_gravity_needs_np``), below.
 
 Every joint's samples change the torques of the joints above and below it, so the full table is
 O(joints x depth): on a 5,000-link chain, some 3 x 10^8 torques. On a large deep tree only the
@@ -30,8 +31,9 @@ from __future__ import annotations
 import math
 from typing import NamedTuple
 
-from myrabot_desc.model.kinematics import _norms, axis_angle, pose_matrix, pose_stack, world_transforms, \
-    world_transforms_from
+from myrabot_desc.model.kinematics import _at_zero, _axis_angle_rows, _norms, _walk, _with_mimic, axis_angle, \
+    pose_matrix, pose_stack, rest_poses, world_transforms, world_transforms_from
+from myrabot_desc.model.transforms import IDENTITY, compose, pose_T, rotate
 
 SAMPLES = 13             # values per joint range: 15 degrees apart on a half-turn range
 MOVING = ("revolute", "continuous", "prismatic")
@@ -126,6 +128,245 @@ def _setup(robot, joints):
 
 def gravity_needs(robot, samples: int = SAMPLES, joints=None) -> list[Need]:
     """One :class:`Need` per moving, non-mimic joint (``joints``: only these), in file order.
+
+    An ordinary robot takes the pure-Python form (``_gravity_needs_py``: importing numpy costs
+    more than its whole sweep), a large one or one that is not a tree the numpy forms; they give
+    the same needs and worst poses (tests/model/test_statics_pure.py)."""
+    if len(robot.links) <= PURE_LINKS:
+        out = _gravity_needs_py(robot, samples, joints)
+        if out is not None:
+            return out
+    return _gravity_needs_np(robot, samples, joints)
+
+
+# The pure form's bounds, in links and in torques evaluated (_gravity_needs_py counts them): about
+# 30 ms of pure sweep, a 60-link chain or a 200-link star, where numpy's products cost a few ms
+# but importing numpy some 130. Every robot of the corpus and of example-robot-data is within them.
+PURE_LINKS = 1000
+PURE_WORK = 100_000
+TURN = 20
+
+
+def _gravity_needs_py(robot, samples: int = SAMPLES, joints=None) -> list[Need] | None:
+    """``gravity_needs`` in pure Python: the plain stream, every (joint, sample) torque of the joints
+    each turn changes evaluated, by the same formulas as the numpy form (within an ulp or so of its
+    stacked products). None when the model is not a tree, a number is not finite, or the sweep is
+    larger than ``PURE_WORK``: the numpy form then."""
+    rest = robot.rest_pose()
+    order, via, _ = robot.derive("kinematics.walk", lambda: _walk(robot, robot.joints_by_parent()))
+    W = rest_poses(robot) if _at_zero(robot, rest) else _poses_at(robot, order, via, rest)[0]
+    parent_of = {}                         # link -> its parent link, over the joints among the links placed
+    for j in robot.joints.values():
+        if j.parent in W and j.child in W:
+            if j.child in parent_of:
+                return None                # a link hanging from two joints
+            parent_of[j.child] = j.parent
+    # the walk's order is a preorder from its roots; a tree's links each have one parent, placed before it
+    seen = set()
+    for link in order:
+        up = parent_of.get(link)
+        if (up is None) != (via[link] is None) or (up is not None and up not in seen):
+            return None
+        seen.add(link)
+    movers = [j for j in robot.joints.values() if j.type in MOVING and j.mimic is None
+              and j.parent in W and j.child in W]
+    names = [j.name for j in movers if joints is None or j.name in joints]
+    if not names:
+        return []
+    col = {robot.joints[n].child: k for k, n in enumerate(names)}        # child link -> column
+    # the size of the sweep first (counts), then the columns each turn changes
+    n_up, n_down = {}, dict.fromkeys(order, 0)
+    for link in order:
+        up = parent_of.get(link)
+        n_up[link] = (link in col) + (n_up[up] if up is not None else 0)
+    for link in reversed(order):
+        up = parent_of.get(link)
+        if up is not None:
+            n_down[up] += n_down[link] + (link in col)
+    followers = {j.mimic.joint for j in robot.joints.values() if j.mimic is not None}
+    # in torques evaluated: a turn's sample (its rotation) costs about TURN of them, a whole pose 4 per link
+    work = samples * sum(n_up[j.child] + n_down[j.child] + TURN + (4 * len(order) if j.name in followers else 0)
+                         for j in movers)
+    if work > PURE_WORK:
+        return None
+    above, turns = {}, {}                 # link -> the columns, and the movers' links, at or above it
+    moved = {j.child for j in movers}
+    below = {link: [] for link in moved}  # a mover's link -> the columns strictly below it
+    for link in order:
+        up = parent_of.get(link)
+        mine = [col[link]] if link in col else []
+        above[link] = mine + above[up] if up is not None else mine
+        mine = [link] if link in moved else []
+        turns[link] = mine + turns[up] if up is not None else mine
+        if link in col:
+            for t in turns[link]:
+                if t != link:
+                    below[t].append(col[link])
+    own = _own_moments(robot, order, W)
+    M, Q = _subtree_moments(order, parent_of, own)
+    if not all(math.isfinite(m) for m in M.values()) or not all(math.isfinite(x) for q in Q.values() for x in q):
+        return None
+    frames = {j.name: _frame_py(j, W) for j in movers}
+    P = [frames[n][0] for n in names]
+    A = [frames[n][1] for n in names]
+    if not all(math.isfinite(x) for v in P + A for x in v):
+        return None
+    prism = [robot.joints[n].type == "prismatic" for n in names]
+    Mc = [M[robot.joints[n].child] for n in names]
+    G = GRAVITY
+    r_rest, B, t_rest = [], [], []
+    for k in range(len(names)):
+        (qx, qy, qz), (px, py, pz), (ax, ay, az), m = Q[robot.joints[names[k]].child], P[k], A[k], Mc[k]
+        mx, my, mz = qx - m * px, qy - m * py, qz - m * pz               # M_i (C_i - p_i)
+        r = 0.0 if prism[k] else G * (ay * mx - ax * my)
+        r_rest.append(r)
+        B.append((ay * mz - az * my, az * mx - ax * mz, ax * my - ay * mx))
+        t_rest.append(abs(-G * az * m) if prism[k] else abs(r))
+    best = list(t_rest)
+    where: list = [(None, 0.0)] * len(names)
+
+    def record(name, x, cols, T):
+        for k, t in zip(cols, T):
+            b = best[k]
+            if t > b + 1e-9 * (1 + b):
+                where[k] = (name, x)
+            if t > b:
+                best[k] = t
+
+    for j in movers:
+        values = sample_values(j, samples)
+        up, down = above[j.child], below[j.child]
+        if not up and not down:
+            continue
+        cols = up + down
+        if j.name in followers:          # a mimic joint follows it: the whole pose
+            for x in values:
+                T = _torques_at(robot, order, via, parent_of, rest, W, own, frames, {j.name: x}, names, cols)
+                record(j.name, x, cols, T)
+            continue
+        p0, a0 = frames[j.name]
+        cj = j.child
+        Qj, Mj = Q[cj], M[cj]
+        for x in values:
+            d = x - rest.get(j.name, 0.0)
+            if j.type == "prismatic":
+                R = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
+                t = (d * a0[0], d * a0[1], d * a0[2])
+            else:
+                R = _axis_angle_rows(a0, math.sqrt(a0[0] * a0[0] + a0[1] * a0[1] + a0[2] * a0[2]), d)
+                Rp = rotate(R, p0)
+                t = (p0[0] - Rp[0], p0[1] - Rp[1], p0[2] - Rp[2])
+            RQ = rotate(R, Qj)
+            sx, sy = RQ[0] + Mj * t[0] - Qj[0], RQ[1] + Mj * t[1] - Qj[1]    # the moment change of the subtree
+            T = [t_rest[k] if prism[k] else abs(r_rest[k] + G * (sx * A[k][1] - sy * A[k][0])) for k in up]
+            if down:                     # gravity in the turned frames: g R = -G (R's last row)
+                gx, gy, gz = -G * R[2][0], -G * R[2][1], -G * R[2][2]
+                for k in down:
+                    if prism[k]:
+                        a = A[k]
+                        T.append(abs((gx * a[0] + gy * a[1] + gz * a[2]) * Mc[k]))
+                    else:
+                        b = B[k]
+                        T.append(abs(gx * b[0] + gy * b[1] + gz * b[2]))
+            record(j.name, x, cols, T)
+    out = []
+    for k, n in enumerate(names):
+        j = robot.joints[n]
+        out.append(Need(n, best[k], t_rest[k], where[k][0], float(where[k][1]), effort_of(j),
+                        "N" if j.type == "prismatic" else "N·m"))
+    return out
+
+
+def _poses_at(robot, order, via, q, W=None, q0=None) -> tuple[dict, set]:
+    """The links' world poses (model/transforms.py) at ``q`` (mimic joints following) in pure Python,
+    ``world_transforms``' walk and products (parent @ origin @ motion), and the links placed. From
+    ``W``, the poses at ``q0``: only the links below a joint whose position differs are placed again.
+    (A kinematics helper kept here: only this sweep places a robot off q = 0 without numpy.)"""
+    q = _with_mimic(robot, q)
+    changed = None
+    if W is not None:
+        q0 = _with_mimic(robot, q0)
+        changed = {n for n in set(q) | set(q0) if q.get(n, 0.0) != q0.get(n, 0.0)}
+    out, placed = {}, set()
+    for link in order:
+        j = via[link]
+        if j is None:
+            out[link] = IDENTITY if W is None else W[link]
+            continue
+        if changed is not None and j.name not in changed and j.parent not in placed:
+            out[link] = W[link]
+            continue
+        placed.add(link)
+        T = compose(out[j.parent], pose_T(j.origin))
+        v = q.get(j.name, 0.0)
+        if v != 0 and j.type in MOVING:
+            axis = [float(a) for a in j.axis]
+            n = math.sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2])
+            if j.type == "prismatic":
+                if n:
+                    T = compose(T, (IDENTITY[0], (axis[0] / n * v, axis[1] / n * v, axis[2] / n * v)))
+            else:
+                T = compose(T, (tuple(map(tuple, _axis_angle_rows(axis, n, v))), (0.0, 0.0, 0.0)))
+        out[link] = T
+    return out, placed
+
+
+def _own_moments(robot, links, W) -> dict:
+    """link -> (mass, mass moment m c in the world) of the ``links`` with a usable mass."""
+    out = {}
+    for link in links:
+        inertial = robot.links[link].inertial if link in robot.links else None
+        if inertial is not None and inertial.mass > 0 and math.isfinite(inertial.mass):
+            m = float(inertial.mass)
+            c = compose(W[link], pose_T(inertial.origin))[1]
+            out[link] = (m, (m * c[0], m * c[1], m * c[2]))
+    return out
+
+
+def _subtree_moments(order, parent_of, own) -> tuple[dict, dict]:
+    """link -> the mass of its subtree, and -> the subtree's mass moment (sum of m c)."""
+    M = dict.fromkeys(order, 0.0)
+    Q = dict.fromkeys(order, (0.0, 0.0, 0.0))
+    for link, (m, mc) in own.items():
+        M[link], Q[link] = m, mc
+    for link in reversed(order):          # children before their parents
+        up = parent_of.get(link)
+        if up is not None:
+            M[up] += M[link]
+            a, b = Q[up], Q[link]
+            Q[up] = (a[0] + b[0], a[1] + b[1], a[2] + b[2])
+    return M, Q
+
+
+def _frame_py(j, W):
+    """(origin, unit axis) of joint j in the world, from the link poses ``W``."""
+    R, p = compose(W[j.parent], pose_T(j.origin))
+    a = rotate(R, [float(v) for v in j.axis])
+    n = math.sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2])
+    return p, ((a[0] / n, a[1] / n, a[2] / n) if n > 0 else a)
+
+
+def _torques_at(robot, order, via, parent_of, rest, W, own, frames, moved, names, cols) -> list[float]:
+    """|torque| of the columns ``cols`` with the joints ``moved`` off the rest pose (mimic joints
+    following), from the whole pose: the links below the joints that move placed again, the others'
+    poses (``W``), moments (``own``) and joint frames (``frames``) kept from the rest pose."""
+    q = dict(rest)
+    q.update(moved)
+    W2, placed = _poses_at(robot, order, via, q, W, rest)
+    own = {**own, **_own_moments(robot, placed, W2)}
+    M, Q = _subtree_moments(order, parent_of, own)
+    G = GRAVITY
+    out = []
+    for k in cols:
+        j = robot.joints[names[k]]
+        (px, py, pz), (ax, ay, az) = _frame_py(j, W2) if j.parent in placed else frames[j.name]
+        m, (qx, qy, qz) = M[j.child], Q[j.child]
+        out.append(abs(-G * az * m) if j.type == "prismatic" else abs(G * (ay * (qx - m * px) - ax * (qy - m * py))))
+    return out
+
+
+def _gravity_needs_np(robot, samples: int = SAMPLES, joints=None) -> list[Need]:
+    """``gravity_needs`` with numpy: for a large robot or one that is not a tree.
 
     The masses and moments of every subtree are summed once, bottom-up; moving one joint changes
     only the torques of the joints above it (the moment of its subtree turns) and below it (gravity

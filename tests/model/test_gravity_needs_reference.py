@@ -1,8 +1,9 @@
-"""gravity_needs (model/statics.py) against the plain algorithm, kept here as the reference: every
+"""gravity_needs' numpy form (model/statics.py) against the plain algorithm, kept here as the reference: every
 (joint, sample) torque evaluated, O(joints x depth) on a deep tree. gravity_needs skips the torques
 that cannot change a maximum or a worst pose; the results must be the same (torques within 1e-12
 relative, the same worst pose) on random trees, the bundled robot, the corpus and
-example-robot-data."""
+example-robot-data. (An ordinary robot takes the pure-Python form, which
+tests/model/test_statics_pure.py compares with this one.)"""
 
 from __future__ import annotations
 
@@ -14,7 +15,7 @@ import pytest
 from helpers import ERD, ROOT, corpus_model, corpus_robots, cpu_time
 from myrabot_desc.model import statics as S
 from myrabot_desc.model.loader import load_robot
-from myrabot_desc.model.statics import gravity_needs
+from myrabot_desc.model.statics import _gravity_needs_np as gravity_needs
 
 np = pytest.importorskip("numpy")
 

@@ -75,6 +75,46 @@ def test_example_robot_data_screens_as_numpy():
     assert done >= 60 and judged > 100
 
 
+class _Ball:
+    def __init__(self, centre, radius):
+        self.centre, self.radius = centre, radius
+
+
+def test_sphere_pairs_on_random_scenes_as_numpy():
+    rng = np.random.default_rng(2)
+    for trial in range(200):
+        n = int(rng.integers(0, 120))
+        C = rng.normal(size=(n, 3)) * float(rng.choice([0.01, 0.1, 1.0]))
+        if trial % 3 == 0:
+            C[:, 0] = np.round(C[:, 0], 1)          # many shapes at one x: long sweeps
+        R = rng.uniform(0, 0.3, size=n) * float(rng.choice([0.1, 1.0, 3.0]))
+        md = float(rng.choice([0.001, 0.0, -0.01]))
+        want = col._sphere_pairs(np, [_Ball(c, r) for c, r in zip(C, R)], md)
+        got = col._lean_sphere_pairs([tuple(c) for c in C.tolist()], R.tolist(), md, 10**9)
+        assert got == want, trial
+
+
+def test_box_screen_on_random_boxes_as_numpy():
+    """_lean_apart drops a pair only where _boxes_meet says apart; random boxes it tells alike."""
+    rng = np.random.default_rng(3)
+    told = 0                            # apart by _boxes_meet, not clearly by the screen
+    for trial in range(3000):
+        boxes = []
+        for _ in range(2):
+            Q, _r = np.linalg.qr(rng.normal(size=(3, 3)))
+            if trial % 4 == 0:
+                Q = np.eye(3)[rng.permutation(3)]        # axis-aligned: parallel edges, exact touches
+            boxes.append((rng.normal(size=3) * 0.2, Q * np.sign(np.linalg.det(Q)), rng.uniform(0.01, 0.2, size=3)))
+        md = float(rng.choice([0.001, 0.0, -0.01]))
+        (ca, Ra, ha), (cb, Rb, hb) = boxes
+        apart = col._lean_apart(tuple(ca.tolist()), tuple(map(tuple, Ra.tolist())), tuple(ha.tolist()),
+                                tuple(cb.tolist()), tuple(map(tuple, Rb.tolist())), tuple(hb.tolist()), md)
+        meet = col._boxes_meet(np, boxes[0], boxes[1], md)
+        assert not (apart and meet), trial
+        told += not apart and not meet
+    assert told <= 30                   # near-parallel edge axes the screen leaves to numpy
+
+
 def test_overlaps_equal_without_the_screen(monkeypatch):
     """Scene.overlaps with the screen (the default) and without it (LEAN_MOST 0): the same overlaps."""
     files = [ERD / "panda_description/urdf/panda.urdf", ERD / "ur_description/urdf/ur5_robot.urdf",

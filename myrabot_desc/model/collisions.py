@@ -16,22 +16,28 @@ triangle of it and reads as hull-only as well; a mesh inside a primitive does no
 solid). Overlaps of ``TOUCH`` or less are parts resting against each other (CAD assemblies, a
 tessellated surface, rounding), not collisions.
 
-coal takes 0.4 s to import: it is imported inside the functions that use it.
+coal takes 0.4 s to import: it is imported inside the functions that use it. numpy too: an ordinary
+robot at its rest pose without meshes is first screened in pure Python (``Scene._lean_near``, the
+same bounding spheres and boxes), and a robot where no pair of shapes comes near needs neither.
 """
 
 from __future__ import annotations
 
+import math
 from typing import NamedTuple
 
 from myrabot_desc.errors import InputError
 from myrabot_desc.model import meshes as meshio
-from myrabot_desc.model.kinematics import pose_stack, world_transforms
+from myrabot_desc.model.kinematics import _MOVING, _at_zero, _motion_flat, _walk, _with_mimic, pose_stack, rest_poses, \
+    world_transforms
 from myrabot_desc.model.shapes import describe
 from myrabot_desc.model.support import _mesh_reader, collision_shapes
+from myrabot_desc.model.transforms import IDENTITY, compose, pose_T, transpose3
 from myrabot_desc.model.tree import maps
 from myrabot_desc.safety import limit
 
 TOUCH = 0.001        # m: overlaps this shallow are contact (see the module docstring)
+LEAN_MOST = 1000     # collision shapes: up to this many, the pure-Python screen first (numpy's sweep past it)
 
 
 class TooManyPairs(InputError):
@@ -229,6 +235,106 @@ def _clearly_apart(np, C, R, H, pairs, margin: float):
     return ((gap > 1e-9 * scale[:, None]) & use).any(axis=1)
 
 
+def _poses_at(robot, q):
+    """world_transforms(robot, q) in pure Python, link -> (R, p): rest_poses at the zero pose, else
+    its walk with each moving joint's motion after its origin (a quadruped's knees, Franka's elbow
+    rest off zero); None for a position that is not a number."""
+    if _at_zero(robot, q):
+        return rest_poses(robot)
+    q = _with_mimic(robot, q)
+    if any(type(v) not in (float, int) for v in q.values()):
+        return None
+    order, via, _ = robot.derive("kinematics.walk", lambda: _walk(robot, robot.joints_by_parent()))
+    out: dict = {}
+    for link in order:
+        j = via[link]
+        if j is None:
+            out[link] = IDENTITY
+            continue
+        T = compose(out[j.parent], pose_T(j.origin))
+        if j.type in _MOVING:
+            n = math.sqrt(sum(float(v) * float(v) for v in j.axis))
+            m = _motion_flat(j, n, q.get(j.name, 0.0))
+            T = compose(T, ((m[0:3], m[4:7], m[8:11]), (m[3], m[7], m[11])))
+        out[link] = T
+    return out
+
+
+def _half_extents(g):
+    """_local_box's half extents of a primitive as floats (its centre is its origin), None for no
+    volume, False for what the pure screen leaves to numpy (a size that is not three numbers)."""
+    try:
+        if g.kind == "box":
+            if len(g.size) != 3:
+                return False
+            h = tuple(float(x) / 2 for x in g.size)
+        elif g.kind == "sphere":
+            r = float(g.radius)
+            h = (r, r, r)
+        elif g.kind == "cylinder":
+            r = float(g.radius)
+            h = (r, r, float(g.length / 2))
+        else:
+            return False
+    except (TypeError, ValueError):
+        return False
+    return h if min(h) > 0 and all(map(math.isfinite, h)) else None
+
+
+def _lean_sphere_pairs(C, R, min_depth: float, most: int):
+    """_sphere_pairs in pure Python, looser by a rounding slack: (i, j), i < j, sorted, a superset
+    of its pairs for centres and radii within rounding of its own; None past ``most`` pairs."""
+    n = len(C)
+    if n < 2:
+        return []
+    slack = 1e-9 * (1.0 + max(abs(x) for c in C for x in c) + max(R) + abs(min_depth))
+    grow = max(0.0, -min_depth) + 2 * slack          # |dx| <= distance: the sweep keeps every pair
+    lo = [c[0] - r - grow for c, r in zip(C, R)]
+    hi = [c[0] + r + grow for c, r in zip(C, R)]
+    order = sorted(range(n), key=lo.__getitem__)
+    sqrt = math.sqrt
+    out: list = []
+    for p, i in enumerate(order):
+        (xi, yi, zi), top, reach = C[i], hi[i], R[i] - min_depth + slack
+        for k in range(p + 1, n):
+            j = order[k]
+            if lo[j] > top:
+                break
+            xj, yj, zj = C[j]
+            if sqrt((xi - xj) ** 2 + (yi - yj) ** 2 + (zi - zj) ** 2) < reach + R[j]:
+                out.append((i, j) if i < j else (j, i))
+                if len(out) > most:
+                    return None
+    out.sort()
+    return out
+
+
+def _lean_apart(ca, Ra, ha, cb, Rb, hb, margin: float) -> bool:
+    """_clearly_apart for one pair in pure Python (rotations as rows, model/transforms.py): apart by
+    a clear margin on a face normal or on an edge cross product that is no near-parallel sliver
+    (whose direction rounding turns), so that _boxes_meet, with poses within rounding of these,
+    says they do not meet. Not clearly apart: left to _boxes_meet."""
+    ua, ub = transpose3(Ra), transpose3(Rb)          # rows: each box's axes in the world
+    d = (cb[0] - ca[0], cb[1] - ca[1], cb[2] - ca[2])
+    clear = 1e-9 * (1.0 + sum(map(abs, ca)) + sum(map(abs, cb)) + sum(ha) + sum(hb) + abs(margin))
+
+    def gap(u):
+        ra = sum(abs(u[0] * a[0] + u[1] * a[1] + u[2] * a[2]) * h for a, h in zip(ua, ha))
+        rb = sum(abs(u[0] * b[0] + u[1] * b[1] + u[2] * b[2]) * h for b, h in zip(ub, hb))
+        return abs(u[0] * d[0] + u[1] * d[1] + u[2] * d[2]) - (ra + rb - margin)
+
+    for u in ua + ub:
+        if gap(u) > clear:
+            return True
+    for a in ua:
+        for b in ub:
+            u = (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+            n = math.sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2])
+            if n > 1e-3 and gap((u[0] / n, u[1] / n, u[2] / n)) > clear:
+                return True
+    return False
+
+
 class Scene:
     """The robot's collision shapes, made once (hulls are the costly part), placed at any
     configuration by :meth:`overlaps`."""
@@ -247,6 +353,7 @@ class Scene:
         self._shapes: dict = {}          # id(collision) -> coal shape
         self._local: dict = {}           # id(collision) -> bounding box in its own frame
         self._by_geometry: dict = {}     # (kind, primitive geometry) -> (its bounding box,)
+        self._halves: dict = {}          # id(collision) -> _half_extents (the pure screen's)
 
     def _placed(self, world):
         """Every collision shape placed by ``world`` with its bounding box (no coal shape yet).
@@ -289,6 +396,65 @@ class Scene:
         return [_Item(name, body_of.get(name, name), it, None, T[k], centres[k], radii[k], mesh, box[1])
                 for k, (name, it, mesh, box) in enumerate(found)]
 
+    def _near(self, np, items, min_depth: float, within=None) -> list:
+        """(i, j) of the placed shapes on different, non-adjacent bodies whose bounding spheres and
+        boxes meet by more than ``min_depth``, in order: the pairs coal tests. ``within``: a set of
+        pairs holding all of them (_lean_near's), the others need no box test."""
+        adjacent = self.adjacent
+        pairs = [(a, b) for a, b in _sphere_pairs(np, items, min_depth)
+                 if (within is None or (a, b) in within)
+                 and items[a].body != items[b].body and frozenset((items[a].body, items[b].body)) not in adjacent]
+        apart = ()
+        if len(pairs) > 8:              # a long chain's neighbours: thousands of box tests, one batch
+            C = np.array([i.centre for i in items], dtype=float).reshape(-1, 3)
+            R = np.array([i.T[:3, :3] for i in items], dtype=float).reshape(-1, 3, 3)
+            H = np.array([i.half for i in items], dtype=float).reshape(-1, 3)
+            apart = _clearly_apart(np, C, R, H, pairs, min_depth).tolist()
+        return [(a, b) for k, (a, b) in enumerate(pairs)
+                if not (apart and apart[k])
+                and _boxes_meet(np, (items[a].centre, items[a].T[:3, :3], items[a].half),
+                                (items[b].centre, items[b].T[:3, :3], items[b].half), min_depth)]
+
+    def _lean_near(self, q, min_depth: float):
+        """``_near``'s pairs at ``q`` in pure Python, for a scene without meshes and of at most
+        LEAN_MOST shapes: a superset of them (only pairs clearly apart are dropped), [] when no pair
+        comes near; None when the screen does not apply (the caller takes numpy's path).
+
+        The poses are _poses_at's (within rounding of world_transforms'), so every test keeps a
+        rounding slack and drops a pair only where numpy's test drops it too: [] here means none
+        there. The place where the size decides: past LEAN_MOST shapes numpy's sweep is faster."""
+        robot = self.robot
+        if self.read is not None or sum(len(link.collisions) for link in robot.links.values()) > LEAN_MOST:
+            return None
+        poses = _poses_at(robot, q or {})
+        if poses is None:
+            return None
+        halves = self._halves
+        body_of = self.body_of
+        bodies, C, R, H, rot = [], [], [], [], []
+        for link, it, _ in collision_shapes(robot, poses, None):
+            key = id(it)
+            h = halves.get(key, 0)
+            if h == 0:
+                h = halves[key] = _half_extents(it.geometry)
+            if h is None:
+                continue
+            if h is False:
+                return None
+            Rw, p = compose(poses[link.name], pose_T(it.origin))
+            bodies.append(body_of.get(link.name, link.name))
+            C.append(p)
+            R.append(math.sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]))
+            H.append(h)
+            rot.append(Rw)
+        pairs = _lean_sphere_pairs(C, R, min_depth, limit("max_collision_pairs"))
+        if pairs is None:
+            return None                  # numpy's sweep may refuse them (TooManyPairs)
+        adjacent = self.adjacent
+        return [(a, b) for a, b in pairs
+                if bodies[a] != bodies[b] and frozenset((bodies[a], bodies[b])) not in adjacent
+                and not _lean_apart(C[a], rot[a], H[a], C[b], rot[b], H[b], min_depth)]
+
     def _shape(self, coal, np, item):
         key = id(item.collision)
         if key not in self._shapes:
@@ -302,25 +468,16 @@ class Scene:
         """Every overlap deeper than ``min_depth`` at configuration ``q`` (joints not named at 0;
         or the link poses ``world``), deepest first; one per pair of shapes. Only shapes whose
         bounding spheres meet are given to coal (a hull is made the first time a shape is)."""
+        screened = self._lean_near(q, min_depth) if world is None else None
+        if screened == []:
+            return []                    # no pair comes near: neither numpy nor coal is needed
         import numpy as np
 
         world = world if world is not None else world_transforms(self.robot, q)
         items = self._placed(world)
         if len(items) < 2:
             return []
-        adjacent = self.adjacent
-        pairs = [(a, b) for a, b in _sphere_pairs(np, items, min_depth)
-                 if items[a].body != items[b].body and frozenset((items[a].body, items[b].body)) not in adjacent]
-        apart = ()
-        if len(pairs) > 8:              # a long chain's neighbours: thousands of box tests, one batch
-            C = np.array([i.centre for i in items], dtype=float).reshape(-1, 3)
-            R = np.array([i.T[:3, :3] for i in items], dtype=float).reshape(-1, 3, 3)
-            H = np.array([i.half for i in items], dtype=float).reshape(-1, 3)
-            apart = _clearly_apart(np, C, R, H, pairs, min_depth).tolist()
-        near = [(a, b) for k, (a, b) in enumerate(pairs)
-                if not (apart and apart[k])
-                and _boxes_meet(np, (items[a].centre, items[a].T[:3, :3], items[a].half),
-                                (items[b].centre, items[b].T[:3, :3], items[b].half), min_depth)]
+        near = self._near(np, items, min_depth, None if screened is None else set(screened))
         if not near:
             return []
         import coal                      # only when two bounding boxes overlap: a clean robot never pays for it

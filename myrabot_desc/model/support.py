@@ -56,10 +56,10 @@ def _mesh_reader(meshes):
     meshes), True (model.shapes.surface_points: the bounded mesh reader's vertices) or a callable
     geometry -> loaded mesh (check's per-run cache). An unreadable mesh is left out (check's M
     rules say why)."""
-    import numpy as np
-
     if meshes is False or meshes is None:
         return None
+    import numpy as np
+
     if meshes is True:
         def read(g, loc):
             try:

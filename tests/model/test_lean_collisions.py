@@ -1,0 +1,160 @@
+"""Self-collision's pure-Python screen (model/collisions.Scene._lean_near: bounding spheres, then
+boxes, at the rest pose without meshes) against numpy's (Scene._near on world_transforms): the same
+pairs on the bundled robot, the corpus and example-robot-data, so that a robot the screen finds
+clean is one numpy's path finds clean; and P005 of the bundled robot imports neither numpy nor coal."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import pytest
+
+from helpers import ERD, corpus_model, corpus_robots
+from myrabot_desc.model import collisions as col
+from myrabot_desc.model.kinematics import world_transforms
+from myrabot_desc.model.loader import load_robot
+
+np = pytest.importorskip("numpy")
+
+DEPTHS = (col.TOUCH, 0.0, -0.01, -0.05)      # negative: bounding volumes apart by up to 5 cm count, more pairs to judge
+
+
+def compare(robot, name) -> int:
+    """Assert the screen's pairs are numpy's for every depth, but for pairs within rounding of
+    meeting (boxes touching to the last bit), which the screen leaves to numpy; how many pairs
+    numpy kept."""
+    scene = col.Scene(robot, False)
+    q = robot.rest_pose()
+    items = scene._placed(world_transforms(robot, q))
+    judged = 0
+    for md in DEPTHS:
+        lean = scene._lean_near(q, md)
+        assert lean is not None, name      # an ordinary robot: no meshes read, a few dozen shapes
+        want = scene._near(np, items, md) if len(items) >= 2 else []
+        assert lean == sorted(set(lean)) and set(want) <= set(lean), (name, md)
+        extra = [p for p in lean if p not in want]
+        if extra:
+            C = np.array([i.centre for i in items])
+            R = np.array([i.T[:3, :3] for i in items])
+            H = np.array([i.half for i in items])
+            assert not col._clearly_apart(np, C, R, H, extra, md).any(), (name, md, extra)
+            assert len(extra) <= 2, (name, md, extra)
+        judged += len(want)
+    return judged
+
+
+def test_bundled_robot_screens_as_numpy():
+    compare(load_robot(None), "bundled")
+
+
+def test_corpus_screens_as_numpy():
+    done = judged = 0
+    for rb in corpus_robots():
+        try:
+            r = corpus_model(rb)
+        except Exception:          # an entry this environment cannot build (covered elsewhere)
+            continue
+        judged += compare(r, rb["id"])
+        done += 1
+    assert done >= 30 and judged > 100
+
+
+def test_example_robot_data_screens_as_numpy():
+    files = sorted(ERD.glob("*/urdf/*.urdf")) + sorted(ERD.glob("*/robots/*.urdf"))
+    if not files:
+        pytest.skip("example-robot-data is not installed")
+    done = judged = 0
+    for f in files:
+        try:
+            r = load_robot(f)
+        except Exception:          # a file this loader refuses (covered elsewhere)
+            continue
+        judged += compare(r, f.name)
+        done += 1
+    assert done >= 60 and judged > 100
+
+
+class _Ball:
+    def __init__(self, centre, radius):
+        self.centre, self.radius = centre, radius
+
+
+def test_sphere_pairs_on_random_scenes_as_numpy():
+    rng = np.random.default_rng(2)
+    for trial in range(200):
+        n = int(rng.integers(0, 120))
+        C = rng.normal(size=(n, 3)) * float(rng.choice([0.01, 0.1, 1.0]))
+        if trial % 3 == 0:
+            C[:, 0] = np.round(C[:, 0], 1)          # many shapes at one x: long sweeps
+        R = rng.uniform(0, 0.3, size=n) * float(rng.choice([0.1, 1.0, 3.0]))
+        md = float(rng.choice([0.001, 0.0, -0.01]))
+        want = col._sphere_pairs(np, [_Ball(c, r) for c, r in zip(C, R)], md)
+        got = col._lean_sphere_pairs([tuple(c) for c in C.tolist()], R.tolist(), md, 10**9)
+        assert got == want, trial
+
+
+def test_box_screen_on_random_boxes_as_numpy():
+    """_lean_apart drops a pair only where _boxes_meet says apart; random boxes it tells alike."""
+    rng = np.random.default_rng(3)
+    told = 0                            # apart by _boxes_meet, not clearly by the screen
+    for trial in range(3000):
+        boxes = []
+        for _ in range(2):
+            Q, _r = np.linalg.qr(rng.normal(size=(3, 3)))
+            if trial % 4 == 0:
+                Q = np.eye(3)[rng.permutation(3)]        # axis-aligned: parallel edges, exact touches
+            boxes.append((rng.normal(size=3) * 0.2, Q * np.sign(np.linalg.det(Q)), rng.uniform(0.01, 0.2, size=3)))
+        md = float(rng.choice([0.001, 0.0, -0.01]))
+        (ca, Ra, ha), (cb, Rb, hb) = boxes
+        apart = col._lean_apart(tuple(ca.tolist()), tuple(map(tuple, Ra.tolist())), tuple(ha.tolist()),
+                                tuple(cb.tolist()), tuple(map(tuple, Rb.tolist())), tuple(hb.tolist()), md)
+        meet = col._boxes_meet(np, boxes[0], boxes[1], md)
+        assert not (apart and meet), trial
+        told += not apart and not meet
+    assert told <= 30                   # near-parallel edge axes the screen leaves to numpy
+
+
+def test_overlaps_equal_without_the_screen(monkeypatch):
+    """Scene.overlaps with the screen (the default) and without it (LEAN_MOST 0): the same overlaps."""
+    files = [ERD / "panda_description/urdf/panda.urdf", ERD / "ur_description/urdf/ur5_robot.urdf",
+             ERD / "talos_data/robots/talos_full_v2.urdf"]
+    robots = [load_robot(None)] + [load_robot(f) for f in files if f.is_file()]
+    for r in robots:
+        for md in DEPTHS:
+            lean = col.Scene(r, False).overlaps(r.rest_pose(), min_depth=md)
+            monkeypatch.setattr(col, "LEAN_MOST", 0)
+            plain = col.Scene(r, False).overlaps(r.rest_pose(), min_depth=md)
+            monkeypatch.undo()
+            assert lean == plain, (r.name, md)
+
+
+def test_screen_keeps_a_pair_numpy_keeps(tmp_path):
+    """Two boxes on different links, 2 moving joints apart: apart by 1 mm the screen finds nothing;
+    overlapping by 20 mm it keeps the pair, and overlaps() finds it."""
+    def robot(x):
+        f = tmp_path / "r.urdf"
+        box = '<collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision>'
+        f.write_text(f"""<robot name="r">
+<link name="a">{box}</link><link name="m"/><link name="b">{box}</link>
+<joint name="j1" type="revolute"><parent link="a"/><child link="m"/><axis xyz="0 0 1"/>
+  <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+<joint name="j2" type="revolute"><parent link="m"/><child link="b"/><origin xyz="{x} 0 0"/><axis xyz="0 0 1"/>
+  <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>""")
+        return load_robot(f)
+
+    far, near = robot(0.101), robot(0.08)
+    assert col.Scene(far, False)._lean_near(far.rest_pose(), col.TOUCH) == []
+    assert col.Scene(near, False)._lean_near(near.rest_pose(), col.TOUCH) == [(0, 1)]
+    (o,) = col.Scene(near, False).overlaps(near.rest_pose())
+    assert (o.link_a, o.link_b) == ("a", "b") and abs(o.depth - 0.02) < 1e-9
+
+
+def test_self_collision_of_the_bundled_robot_imports_no_numpy():
+    code = ("import sys\nfrom myrabot_desc.commands.main import main\n"
+            "sys.argv = ['myrabot-desc', 'check', '--no-cache', '--select', 'P005']\n"
+            "try:\n    main()\nexcept SystemExit as e:\n    assert not e.code, e.code\n"
+            "print('HEAVY', [m for m in ('numpy', 'coal') if m in sys.modules])")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert "HEAVY []" in out

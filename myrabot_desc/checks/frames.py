@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 from myrabot_desc.checks.rule import Finding, Fix, FixInfo, InsertAfter, InsertInto, SetValue, rule
-from myrabot_desc.checks.urdf_syntax import local, suggest
+from myrabot_desc.checks.urdf_syntax import suggest
 from myrabot_desc.model import values as V
 from myrabot_desc.model.gazebo import preserved_joints
 from myrabot_desc.model.transforms import matmul3, transpose3

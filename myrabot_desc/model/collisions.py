@@ -28,11 +28,10 @@ from typing import NamedTuple
 
 from myrabot_desc.errors import InputError
 from myrabot_desc.model import meshes as meshio
-from myrabot_desc.model.kinematics import _MOVING, _at_zero, _motion_flat, _walk, _with_mimic, pose_stack, rest_poses, \
-    world_transforms
+from myrabot_desc.model.kinematics import pose_stack, poses_at, world_transforms
 from myrabot_desc.model.shapes import describe
 from myrabot_desc.model.support import _mesh_reader, collision_shapes
-from myrabot_desc.model.transforms import IDENTITY, compose, pose_T, transpose3
+from myrabot_desc.model.transforms import compose, pose_T, transpose3
 from myrabot_desc.model.tree import maps
 from myrabot_desc.safety import limit
 
@@ -235,31 +234,6 @@ def _clearly_apart(np, C, R, H, pairs, margin: float):
     return ((gap > 1e-9 * scale[:, None]) & use).any(axis=1)
 
 
-def _poses_at(robot, q):
-    """world_transforms(robot, q) in pure Python, link -> (R, p): rest_poses at the zero pose, else
-    its walk with each moving joint's motion after its origin (a quadruped's knees, Franka's elbow
-    rest off zero); None for a position that is not a number."""
-    if _at_zero(robot, q):
-        return rest_poses(robot)
-    q = _with_mimic(robot, q)
-    if any(type(v) not in (float, int) for v in q.values()):
-        return None
-    order, via, _ = robot.derive("kinematics.walk", lambda: _walk(robot, robot.joints_by_parent()))
-    out: dict = {}
-    for link in order:
-        j = via[link]
-        if j is None:
-            out[link] = IDENTITY
-            continue
-        T = compose(out[j.parent], pose_T(j.origin))
-        if j.type in _MOVING:
-            n = math.sqrt(sum(float(v) * float(v) for v in j.axis))
-            m = _motion_flat(j, n, q.get(j.name, 0.0))
-            T = compose(T, ((m[0:3], m[4:7], m[8:11]), (m[3], m[7], m[11])))
-        out[link] = T
-    return out
-
-
 def _half_extents(g):
     """_local_box's half extents of a primitive as floats (its centre is its origin), None for no
     volume, False for what the pure screen leaves to numpy (a size that is not three numbers)."""
@@ -420,13 +394,13 @@ class Scene:
         LEAN_MOST shapes: a superset of them (only pairs clearly apart are dropped), [] when no pair
         comes near; None when the screen does not apply (the caller takes numpy's path).
 
-        The poses are _poses_at's (within rounding of world_transforms'), so every test keeps a
+        The poses are poses_at's (within rounding of world_transforms'), so every test keeps a
         rounding slack and drops a pair only where numpy's test drops it too: [] here means none
         there. The place where the size decides: past LEAN_MOST shapes numpy's sweep is faster."""
         robot = self.robot
         if self.read is not None or sum(len(link.collisions) for link in robot.links.values()) > LEAN_MOST:
             return None
-        poses = _poses_at(robot, q or {})
+        poses = poses_at(robot, q or {})[0]
         if poses is None:
             return None
         halves = self._halves

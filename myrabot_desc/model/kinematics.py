@@ -174,6 +174,48 @@ def rest_poses(robot: Robot) -> dict[str, Tf]:
     return robot.derive("kinematics.rest_poses", build)
 
 
+def poses_at(robot: Robot, q: dict, W: dict | None = None, q0: dict | None = None) -> tuple[dict | None, set]:
+    """``world_transforms(robot, q)`` in pure Python (mimic joints following): link -> (R, p), and
+    the links placed; ``rest_poses`` at the zero pose. From ``W``, the poses at ``q0``, only the links
+    below a joint whose position differs are placed again (a sweep moves one joint at a time). The
+    poses are None for a position that is not a number. What an ordinary robot's rules need off
+    q = 0 (a quadruped's knees and Franka's elbow rest there) without importing numpy."""
+    if W is None and _at_zero(robot, q):
+        P = rest_poses(robot)
+        return P, set(P)
+    q = _with_mimic(robot, q)
+    if any(type(v) not in (float, int) for v in q.values()):
+        return None, set()
+    order, via, _ = robot.derive("kinematics.walk", lambda: _walk(robot, robot.joints_by_parent()))
+    changed = None
+    if W is not None:
+        q0 = _with_mimic(robot, q0)
+        changed = {n for n in set(q) | set(q0) if q.get(n, 0.0) != q0.get(n, 0.0)}
+    out: dict[str, Tf] = {}
+    placed: set[str] = set()
+    for link in order:
+        j = via[link]
+        if j is None:
+            out[link] = IDENTITY if W is None else W[link]
+            continue
+        if changed is not None and j.name not in changed and j.parent not in placed:
+            out[link] = W[link]
+            continue
+        placed.add(link)
+        T = compose(out[j.parent], pose_T(j.origin))
+        v = q.get(j.name, 0.0)
+        if v != 0 and j.type in _MOVING:
+            axis = [float(a) for a in j.axis]
+            n = math.sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2])
+            if j.type == "prismatic":
+                if n:
+                    T = compose(T, (IDENTITY[0], (axis[0] / n * v, axis[1] / n * v, axis[2] / n * v)))
+            else:
+                T = compose(T, (tuple(map(tuple, _axis_angle_rows(axis, n, v))), (0.0, 0.0, 0.0)))
+        out[link] = T
+    return out, placed
+
+
 def _at_zero(robot: Robot, q: dict) -> bool:
     """Does ``q`` place every joint as no ``q`` does: each position, mimic joints' included, a
     Python 0 or +0.0 (``Robot.rest_pose`` of most robots; -0.0 would turn frames by a signed zero)."""

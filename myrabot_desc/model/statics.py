@@ -31,9 +31,9 @@ from __future__ import annotations
 import math
 from typing import NamedTuple
 
-from myrabot_desc.model.kinematics import _at_zero, _axis_angle_rows, _norms, _walk, _with_mimic, axis_angle, \
-    pose_matrix, pose_stack, rest_poses, world_transforms, world_transforms_from
-from myrabot_desc.model.transforms import IDENTITY, compose, pose_T, rotate
+from myrabot_desc.model.kinematics import _axis_angle_rows, _norms, _walk, axis_angle, pose_matrix, pose_stack, poses_at, \
+    world_transforms, world_transforms_from
+from myrabot_desc.model.transforms import compose, pose_T, rotate
 
 SAMPLES = 13             # values per joint range: 15 degrees apart on a half-turn range
 MOVING = ("revolute", "continuous", "prismatic")
@@ -154,7 +154,9 @@ def _gravity_needs_py(robot, samples: int = SAMPLES, joints=None) -> list[Need] 
     larger than ``PURE_WORK``: the numpy form then."""
     rest = robot.rest_pose()
     order, via, _ = robot.derive("kinematics.walk", lambda: _walk(robot, robot.joints_by_parent()))
-    W = rest_poses(robot) if _at_zero(robot, rest) else _poses_at(robot, order, via, rest)[0]
+    W = poses_at(robot, rest)[0]
+    if W is None:
+        return None
     parent_of = {}                         # link -> its parent link, over the joints among the links placed
     for j in robot.joints.values():
         if j.parent in W and j.child in W:
@@ -277,40 +279,6 @@ def _gravity_needs_py(robot, samples: int = SAMPLES, joints=None) -> list[Need] 
     return out
 
 
-def _poses_at(robot, order, via, q, W=None, q0=None) -> tuple[dict, set]:
-    """The links' world poses (model/transforms.py) at ``q`` (mimic joints following) in pure Python,
-    ``world_transforms``' walk and products (parent @ origin @ motion), and the links placed. From
-    ``W``, the poses at ``q0``: only the links below a joint whose position differs are placed again.
-    (A kinematics helper kept here: only this sweep places a robot off q = 0 without numpy.)"""
-    q = _with_mimic(robot, q)
-    changed = None
-    if W is not None:
-        q0 = _with_mimic(robot, q0)
-        changed = {n for n in set(q) | set(q0) if q.get(n, 0.0) != q0.get(n, 0.0)}
-    out, placed = {}, set()
-    for link in order:
-        j = via[link]
-        if j is None:
-            out[link] = IDENTITY if W is None else W[link]
-            continue
-        if changed is not None and j.name not in changed and j.parent not in placed:
-            out[link] = W[link]
-            continue
-        placed.add(link)
-        T = compose(out[j.parent], pose_T(j.origin))
-        v = q.get(j.name, 0.0)
-        if v != 0 and j.type in MOVING:
-            axis = [float(a) for a in j.axis]
-            n = math.sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2])
-            if j.type == "prismatic":
-                if n:
-                    T = compose(T, (IDENTITY[0], (axis[0] / n * v, axis[1] / n * v, axis[2] / n * v)))
-            else:
-                T = compose(T, (tuple(map(tuple, _axis_angle_rows(axis, n, v))), (0.0, 0.0, 0.0)))
-        out[link] = T
-    return out, placed
-
-
 def _own_moments(robot, links, W) -> dict:
     """link -> (mass, mass moment m c in the world) of the ``links`` with a usable mass."""
     out = {}
@@ -352,7 +320,7 @@ def _torques_at(robot, order, via, parent_of, rest, W, own, frames, moved, names
     poses (``W``), moments (``own``) and joint frames (``frames``) kept from the rest pose."""
     q = dict(rest)
     q.update(moved)
-    W2, placed = _poses_at(robot, order, via, q, W, rest)
+    W2, placed = poses_at(robot, q, W, rest)
     own = {**own, **_own_moments(robot, placed, W2)}
     M, Q = _subtree_moments(order, parent_of, own)
     G = GRAVITY

@@ -23,7 +23,7 @@ import math
 from typing import NamedTuple
 
 from myrabot_desc.model.hull2d import convex_hull
-from myrabot_desc.model.kinematics import center_of_mass, pose_matrix, world_transforms
+from myrabot_desc.model.kinematics import center_of_mass, world_transforms
 from myrabot_desc.model.transforms import compose, pose_T
 from myrabot_desc.model.shapes import lowest_points, surface_points
 
@@ -96,13 +96,6 @@ def collision_shapes(robot, world, mesh_of=None):
                 if mesh is None or isinstance(mesh, str):
                     continue
             yield link, it, mesh
-
-
-def placed_collisions(robot, world, mesh_of=None):
-    """(link, collision item, world pose 4x4, mesh) for every shape of ``collision_shapes``, placed
-    by ``world`` (link -> 4x4, from model.kinematics.world_transforms)."""
-    for link, it, mesh in collision_shapes(robot, world, mesh_of):
-        yield link, it, world[link.name] @ pose_matrix(it.origin), mesh
 
 
 def _pose(T):

@@ -2,6 +2,11 @@
 
 Primitives are always measured (closed forms, cheap). Meshes are measured only when
 mesh files are loaded (`--inertia`), and only when watertight.
+
+Without meshes no numpy is needed for an ordinary robot: pure-Python screens, with margins for the
+ulps by which they differ from numpy's products, clear the links that cannot be reported; the others
+are measured in pure Python where that gives numpy's floats to the bit (unrotated shapes, a diagonal
+tensor), else with numpy, so that the numbers a finding reports are the same either way.
 """
 
 from __future__ import annotations
@@ -384,17 +389,46 @@ def radius_of_gyration(ctx):
     wanted = None if ctx.opts.load_meshes else _gyration_suspects(ctx)      # (meshes: numpy is loaded)
     if wanted is not None and not wanted:
         return
+    # links that repeat their points, inertial origin, tensor and mass (the loader's shared values)
+    # are measured once: the key's objects stay alive with the links
+    key_of: dict = {}
+    found: dict = {}                        # key -> (the message after "link NAME: ", its data) or None
+    rest = None                             # the links numpy measures (None: all)
+    if wanted is not None:
+        rest = set()
+        pure = pure_hull_points(ctx)
+        every = solids(ctx)
+        for name, key in wanted.items():
+            hit = found.get(key)
+            if hit is None and key not in found:
+                hit = found[key] = _pure_gyration(every[name].link, pure[name])
+            if hit is NotImplemented:
+                rest.add(name)
+            else:
+                key_of[name] = key
+    if rest is None or rest:
+        _numpy_gyration(ctx, rest, found, key_of)
+    for name, s in solids(ctx).items():
+        key = key_of.get(name)
+        worst = found[key] if key is not None else None
+        if worst:
+            link = s.link
+            tail, kg, reach, moment = worst
+            yield Finding(f"link {name}: {tail}", link.inertial.loc or link.loc,
+                          {"link": name, "radius_of_gyration": kg, "reach": reach, "moment": moment},
+                          severity=s.severity)
+
+
+def _numpy_gyration(ctx, names, found: dict, key_of: dict) -> None:
+    """radius_of_gyration's measure of the links ``names`` (None: all) with numpy, into ``found``
+    and ``key_of``: one stacked product per point count."""
     import numpy as np
 
     pts_of = hull_points(ctx)
-    # links that repeat their points (hull_points shares them), inertial origin, tensor and mass
-    # (the loader's shared values) are measured once: the key's objects stay alive with the links
-    key_of = {}
-    found: dict = {}                        # key -> (the message after "link NAME: ", its data) or None
     by_size: dict[int, list] = {}          # one link per key, grouped by point count: one stacked product per group
     for name, s in solids(ctx).items():
         pts = pts_of[name]
-        if pts is not None and (wanted is None or name in wanted):
+        if pts is not None and (names is None or name in names):
             i = s.link.inertial
             key = (id(pts), id(i.origin.xyz), id(i.origin.rpy), id(i.ixx), id(i.ixy), id(i.ixz), id(i.iyy),
                    id(i.iyz), id(i.izz), id(i.mass))
@@ -402,7 +436,6 @@ def radius_of_gyration(ctx):
                 found[key] = None
                 by_size.setdefault(len(pts), []).append((key, s))
             key_of[name] = key
-    sqrt = math.sqrt
     for group in by_size.values():
         pts = np.array([pts_of[s.link.name] for _, s in group], dtype=float)
         T = pose_stack(s.link.inertial.origin for _, s in group)
@@ -417,41 +450,68 @@ def radius_of_gyration(ctx):
                           for k in range(3)], axis=1)
         ev, axes, reaches = ev.ravel().tolist(), np.swapaxes(vec, 1, 2).ravel().tolist(), reach.ravel().tolist()
         for n, (key, s) in enumerate(group):
-            i = s.link.inertial
-            mass = i.mass
-            worst = None
-            for b in range(3 * n, 3 * n + 3):
-                e = ev[b]
-                if e <= 0:
-                    continue
-                reach = reaches[b]
-                kg = sqrt(e / mass)
-                if kg > 1.1 * reach + 1e-4 and (worst is None or kg / max(reach, 1e-9) > worst[0]):
-                    worst = (kg / max(reach, 1e-9), kg, reach, e, axes[3 * b:3 * b + 3])
-            if worst:
-                _, kg, reach, moment, u = worst
-                worst = (f"radius of gyration √({moment:.3g}/{i.mass:g}) = {kg:.3g} m about axis "
-                         f"({u[0]:.2g} {u[1]:.2g} {u[2]:.2g}), but no point of the geometry is farther than "
-                         f"{reach:.3g} m from that axis", kg, reach, float(moment))
-            found[key] = worst
-    for name, s in solids(ctx).items():
-        key = key_of.get(name)
-        worst = found[key] if key is not None else None
-        if worst:
-            link = s.link
-            tail, kg, reach, moment = worst
-            yield Finding(f"link {name}: {tail}", link.inertial.loc or link.loc,
-                          {"link": name, "radius_of_gyration": kg, "reach": reach, "moment": moment},
-                          severity=s.severity)
+            found[key] = _worst(s.link.inertial, ev[3 * n:3 * n + 3], axes[9 * n:9 * n + 9], reaches[3 * n:3 * n + 3])
 
 
-def _gyration_suspects(ctx) -> set:
-    """The links radius_of_gyration may report: pure Python on pure_hull_points, with margins for
+def _worst(i, ev, axes, reaches):
+    """(the message after "link NAME: ", radius of gyration, reach, moment) of the principal axis of
+    inertial ``i`` whose radius of gyration most exceeds its reach, or None: ``ev`` the principal
+    moments, ``axes`` their axes (flat, three by three), ``reaches`` the farthest point from each."""
+    mass = i.mass
+    worst = None
+    for b in range(3):
+        e = ev[b]
+        if e <= 0:
+            continue
+        reach = reaches[b]
+        kg = math.sqrt(e / mass)
+        if kg > 1.1 * reach + 1e-4 and (worst is None or kg / max(reach, 1e-9) > worst[0]):
+            worst = (kg / max(reach, 1e-9), kg, reach, e, axes[3 * b:3 * b + 3])
+    if worst is None:
+        return None
+    _, kg, reach, moment, u = worst
+    return (f"radius of gyration √({moment:.3g}/{i.mass:g}) = {kg:.3g} m about axis "
+            f"({u[0]:.2g} {u[1]:.2g} {u[2]:.2g}), but no point of the geometry is farther than "
+            f"{reach:.3g} m from that axis", kg, reach, float(moment))
+
+
+def _pure_gyration(link, pts):
+    """_numpy_gyration's result for one link in pure Python, to the bit, where its floats are
+    products by 1 and 0: no rotation in the inertial frame or the shapes' origins, a diagonal tensor
+    (LAPACK's eigenvectors are then the unit axes and its moments the diagonal, in the order of
+    dsteqr's selection sort). NotImplemented for any other link."""
+    i = link.inertial
+    if any(i.origin.rpy) or i.ixy or i.ixz or i.iyz or any(any(it.origin.rpy) for it in _hull_items(link)):
+        return NotImplemented
+    d = [float(i.ixx), float(i.iyy), float(i.izz)]
+    big = max(map(abs, d))
+    if not (big == 0 or 1e-140 < big < 1e140):      # dsyevd scales a matrix this small or large
+        return NotImplemented
+    px, py, pz = (float(v) for v in i.origin.xyz)
+    local = [(x - px, y - py, z - pz) for x, y, z in pts]
+    sq = [(x * x + y * y) + z * z for x, y, z in local]           # numpy's sum over the three, in its order
+    if not math.isfinite(sum(sq)):
+        return NotImplemented
+    reaches = [math.sqrt(max(max([q - c[k] * c[k] for q, c in zip(sq, local)]), 0.0)) for k in range(3)]
+    order = [0, 1, 2]
+    for a in range(2):                  # the smallest first, swapped into place (not a stable sort)
+        k = a
+        for j in range(a + 1, 3):
+            if d[order[j]] < d[order[k]]:
+                k = j
+        order[a], order[k] = order[k], order[a]
+    axes = [1.0 if c == k else 0.0 for k in order for c in range(3)]
+    return _worst(i, [d[k] for k in order], axes, [reaches[k] for k in order])
+
+
+def _gyration_suspects(ctx) -> dict:
+    """The links radius_of_gyration may report, each with the key of the objects its measure reads
+    (links that repeat them are measured once): pure Python on pure_hull_points, with margins for
     the ulps by which eigh3 and these points differ from numpy's (a pair of moments too close for
-    their axes to be compared: the link is a suspect), so numpy measures the findings only."""
+    their axes to be compared: the link is a suspect), so that only these are measured to the bit."""
     pts_of = pure_hull_points(ctx)
     seen: dict = {}
-    out = set()
+    out = {}
     for name, s in solids(ctx).items():
         pts = pts_of[name]
         if pts is None:
@@ -463,7 +523,7 @@ def _gyration_suspects(ctx) -> set:
         if hit is None:
             hit = seen[key] = _may_gyrate(i, pts)
         if hit:
-            out.add(name)
+            out[name] = key
     return out
 
 
@@ -476,13 +536,13 @@ def _may_gyrate(i, pts) -> bool:
         local.append((a * x + d * y + g * z, b * x + e * y + h * z, c * x + f * y + k * z))
     t = tensor(i)
     mass = i.mass
-    if not all(math.isfinite(v) for row in t for v in row) or not math.isfinite(mass) or \
-            not all(math.isfinite(v) for q in local for v in q):
+    sq = [x * x + y * y + z * z for x, y, z in local]
+    # (a sum that overflows leaves the link to numpy too)
+    if not math.isfinite(sum(v for row in t for v in row) + mass + sum(sq)):
         return True
     ev, V = eigh3(t)
     scale = max(abs(v) for v in ev)
     diagonal = not (t[0][1] or t[0][2] or t[1][2])       # eigh3's and LAPACK's axes: the unit vectors
-    sq = [x * x + y * y + z * z for x, y, z in local]
     rmax = math.sqrt(max(sq, default=0.0))
     for n in range(3):
         hi = ev[n] + 1e-12 * scale
@@ -491,8 +551,8 @@ def _may_gyrate(i, pts) -> bool:
         if not diagonal and any(abs(ev[n] - ev[m]) <= SCREEN * scale for m in range(3) if m != n):
             return True
         ux, uy, uz = V[0][n], V[1][n], V[2][n]
-        reach = max((math.sqrt(max(q - (x * ux + y * uy + z * uz) ** 2, 0.0))
-                     for q, (x, y, z) in zip(sq, local)), default=0.0)
+        far = max([q - (x * ux + y * uy + z * uz) ** 2 for q, (x, y, z) in zip(sq, local)], default=0.0)
+        reach = math.sqrt(max(far, 0.0))
         if math.sqrt(hi / mass) * (1 + SCREEN) > 1.1 * max(reach * (1 - SCREEN) - SCREEN * rmax, 0.0) + 1e-4:
             return True
     return False
@@ -652,6 +712,38 @@ def origin_inside(ctx):
     wanted = None if ctx.opts.load_meshes else _outside_suspects(ctx)       # (meshes: numpy is loaded)
     if wanted is not None and not wanted:
         return
+    every = solids(ctx)
+    found: dict = {}                    # link -> (message, data) or None
+    rest = None                         # the links numpy measures (None: all)
+    if wanted is not None:
+        pure = pure_hull_points(ctx)
+        rest = set()
+        for name in wanted:
+            hit = _pure_outside(every[name], pure[name])
+            if hit is NotImplemented:
+                rest.add(name)
+            else:
+                found[name] = hit
+    if rest is None or rest:
+        found.update(_numpy_outside(ctx, rest))
+    for name, s in every.items():
+        hit = found.get(name)
+        if hit:
+            yield Finding(f"link {name}: {hit[0]}", s.link.inertial.loc or s.link.loc, {"link": name, **hit[1]})
+
+
+def _outside(lo, hi, p, out, centroid) -> tuple:
+    """(the message after "link NAME: ", the data after the link's name) of origin_inside."""
+    return (f"inertial origin ({' '.join(f'{v:.3g}' for v in p)}) lies {out:.3g} m outside "
+            f"the box bounding its geometry ({' '.join(f'{v:.3g}' for v in lo)} .. "
+            f"{' '.join(f'{v:.3g}' for v in hi)}); geometric centroid "
+            f"({' '.join(f'{v:.3g}' for v in centroid)})",
+            {"origin": list(p), "distance": out, "centroid": centroid})
+
+
+def _numpy_outside(ctx, names) -> dict:
+    """origin_inside's verdict on the links ``names`` (None: all) with numpy: link -> _outside's
+    pair for the links outside."""
     import numpy as np
 
     pts_of = hull_points(ctx)
@@ -659,7 +751,7 @@ def origin_inside(ctx):
     key_of = {}                         # links that repeat their points and origin (shared objects) tested once
     for name, s in solids(ctx).items():
         pts = pts_of[name]
-        if pts is not None and (wanted is None or name in wanted):
+        if pts is not None and (names is None or name in names):
             key = key_of[name] = (id(pts), id(s.link.inertial.origin.xyz))
             group = by_size.setdefault(len(pts), {})
             if key not in group:
@@ -673,6 +765,7 @@ def origin_inside(ctx):
         p = np.array([ctx.robot.links[n].inertial.origin.xyz for n in names], dtype=float)
         gap = np.maximum(np.maximum(lo - margin - p, p - hi - margin), 0)
         outside.update(key for key, g in zip(group, gap.max(1).tolist()) if g > 0)
+    found = {}
     for name, s in solids(ctx).items():
         if key_of.get(name) not in outside:
             continue
@@ -685,12 +778,55 @@ def origin_inside(ctx):
         if gap.max() > 0:
             out = float(np.linalg.norm(np.maximum(np.maximum(lo - p, p - hi), 0)))
             centroid = list(s.props.com) if s.props is not None else ((lo + hi) / 2).tolist()
-            yield Finding(f"link {name}: inertial origin ({' '.join(f'{v:.3g}' for v in p)}) lies {out:.3g} m outside "
-                          f"the box bounding its geometry ({' '.join(f'{v:.3g}' for v in lo)} .. "
-                          f"{' '.join(f'{v:.3g}' for v in hi)}); geometric centroid "
-                          f"({' '.join(f'{v:.3g}' for v in centroid)})",
-                          s.link.inertial.loc or s.link.loc,
-                          {"link": name, "origin": p.tolist(), "distance": out, "centroid": centroid})
+            found[name] = _outside(lo.tolist(), hi.tolist(), p.tolist(), out, centroid)
+    return found
+
+
+def _pure_outside(s, pts):
+    """_numpy_outside's verdict on one link in pure Python, to the bit, where its floats are sums
+    and products by 1 and 0 (no shape's origin rotated) and the distance has one term (numpy's
+    norm of more is a BLAS dot); NotImplemented for any other link. (props.com is combine's to
+    the bit: combine_pure's centroid is.)"""
+    link = s.link
+    items = _hull_items(link)
+    vis = [v for v in link.visuals if v.geometry is not None]
+    if any(any(it.origin.rpy) for it in items) or any(any(v.origin.rpy) for v in vis):
+        return NotImplemented
+    p = [float(v) for v in link.inertial.origin.xyz]
+    if not (math.isfinite(sum(p)) and math.isfinite(sum(v for q in pts for v in q))):
+        return NotImplemented
+    if not _beyond(pts, p):
+        return None
+    extra = []
+    for v in vis:
+        g = v.geometry
+        if g.kind == "mesh":            # (not loaded: hull_points would have none either)
+            continue
+        ox, oy, oz = (float(c) for c in v.origin.xyz)
+        extra.extend((x + ox, y + oy, z + oz) for x, y, z in G.surface_points(g, 32))
+    if extra:
+        if not math.isfinite(sum(v for q in extra for v in q)):
+            return NotImplemented
+        pts = [*pts, *extra]
+    lo, hi = _beyond(pts, p) or (None, None)
+    if lo is None:
+        return None
+    d = [max(max(lo[k] - p[k], p[k] - hi[k]), 0.0) for k in range(3)]
+    if sum(1 for v in d if v) != 1:
+        return NotImplemented
+    g = max(d)
+    centroid = list(s.props.com) if s.props is not None else [(lo[k] + hi[k]) / 2 for k in range(3)]
+    return _outside(lo, hi, p, math.sqrt(g * g), centroid)
+
+
+def _beyond(pts, p):
+    """(lo, hi) of the points when ``p`` lies outside their box grown by origin_inside's margin, else None."""
+    cols = list(zip(*pts))
+    lo, hi = [min(c) for c in cols], [max(c) for c in cols]
+    margin = 0.1 * max(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) + 0.005
+    if any(max(lo[k] - margin - p[k], p[k] - hi[k] - margin) > 0 for k in range(3)):
+        return lo, hi
+    return None
 
 
 def _outside_suspects(ctx) -> set:

@@ -49,10 +49,11 @@ class Solid:
     """A link's geometry as a uniform solid at the declared mass (link frame), or why not.
 
     ``props`` of primitives only are pure Python: placed_primitive's (numpy's floats to the bit) or
-    combine_pure's (within a few ulps of combine's, the same volume); ``exact()`` gives combine's, the
-    floats a finding reports, computed only for links the screens cannot clear."""
+    combine_pure's (combine's volume and centroid, its tensor within a few ulps); ``exact()`` gives
+    combine's, the tensor a finding reports, computed only for the links the screen cannot clear."""
 
-    __slots__ = ("link", "source", "items", "props", "why_not", "marker", "desc", "parts", "_exact")   # 20,000 in a star
+    # (20,000 of them in a star)
+    __slots__ = ("link", "source", "items", "props", "why_not", "marker", "desc", "parts", "_exact")
 
     def __init__(self, ctx, link, same: dict | None = None):
         self.link = link

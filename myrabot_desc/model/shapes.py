@@ -128,7 +128,7 @@ def combine(parts, mass: float):
 
     Returns MassProps in the link frame (overlaps are counted twice: a fair approximation
     for the rough check this is). numpy's products: the floats check reports (combine_pure
-    gives the same within a few ulps, without numpy).
+    gives the tensor within a few ulps, without numpy).
     """
     import numpy as np
 
@@ -149,8 +149,10 @@ def combine(parts, mass: float):
 
 
 def combine_pure(parts, mass: float):
-    """``combine`` in pure Python, the poses given as transforms (R, p) (model/transforms.py): the
-    same volume to the bit (the same sum), the centroid and tensor within a few ulps of combine's."""
+    """``combine`` in pure Python, the poses given as transforms (R, p) (model/transforms.py). The
+    volume is combine's to the bit (the same sum), and so is the centroid of parts whose own centroid
+    is their origin (primitives: R @ 0 is a zero, which the sums from 0 make +0); the tensor is
+    within a few ulps of combine's (its products round their own way)."""
     vol = sum(p[0] for p in parts)
     if vol <= 0:
         return None

@@ -220,8 +220,11 @@ def geometry_fix(ctx, link) -> Fix | None:
     s = solids(ctx).get(link.name)
     if s is None or s.props is None:
         return None
-    _com, t = s.in_inertial_frame()
-    return tensor_fix(link.inertial, t.tolist(), f"inertia of {link.name} from its {s.source} geometry")
+    _com, t = s.framed()        # (within ulps of in_inertial_frame's: the fix writes 4 digits)
+    flat = [abs(v) for row in t for v in row]
+    lim = 1e-6 * max(flat)              # rotation round-off is not a product of inertia (in_inertial_frame)
+    t = [[0.0 if abs(v) < lim else v for v in row] for row in t]
+    return tensor_fix(link.inertial, t, f"inertia of {link.name} from its {s.source} geometry")
 
 
 def _rebalanced(i) -> Fix | None:

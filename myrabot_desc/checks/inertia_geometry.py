@@ -2,6 +2,11 @@
 
 Primitives are always measured (closed forms, cheap). Meshes are measured only when
 mesh files are loaded (`--inertia`), and only when watertight.
+
+Without meshes no numpy is needed for an ordinary robot: pure-Python screens, with margins for the
+ulps by which they differ from numpy's products, clear the links that cannot be reported; the others
+are measured in pure Python where that gives numpy's floats to the bit (unrotated shapes, a diagonal
+tensor), else with numpy, so that the numbers a finding reports are the same either way.
 """
 
 from __future__ import annotations
@@ -11,7 +16,9 @@ import math
 from myrabot_desc.checks.examples import tetrahedron_stl
 from myrabot_desc.checks.rule import Finding, Fix, FixInfo, LazyFix, SetValue, rule
 from myrabot_desc.model import shapes as G
+from myrabot_desc.model.inertia import eigh3, tensor
 from myrabot_desc.model.kinematics import pose_matrix, pose_stack
+from myrabot_desc.model.transforms import matmul3, pose_T, rotate, transpose3
 
 
 def _part(body: str, name: str = "chassis") -> str:
@@ -39,9 +46,14 @@ DENSITY_RANGE = (100.0, 23000.0)    # kg/m³: below balsa-and-foam structures, a
 
 
 class Solid:
-    """A link's geometry as a uniform solid at the declared mass (link frame), or why not."""
+    """A link's geometry as a uniform solid at the declared mass (link frame), or why not.
 
-    __slots__ = ("link", "source", "items", "props", "why_not", "marker", "desc")   # 20,000 of them in a star
+    ``props`` of primitives only are pure Python: placed_primitive's (numpy's floats to the bit) or
+    combine_pure's (combine's volume and centroid, its tensor within a few ulps); ``exact()`` gives
+    combine's, the tensor a finding reports, computed only for the links the screen cannot clear."""
+
+    # (20,000 of them in a star)
+    __slots__ = ("link", "source", "items", "props", "why_not", "marker", "desc", "parts", "_exact")
 
     def __init__(self, ctx, link, same: dict | None = None):
         self.link = link
@@ -49,6 +61,7 @@ class Solid:
         self.props = None
         self.why_not = None
         self.marker = False
+        self.parts = None               # (volume, com, unit inertia, origin) of each shape, while props are not exact
         if len(self.items) == 1:        # most links: one primitive, unrotated (no numpy for it)
             mass = link.inertial.mass if link.inertial else 0.0
             one = _one_shape(self.items[0], mass if mass > 0 else 1.0, same)
@@ -64,6 +77,7 @@ class Solid:
             return
         mass = link.inertial.mass if link.inertial else 0.0
         parts = []
+        meshes = False
         for it in self.items:
             g = it.geometry
             mesh = None
@@ -75,17 +89,34 @@ class Solid:
                 if mesh is None or isinstance(mesh, str):
                     self.why_not = f"mesh {g.filename} cannot be read" + (f" ({mesh})" if mesh else "")
                     return
+                meshes = True
             sp = G.shape_props(g, mesh)
             if sp is None:
                 self.why_not = (f"mesh {g.filename.rsplit('/', 1)[-1]} is not watertight"
                                 if mesh is not None and not mesh.is_watertight else
                                 f"mesh {g.filename.rsplit('/', 1)[-1]} has no positive volume (inverted or open)")
                 return
-            parts.append((*sp, pose_matrix(it.origin)))
-        self.props = G.combine(parts, mass if mass > 0 else 1.0)
+            parts.append((*sp, it.origin))
+        if meshes:                      # numpy is loaded with the meshes: combine's floats at once
+            self.props = G.combine([(*pt[:3], pose_matrix(pt[3])) for pt in parts], mass if mass > 0 else 1.0)
+        else:
+            self.props = G.combine_pure([(*pt[:3], pose_T(pt[3])) for pt in parts], mass if mass > 0 else 1.0)
+            if self.props is not None:
+                self.parts = parts
         sizes = [G.size_of(it.geometry, ctx.mesh(it.geometry) if it.geometry.kind == "mesh" else None)
                  for it in self.items]
         self.marker = all(sz is not None and sz < MARKER_SIZE for sz in sizes)
+
+    def exact(self):
+        """``props`` as combine computes them (what I006 reports): the same object when they are."""
+        if self.parts is None:
+            return self.props
+        try:
+            return self._exact
+        except AttributeError:
+            mass = self.link.inertial.mass if self.link.inertial else 0.0
+            self._exact = G.combine([(*pt[:3], pose_matrix(pt[3])) for pt in self.parts], mass if mass > 0 else 1.0)
+            return self._exact
 
     @property
     def severity(self):
@@ -93,14 +124,24 @@ class Solid:
         return "info" if self.marker else None
 
     def in_inertial_frame(self):
-        """(com in inertial frame, tensor in inertial axes about the solid's com)."""
+        """(com in inertial frame, tensor in inertial axes about the solid's com), of ``exact()``."""
         import numpy as np
 
+        props = self.exact()
         T = pose_matrix(self.link.inertial.origin)
         R, p = T[:3, :3], T[:3, 3]
-        t = R.T @ np.array(self.props.inertia, dtype=float) @ R
+        t = R.T @ np.array(props.inertia, dtype=float) @ R
         t[abs(t) < 1e-6 * abs(t).max()] = 0.0          # rotation round-off (rpy 1.570796) is not a product of inertia
-        return R.T @ (np.array(self.props.com, dtype=float) - p), t
+        return R.T @ (np.array(props.com, dtype=float) - p), t
+
+    def framed(self) -> tuple:
+        """``in_inertial_frame`` of ``props`` in pure Python: (com, tensor as three row lists), within
+        a few ulps of it (before the zeroing of round-off, which a screen treats with a margin)."""
+        R, p = pose_T(self.link.inertial.origin)
+        Rt = transpose3(R)
+        t = [list(row) for row in matmul3(matmul3(Rt, self.props.inertia), R)]
+        c = self.props.com
+        return rotate(Rt, (c[0] - p[0], c[1] - p[1], c[2] - p[2])), t
 
 
 def _one_shape(item, mass: float, same: dict | None) -> tuple:
@@ -160,16 +201,19 @@ def inertia_vs_geometry(ctx):
     and it makes the body spin too easily or too sluggishly. Fix: the computed values
     given in the message (`--inertia --suggest` prints the `<inertia/>` line).
     """
+    suggest = ctx.opts.suggest
     solid = [(name, s) for name, s in solids(ctx).items() if s.props is not None]
+    if not suggest:                     # (suggest: a line for every link) only the links that may be reported
+        solid = _beyond_limit(solid)
     if not solid:
         return
     # links repeat (the same props and origin objects: _one_shape, the loader): each frame and
     # comparison is made once per distinct set of the objects it reads (kept alive by the links)
-    frame_key = [(id(s.props), id(s.link.inertial.origin.xyz), id(s.link.inertial.origin.rpy)) for _, s in solid]
+    frame_key = [(id(s.exact()), id(s.link.inertial.origin.xyz), id(s.link.inertial.origin.rpy)) for _, s in solid]
     first: dict = {}
     for k, key in enumerate(frame_key):
         first.setdefault(key, k)
-    framed_of = {key: _unrotated(solid[k][1].props, solid[k][1].link.inertial.origin) for key, k in first.items()}
+    framed_of = {key: _unrotated(solid[k][1].exact(), solid[k][1].link.inertial.origin) for key, k in first.items()}
     rest = [k for key, k in first.items() if framed_of[key] is None]
     if rest:
         import numpy as np
@@ -179,13 +223,12 @@ def inertia_vs_geometry(ctx):
         T = pose_stack(solid[k][1].link.inertial.origin for k in rest)
         R, p = T[:, :3, :3], T[:, :3, 3]
         Rt = np.swapaxes(R, 1, 2)
-        comps = Rt @ np.array([solid[k][1].props.inertia for k in rest], dtype=float) @ R
+        comps = Rt @ np.array([solid[k][1].exact().inertia for k in rest], dtype=float) @ R
         comps[abs(comps) < 1e-6 * abs(comps).max(axis=(1, 2))[:, None, None]] = 0.0   # as in in_inertial_frame
-        coms = (Rt @ (np.array([solid[k][1].props.com for k in rest], dtype=float) - p)[:, :, None])[:, :, 0]
+        coms = (Rt @ (np.array([solid[k][1].exact().com for k in rest], dtype=float) - p)[:, :, None])[:, :, 0]
         cf, mf = comps.ravel().tolist(), coms.ravel().tolist()      # flat: no list per row per link
         for n, k in enumerate(rest):
             framed_of[frame_key[k]] = (cf[9 * n:9 * n + 9], tuple(mf[3 * n:3 * n + 3]))
-    suggest = ctx.opts.suggest
     compared: dict = {}
     for (name, s), fkey in zip(solid, frame_key):
         i = s.link.inertial
@@ -203,6 +246,50 @@ def inertia_vs_geometry(ctx):
                 {"link": name, "declared": data[0], "computed": data[1], "ratios": data[2], "geometry": s.source,
                  "fix": line, "computed_tensor": data[3], "computed_com": data[4]},
                 severity=s.severity, fix=LazyFix(_solid_fix, i, texts, name, s.source))
+
+
+SCREEN = 1e-6      # relative: a pure-Python measure this close to a limit leaves the verdict to numpy's floats
+
+
+def _beyond_limit(solid: list) -> list:
+    """The (name, Solid) of ``solid`` whose diagonal may differ more than RATIO_LIMIT from the solid
+    body's: framed()'s floats, within a few ulps of the reported ones, clear the others (a margin of
+    SCREEN on the ratio and on in_inertial_frame's zeroing of round-off), so that numpy's products
+    are made for the findings only. Links repeat their objects (the loader, _one_shape): each set
+    is screened once."""
+    seen: dict = {}
+    out = []
+    for name, s in solid:
+        i = s.link.inertial
+        key = (id(s.props), id(i.origin.xyz), id(i.origin.rpy), id(i.ixx), id(i.iyy), id(i.izz))
+        hit = seen.get(key)
+        if hit is None:
+            hit = seen[key] = _may_exceed(s)
+        if hit:
+            out.append((name, s))
+    return out
+
+
+def _may_exceed(s) -> bool:
+    com, t = s.framed()
+    flat = [v for row in t for v in row]
+    if not all(map(math.isfinite, flat)) or not all(map(math.isfinite, com)):
+        return True
+    lim = 1e-6 * max(map(abs, flat))
+    i = s.link.inertial
+    for d, c in zip((float(i.ixx), float(i.iyy), float(i.izz)), (t[0][0], t[1][1], t[2][2])):
+        if abs(abs(c) - lim) <= SCREEN * lim:
+            return True
+        if abs(c) < lim:
+            c = 0.0
+        if c <= 0 or d <= 0:
+            if (c <= 0) != (d <= 0):
+                return True
+            continue
+        r = d / c
+        if not max(r, 1 / r) <= RATIO_LIMIT * (1 - SCREEN):
+            return True
+    return False
 
 
 def _compare(i, desc: str, framed) -> tuple:
@@ -300,17 +387,49 @@ def radius_of_gyration(ctx):
     Example: the Roomba base, izz 0.5 at 3.6 kg is √(0.5/3.6) = 0.37 m on a 0.17 m
     radius disc. Fix: the solid-body values (`--inertia --suggest`).
     """
+    wanted = None if ctx.opts.load_meshes else _gyration_suspects(ctx)      # (meshes: numpy is loaded)
+    if wanted is not None and not wanted:
+        return
+    # links that repeat their points, inertial origin, tensor and mass (the loader's shared values)
+    # are measured once: the key's objects stay alive with the links
+    key_of: dict = {}
+    found: dict = {}                        # key -> (the message after "link NAME: ", its data) or None
+    rest = None                             # the links numpy measures (None: all)
+    if wanted is not None:
+        rest = set()
+        pure = pure_hull_points(ctx)
+        every = solids(ctx)
+        for name, key in wanted.items():
+            hit = found.get(key)
+            if hit is None and key not in found:
+                hit = found[key] = _pure_gyration(every[name].link, pure[name])
+            if hit is NotImplemented:
+                rest.add(name)
+            else:
+                key_of[name] = key
+    if rest is None or rest:
+        _numpy_gyration(ctx, rest, found, key_of)
+    for name, s in solids(ctx).items():
+        key = key_of.get(name)
+        worst = found[key] if key is not None else None
+        if worst:
+            link = s.link
+            tail, kg, reach, moment = worst
+            yield Finding(f"link {name}: {tail}", link.inertial.loc or link.loc,
+                          {"link": name, "radius_of_gyration": kg, "reach": reach, "moment": moment},
+                          severity=s.severity)
+
+
+def _numpy_gyration(ctx, names, found: dict, key_of: dict) -> None:
+    """radius_of_gyration's measure of the links ``names`` (None: all) with numpy, into ``found``
+    and ``key_of``: one stacked product per point count."""
     import numpy as np
 
     pts_of = hull_points(ctx)
-    # links that repeat their points (hull_points shares them), inertial origin, tensor and mass
-    # (the loader's shared values) are measured once: the key's objects stay alive with the links
-    key_of = {}
-    found: dict = {}                        # key -> (the message after "link NAME: ", its data) or None
     by_size: dict[int, list] = {}          # one link per key, grouped by point count: one stacked product per group
     for name, s in solids(ctx).items():
         pts = pts_of[name]
-        if pts is not None:
+        if pts is not None and (names is None or name in names):
             i = s.link.inertial
             key = (id(pts), id(i.origin.xyz), id(i.origin.rpy), id(i.ixx), id(i.ixy), id(i.ixz), id(i.iyy),
                    id(i.iyz), id(i.izz), id(i.mass))
@@ -318,7 +437,6 @@ def radius_of_gyration(ctx):
                 found[key] = None
                 by_size.setdefault(len(pts), []).append((key, s))
             key_of[name] = key
-    sqrt = math.sqrt
     for group in by_size.values():
         pts = np.array([pts_of[s.link.name] for _, s in group], dtype=float)
         T = pose_stack(s.link.inertial.origin for _, s in group)
@@ -333,32 +451,140 @@ def radius_of_gyration(ctx):
                           for k in range(3)], axis=1)
         ev, axes, reaches = ev.ravel().tolist(), np.swapaxes(vec, 1, 2).ravel().tolist(), reach.ravel().tolist()
         for n, (key, s) in enumerate(group):
-            i = s.link.inertial
-            mass = i.mass
-            worst = None
-            for b in range(3 * n, 3 * n + 3):
-                e = ev[b]
-                if e <= 0:
-                    continue
-                reach = reaches[b]
-                kg = sqrt(e / mass)
-                if kg > 1.1 * reach + 1e-4 and (worst is None or kg / max(reach, 1e-9) > worst[0]):
-                    worst = (kg / max(reach, 1e-9), kg, reach, e, axes[3 * b:3 * b + 3])
-            if worst:
-                _, kg, reach, moment, u = worst
-                worst = (f"radius of gyration √({moment:.3g}/{i.mass:g}) = {kg:.3g} m about axis "
-                         f"({u[0]:.2g} {u[1]:.2g} {u[2]:.2g}), but no point of the geometry is farther than "
-                         f"{reach:.3g} m from that axis", kg, reach, float(moment))
-            found[key] = worst
+            found[key] = _worst(s.link.inertial, ev[3 * n:3 * n + 3], axes[9 * n:9 * n + 9], reaches[3 * n:3 * n + 3])
+
+
+def _worst(i, ev, axes, reaches):
+    """(the message after "link NAME: ", radius of gyration, reach, moment) of the principal axis of
+    inertial ``i`` whose radius of gyration most exceeds its reach, or None: ``ev`` the principal
+    moments, ``axes`` their axes (flat, three by three), ``reaches`` the farthest point from each."""
+    mass = i.mass
+    worst = None
+    for b in range(3):
+        e = ev[b]
+        if e <= 0:
+            continue
+        reach = reaches[b]
+        kg = math.sqrt(e / mass)
+        if kg > 1.1 * reach + 1e-4 and (worst is None or kg / max(reach, 1e-9) > worst[0]):
+            worst = (kg / max(reach, 1e-9), kg, reach, e, axes[3 * b:3 * b + 3])
+    if worst is None:
+        return None
+    _, kg, reach, moment, u = worst
+    return (f"radius of gyration √({moment:.3g}/{i.mass:g}) = {kg:.3g} m about axis "
+            f"({u[0]:.2g} {u[1]:.2g} {u[2]:.2g}), but no point of the geometry is farther than "
+            f"{reach:.3g} m from that axis", kg, reach, float(moment))
+
+
+def _pure_gyration(link, pts):
+    """_numpy_gyration's result for one link in pure Python, to the bit, where its floats are
+    products by 1 and 0: no rotation in the inertial frame or the shapes' origins, a diagonal tensor
+    (LAPACK's eigenvectors are then the unit axes and its moments the diagonal, in the order of
+    dsteqr's selection sort). NotImplemented for any other link."""
+    i = link.inertial
+    if any(i.origin.rpy) or i.ixy or i.ixz or i.iyz or any(any(it.origin.rpy) for it in _hull_items(link)):
+        return NotImplemented
+    d = [float(i.ixx), float(i.iyy), float(i.izz)]
+    big = max(map(abs, d))
+    if not (big == 0 or 1e-140 < big < 1e140):      # dsyevd scales a matrix this small or large
+        return NotImplemented
+    px, py, pz = (float(v) for v in i.origin.xyz)
+    local = [(x - px, y - py, z - pz) for x, y, z in pts]
+    sq = [(x * x + y * y) + z * z for x, y, z in local]           # numpy's sum over the three, in its order
+    if not math.isfinite(sum(sq)):
+        return NotImplemented
+    reaches = [math.sqrt(max(max([q - c[k] * c[k] for q, c in zip(sq, local)]), 0.0)) for k in range(3)]
+    order = [0, 1, 2]
+    for a in range(2):                  # the smallest first, swapped into place (not a stable sort)
+        k = a
+        for j in range(a + 1, 3):
+            if d[order[j]] < d[order[k]]:
+                k = j
+        order[a], order[k] = order[k], order[a]
+    axes = [1.0 if c == k else 0.0 for k in order for c in range(3)]
+    return _worst(i, [d[k] for k in order], axes, [reaches[k] for k in order])
+
+
+def _gyration_suspects(ctx) -> dict:
+    """The links radius_of_gyration may report, each with the key of the objects its measure reads
+    (links that repeat them are measured once): pure Python on pure_hull_points, with margins for
+    the ulps by which eigh3 and these points differ from numpy's (a pair of moments too close for
+    their axes to be compared: the link is a suspect), so that only these are measured to the bit."""
+    pts_of = pure_hull_points(ctx)
+    seen: dict = {}
+    out = {}
     for name, s in solids(ctx).items():
-        key = key_of.get(name)
-        worst = found[key] if key is not None else None
-        if worst:
-            link = s.link
-            tail, kg, reach, moment = worst
-            yield Finding(f"link {name}: {tail}", link.inertial.loc or link.loc,
-                          {"link": name, "radius_of_gyration": kg, "reach": reach, "moment": moment},
-                          severity=s.severity)
+        pts = pts_of[name]
+        if pts is None:
+            continue
+        i = s.link.inertial
+        key = (id(pts), id(i.origin.xyz), id(i.origin.rpy), id(i.ixx), id(i.ixy), id(i.ixz), id(i.iyy),
+               id(i.iyz), id(i.izz), id(i.mass))
+        hit = seen.get(key)
+        if hit is None:
+            hit = seen[key] = _may_gyrate(i, pts)
+        if hit:
+            out[name] = key
+    return out
+
+
+def _may_gyrate(i, pts) -> bool:
+    R, (px, py, pz) = pose_T(i.origin)
+    (a, b, c), (d, e, f), (g, h, k) = R
+    local = []                      # R^T (x - p): the points in the inertial frame
+    for x, y, z in pts:
+        x, y, z = x - px, y - py, z - pz
+        local.append((a * x + d * y + g * z, b * x + e * y + h * z, c * x + f * y + k * z))
+    t = tensor(i)
+    mass = i.mass
+    sq = [x * x + y * y + z * z for x, y, z in local]
+    # (a sum that overflows leaves the link to numpy too)
+    if not math.isfinite(sum(v for row in t for v in row) + mass + sum(sq)):
+        return True
+    ev, V = eigh3(t)
+    scale = max(abs(v) for v in ev)
+    diagonal = not (t[0][1] or t[0][2] or t[1][2])       # eigh3's and LAPACK's axes: the unit vectors
+    rmax = math.sqrt(max(sq, default=0.0))
+    for n in range(3):
+        hi = ev[n] + 1e-12 * scale
+        if hi <= 0:
+            continue
+        if not diagonal and any(abs(ev[n] - ev[m]) <= SCREEN * scale for m in range(3) if m != n):
+            return True
+        ux, uy, uz = V[0][n], V[1][n], V[2][n]
+        far = max([q - (x * ux + y * uy + z * uz) ** 2 for q, (x, y, z) in zip(sq, local)], default=0.0)
+        reach = math.sqrt(max(far, 0.0))
+        if math.sqrt(hi / mass) * (1 + SCREEN) > 1.1 * max(reach * (1 - SCREEN) - SCREEN * rmax, 0.0) + 1e-4:
+            return True
+    return False
+
+
+def pure_hull_points(ctx) -> dict:
+    """hull_points in pure Python, without meshes (a mesh's link: None, as hull_points without
+    --inertia): link -> list of (x, y, z), within an ulp or so of hull_points' rows; links that
+    repeat a shape and its origin share the list. What the screens of I007 and I010 read."""
+    def build():
+        placed_of: dict = {}
+        out: dict = {}
+        for name, s in solids(ctx).items():
+            items = _hull_items(s.link)
+            lists = []
+            for it in items or ():
+                g, o = it.geometry, it.origin
+                if g.kind == "mesh":
+                    items = None
+                    break
+                key = (g.__class__, *map(id, g), id(o.xyz), id(o.rpy))
+                pts = placed_of.get(key)
+                if pts is None:
+                    R, (px, py, pz) = pose_T(o)
+                    (a, b, c), (d, e, f), (gg, h, k) = R
+                    pts = placed_of[key] = [(a * x + b * y + c * z + px, d * x + e * y + f * z + py,
+                                             gg * x + h * y + k * z + pz) for x, y, z in G.surface_points(g, 32)]
+                lists.append(pts)
+            out[name] = None if not items else lists[0] if len(lists) == 1 else [q for x in lists for q in x]
+        return out
+    return ctx.fact("pure_hull_points", build)
 
 
 def hull_points(ctx) -> dict:
@@ -484,6 +710,41 @@ def origin_inside(ctx):
     is measured with its visuals too before it is reported. Fix: the geometry's
     centroid (given), or the CAD's centre of mass.
     """
+    wanted = None if ctx.opts.load_meshes else _outside_suspects(ctx)       # (meshes: numpy is loaded)
+    if wanted is not None and not wanted:
+        return
+    every = solids(ctx)
+    found: dict = {}                    # link -> (message, data) or None
+    rest = None                         # the links numpy measures (None: all)
+    if wanted is not None:
+        pure = pure_hull_points(ctx)
+        rest = set()
+        for name in wanted:
+            hit = _pure_outside(every[name], pure[name])
+            if hit is NotImplemented:
+                rest.add(name)
+            else:
+                found[name] = hit
+    if rest is None or rest:
+        found.update(_numpy_outside(ctx, rest))
+    for name, s in every.items():
+        hit = found.get(name)
+        if hit:
+            yield Finding(f"link {name}: {hit[0]}", s.link.inertial.loc or s.link.loc, {"link": name, **hit[1]})
+
+
+def _outside(lo, hi, p, out, centroid) -> tuple:
+    """(the message after "link NAME: ", the data after the link's name) of origin_inside."""
+    return (f"inertial origin ({' '.join(f'{v:.3g}' for v in p)}) lies {out:.3g} m outside "
+            f"the box bounding its geometry ({' '.join(f'{v:.3g}' for v in lo)} .. "
+            f"{' '.join(f'{v:.3g}' for v in hi)}); geometric centroid "
+            f"({' '.join(f'{v:.3g}' for v in centroid)})",
+            {"origin": list(p), "distance": out, "centroid": centroid})
+
+
+def _numpy_outside(ctx, names) -> dict:
+    """origin_inside's verdict on the links ``names`` (None: all) with numpy: link -> _outside's
+    pair for the links outside."""
     import numpy as np
 
     pts_of = hull_points(ctx)
@@ -491,7 +752,7 @@ def origin_inside(ctx):
     key_of = {}                         # links that repeat their points and origin (shared objects) tested once
     for name, s in solids(ctx).items():
         pts = pts_of[name]
-        if pts is not None:
+        if pts is not None and (names is None or name in names):
             key = key_of[name] = (id(pts), id(s.link.inertial.origin.xyz))
             group = by_size.setdefault(len(pts), {})
             if key not in group:
@@ -505,6 +766,7 @@ def origin_inside(ctx):
         p = np.array([ctx.robot.links[n].inertial.origin.xyz for n in names], dtype=float)
         gap = np.maximum(np.maximum(lo - margin - p, p - hi - margin), 0)
         outside.update(key for key, g in zip(group, gap.max(1).tolist()) if g > 0)
+    found = {}
     for name, s in solids(ctx).items():
         if key_of.get(name) not in outside:
             continue
@@ -517,12 +779,87 @@ def origin_inside(ctx):
         if gap.max() > 0:
             out = float(np.linalg.norm(np.maximum(np.maximum(lo - p, p - hi), 0)))
             centroid = list(s.props.com) if s.props is not None else ((lo + hi) / 2).tolist()
-            yield Finding(f"link {name}: inertial origin ({' '.join(f'{v:.3g}' for v in p)}) lies {out:.3g} m outside "
-                          f"the box bounding its geometry ({' '.join(f'{v:.3g}' for v in lo)} .. "
-                          f"{' '.join(f'{v:.3g}' for v in hi)}); geometric centroid "
-                          f"({' '.join(f'{v:.3g}' for v in centroid)})",
-                          s.link.inertial.loc or s.link.loc,
-                          {"link": name, "origin": p.tolist(), "distance": out, "centroid": centroid})
+            found[name] = _outside(lo.tolist(), hi.tolist(), p.tolist(), out, centroid)
+    return found
+
+
+def _pure_outside(s, pts):
+    """_numpy_outside's verdict on one link in pure Python, to the bit, where its floats are sums
+    and products by 1 and 0 (no shape's origin rotated) and the distance has one term (numpy's
+    norm of more is a BLAS dot); NotImplemented for any other link. (props.com is combine's to
+    the bit: combine_pure's centroid is.)"""
+    link = s.link
+    items = _hull_items(link)
+    vis = [v for v in link.visuals if v.geometry is not None]
+    if any(any(it.origin.rpy) for it in items) or any(any(v.origin.rpy) for v in vis):
+        return NotImplemented
+    p = [float(v) for v in link.inertial.origin.xyz]
+    if not (math.isfinite(sum(p)) and math.isfinite(sum(v for q in pts for v in q))):
+        return NotImplemented
+    if not _beyond(pts, p):
+        return None
+    extra = []
+    for v in vis:
+        g = v.geometry
+        if g.kind == "mesh":            # (not loaded: hull_points would have none either)
+            continue
+        ox, oy, oz = (float(c) for c in v.origin.xyz)
+        extra.extend((x + ox, y + oy, z + oz) for x, y, z in G.surface_points(g, 32))
+    if extra:
+        if not math.isfinite(sum(v for q in extra for v in q)):
+            return NotImplemented
+        pts = [*pts, *extra]
+    lo, hi = _beyond(pts, p) or (None, None)
+    if lo is None:
+        return None
+    d = [max(max(lo[k] - p[k], p[k] - hi[k]), 0.0) for k in range(3)]
+    if sum(1 for v in d if v) != 1:
+        return NotImplemented
+    g = max(d)
+    centroid = list(s.props.com) if s.props is not None else [(lo[k] + hi[k]) / 2 for k in range(3)]
+    return _outside(lo, hi, p, math.sqrt(g * g), centroid)
+
+
+def _beyond(pts, p):
+    """(lo, hi) of the points when ``p`` lies outside their box grown by origin_inside's margin, else None."""
+    cols = list(zip(*pts))
+    lo, hi = [min(c) for c in cols], [max(c) for c in cols]
+    margin = 0.1 * max(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) + 0.005
+    if any(max(lo[k] - margin - p[k], p[k] - hi[k] - margin) > 0 for k in range(3)):
+        return lo, hi
+    return None
+
+
+def _outside_suspects(ctx) -> set:
+    """The links whose inertial origin may lie outside the box of their points (origin_inside's
+    first test), on pure_hull_points with a margin for their ulps: numpy measures these only."""
+    pts_of = pure_hull_points(ctx)
+    seen: dict = {}
+    out = set()
+    for name, s in solids(ctx).items():
+        pts = pts_of[name]
+        if pts is None:
+            continue
+        xyz = s.link.inertial.origin.xyz
+        key = (id(pts), id(xyz))
+        hit = seen.get(key)
+        if hit is None:
+            hit = seen[key] = _may_be_outside(pts, xyz)
+        if hit:
+            out.add(name)
+    return out
+
+
+def _may_be_outside(pts, xyz) -> bool:
+    p = [float(v) for v in xyz]
+    if not all(map(math.isfinite, p)) or not all(math.isfinite(v) for q in pts for v in q):
+        return True
+    cols = list(zip(*pts))
+    lo, hi = [min(c) for c in cols], [max(c) for c in cols]
+    size = max(h - l for l, h in zip(lo, hi))
+    margin = 0.1 * size + 0.005
+    tol = SCREEN * (1 + size + max(map(abs, lo + hi + p)))
+    return any(lo[k] - margin - p[k] > -tol or p[k] - hi[k] - margin > -tol for k in range(3))
 
 
 def _with_visuals(ctx, link, pts):

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 from myrabot_desc.errors import InputError
 from myrabot_desc.model import meshes as meshio
+from myrabot_desc.model.transforms import matmul3, rotate, transpose3
 
 
 @dataclass
@@ -50,11 +51,11 @@ def primitive_moments(g, mass: float) -> tuple[float, float, float]:
 
 
 def primitive_inertia(g, mass: float):
-    """3x3 inertia about the centroid in the geometry frame (closed forms)."""
-    import numpy as np
-
-    d = primitive_moments(g, mass)
-    return np.eye(3) * d[0] if g.kind == "sphere" else np.diag(d)
+    """3x3 inertia about the centroid in the geometry frame (closed forms), as three row tuples."""
+    a, b, c = primitive_moments(g, mass)
+    if g.kind == "sphere":
+        b = c = a
+    return ((a, 0.0, 0.0), (0.0, b, 0.0), (0.0, 0.0, c))
 
 
 def describe(g) -> str:
@@ -107,17 +108,17 @@ def _load_mesh(g):
 
 
 def shape_props(g, mesh=None):
-    """(volume, com(3,), unit inertia (3,3) per kg about com) in the geometry frame, or None.
+    """(volume, com (3,), unit inertia (3x3) per kg about com) in the geometry frame, or None.
 
-    For a mesh, ``mesh`` is its MeshFacts (``load_mesh``) or a trimesh; only a watertight, outward
-    mesh gives props.
+    Primitives give tuples (pure Python); a mesh gives numpy arrays. For a mesh, ``mesh`` is its
+    MeshFacts (``load_mesh``) or a trimesh; only a watertight, outward mesh gives props.
     """
-    import numpy as np
-
     if g.kind in ("box", "cylinder", "sphere"):
-        return primitive_volume(g), np.zeros(3), primitive_inertia(g, 1.0)
+        return primitive_volume(g), (0.0, 0.0, 0.0), primitive_inertia(g, 1.0)
     if mesh is None or isinstance(mesh, str) or not mesh.is_volume or mesh.volume <= 0:
         return None
+    import numpy as np
+
     vol = float(mesh.volume)
     return vol, np.asarray(mesh.center_mass, float), np.asarray(mesh.moment_inertia, float) / vol
 
@@ -126,7 +127,8 @@ def combine(parts, mass: float):
     """Uniform-density solid made of parts [(volume, com, unit_inertia, 4x4 pose)] at total mass.
 
     Returns MassProps in the link frame (overlaps are counted twice: a fair approximation
-    for the rough check this is).
+    for the rough check this is). numpy's products: the floats check reports (combine_pure
+    gives the tensor within a few ulps, without numpy).
     """
     import numpy as np
 
@@ -135,15 +137,44 @@ def combine(parts, mass: float):
         return None
     coms, ms = [], []
     for v, c, _, T in parts:
-        coms.append(T[:3, :3] @ c + T[:3, 3])
+        coms.append(T[:3, :3] @ np.asarray(c, dtype=float) + T[:3, 3])
         ms.append(mass * v / vol)
     com = sum(m * c for m, c in zip(ms, coms)) / mass if mass > 0 else sum(coms) / len(coms)
     inertia = np.zeros((3, 3))
     for (v, c, Iu, T), m, cw in zip(parts, ms, coms):
         R = T[:3, :3]
         d = cw - com
-        inertia += R @ (Iu * m) @ R.T + m * (d @ d * np.eye(3) - np.outer(d, d))
+        inertia += R @ (np.asarray(Iu, dtype=float) * m) @ R.T + m * (d @ d * np.eye(3) - np.outer(d, d))
     return MassProps(vol, tuple(com.tolist()), tuple(map(tuple, inertia.tolist())), mass)
+
+
+def combine_pure(parts, mass: float):
+    """``combine`` in pure Python, the poses given as transforms (R, p) (model/transforms.py). The
+    volume is combine's to the bit (the same sum), and so is the centroid of parts whose own centroid
+    is their origin (primitives: R @ 0 is a zero, which the sums from 0 make +0); the tensor is
+    within a few ulps of combine's (its products round their own way)."""
+    vol = sum(p[0] for p in parts)
+    if vol <= 0:
+        return None
+    coms, ms = [], []
+    for v, c, _, (R, p) in parts:
+        q = rotate(R, c)
+        coms.append((q[0] + p[0], q[1] + p[1], q[2] + p[2]))
+        ms.append(mass * v / vol)
+    if mass > 0:
+        com = tuple(sum(m * c[k] for m, c in zip(ms, coms)) / mass for k in range(3))
+    else:
+        com = tuple(sum(c[k] for c in coms) / len(coms) for k in range(3))
+    inertia = [[0.0] * 3 for _ in range(3)]
+    for (v, c, Iu, (R, p)), m, cw in zip(parts, ms, coms):
+        Rm = matmul3(matmul3(R, [[x * m for x in row] for row in Iu]), transpose3(R))
+        d = (cw[0] - com[0], cw[1] - com[1], cw[2] - com[2])
+        dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
+        for a in range(3):
+            row = inertia[a]
+            for b in range(3):
+                row[b] += Rm[a][b] + m * ((dd if a == b else 0.0) - d[a] * d[b])
+    return MassProps(vol, com, tuple(map(tuple, inertia)), mass)
 
 
 def placed_primitive(g, pose, mass: float):
@@ -247,27 +278,26 @@ def lowest_points(g, R, p, mesh=None, tol: float = 1e-3):
 
 
 def aabb_corners(g, mesh=None):
-    """8 corners (or hull points) bounding the shape in its own frame, or None."""
-    import numpy as np
-
+    """8 corners (or hull points) bounding the shape in its own frame, or None: a list of (x, y, z)
+    tuples for a primitive, an (8, 3) array for a mesh."""
     if g.kind == "box":
-        h = np.array(g.size) / 2
+        h = [s / 2 for s in g.size]
     elif g.kind == "cylinder":
-        h = np.array([g.radius, g.radius, g.length / 2])
+        h = [g.radius, g.radius, g.length / 2]
     elif g.kind == "sphere":
-        h = np.array([g.radius] * 3)
+        h = [g.radius] * 3
     elif mesh is not None and not isinstance(mesh, str):
+        import numpy as np
+
         lo, hi = mesh.bounds
         return np.array([[a, b, c] for a in (lo[0], hi[0]) for b in (lo[1], hi[1]) for c in (lo[2], hi[2])])
     else:
         return None
-    return np.array([[a, b, c] for a in (-h[0], h[0]) for b in (-h[1], h[1]) for c in (-h[2], h[2])])
+    return [(a, b, c) for a in (-h[0], h[0]) for b in (-h[1], h[1]) for c in (-h[2], h[2])]
 
 
 def contains(g, point, margin: float, mesh=None) -> bool | None:
     """Is a point (in the shape's frame) inside the shape grown by margin? None if unknown."""
-    import numpy as np
-
     x, y, z = point
     if g.kind == "box":
         return all(abs(c) <= s / 2 + margin for c, s in zip(point, g.size))
@@ -277,7 +307,7 @@ def contains(g, point, margin: float, mesh=None) -> bool | None:
         return math.sqrt(x * x + y * y + z * z) <= g.radius + margin
     if mesh is not None and not isinstance(mesh, str):
         lo, hi = mesh.bounds
-        return bool(np.all(point >= lo - margin) and np.all(point <= hi + margin))
+        return all(lo[k] - margin <= point[k] <= hi[k] + margin for k in range(3))
     return None
 
 

@@ -1,0 +1,169 @@
+"""The solid-body rules (I006, I007, I008, I010) judge an ordinary robot in pure Python: pure-Python
+screens clear the links that cannot be reported, numpy measures the others. The screens must never
+clear a finding: on real robots, the findings with them equal the findings of numpy on every link."""
+
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+import sys
+
+import pytest
+
+from helpers import ERD, corpus_env, corpus_model, corpus_robots
+from myrabot_desc.checks import inertia as I
+from myrabot_desc.checks import inertia_geometry as IG
+from myrabot_desc.checks.context import CheckOptions, Context
+from myrabot_desc.model.kinematics import pose_matrix
+from myrabot_desc.model.loader import load_robot
+
+RULES = (IG.inertia_vs_geometry, IG.radius_of_gyration, IG.density, IG.origin_inside, I.positive_definite, I.triangle)
+
+
+def test_solid_rules_do_not_import_numpy():
+    code = ("import sys, json\n"
+            "from myrabot_desc.model.loader import load_robot\n"
+            "from myrabot_desc.checks import run_checks\n"
+            "r = load_robot(None)\n"
+            "d = run_checks(r, select=['I004', 'I005', 'I006', 'I007', 'I008', 'I010'])\n"
+            "print(json.dumps(['numpy' in sys.modules, len(r.links)]))\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    numpy_loaded, links = json.loads(out.splitlines()[-1])
+    assert links > 10 and not numpy_loaded
+
+
+def _findings(robot, unscreened: bool, monkeypatch) -> list:
+    with monkeypatch.context() as m:
+        if unscreened:           # numpy's measure of every link: what the rules did before the screens
+            m.setattr(IG, "_beyond_limit", lambda solid: solid)
+            m.setattr(IG, "_gyration_suspects", lambda ctx: None)
+            m.setattr(IG, "_outside_suspects", lambda ctx: None)
+        ctx = Context(robot, CheckOptions())
+        out = []
+        for rule in RULES:
+            for f in rule(ctx) or ():
+                fix = None if f.fix is None else (f.fix.title, [getattr(e, "value", None) for e in f.fix.edits])
+                out.append((rule.__name__, f.message, json.dumps(f.data, sort_keys=True, default=repr),
+                            f.severity, fix))
+        return out
+
+
+def _pure_on_every_link(robot, monkeypatch) -> list:
+    """I007's and I010's findings with every link a suspect: each measured in pure Python where
+    that gives numpy's floats to the bit, else with numpy."""
+    with monkeypatch.context() as m:
+        m.setattr(IG, "_gyration_suspects", lambda ctx: {n: (n,) for n, p in IG.pure_hull_points(ctx).items()
+                                                        if p is not None})
+        m.setattr(IG, "_outside_suspects", lambda ctx: {n for n, p in IG.pure_hull_points(ctx).items()
+                                                       if p is not None})
+        ctx = Context(robot, CheckOptions())
+        return [(f.message, f.data) for rule in (IG.radius_of_gyration, IG.origin_inside) for f in rule(ctx)]
+
+
+def _numpy_on_every_link(robot, monkeypatch) -> list:
+    with monkeypatch.context() as m:
+        m.setattr(IG, "_gyration_suspects", lambda ctx: None)
+        m.setattr(IG, "_outside_suspects", lambda ctx: None)
+        ctx = Context(robot, CheckOptions())
+        return [(f.message, f.data) for rule in (IG.radius_of_gyration, IG.origin_inside) for f in rule(ctx)]
+
+
+def _check(robot, monkeypatch):
+    assert _findings(robot, False, monkeypatch) == _findings(robot, True, monkeypatch)
+    assert _pure_on_every_link(robot, monkeypatch) == _numpy_on_every_link(robot, monkeypatch)
+    # the pure-Python solids and points are within a few ulps of numpy's, and the volumes the same
+    ctx = Context(robot, CheckOptions())
+    hulls, pure = IG.hull_points(ctx), IG.pure_hull_points(ctx)
+    for name, s in IG.solids(ctx).items():
+        assert (hulls[name] is None) == (pure[name] is None)
+        if pure[name] is not None:
+            flat = [v for q in pure[name] for v in q]
+            assert hulls[name].ravel().tolist() == pytest.approx(flat, rel=1e-12, abs=1e-15 * max(map(abs, flat)))
+        if s.props is None:
+            continue
+        exact = s.exact()
+        assert exact.volume == s.props.volume and exact.com == s.props.com     # (I010 reports the centroid)
+        scale = max(abs(v) for row in exact.inertia for v in row)
+        for a, b in zip(exact.inertia, s.props.inertia):
+            assert list(a) == pytest.approx(list(b), rel=1e-12, abs=1e-14 * scale)
+        com, t = s.in_inertial_frame()
+        pcom, pt = s.framed()
+        assert com.tolist() == pytest.approx(list(pcom), rel=1e-12, abs=1e-15)
+        for a, b in zip(t.tolist(), pt):
+            assert a == pytest.approx([0.0 if abs(v) < 1e-6 * scale else v for v in b], rel=1e-12, abs=1e-14 * scale)
+
+
+@pytest.mark.parametrize("entry", corpus_robots(), ids=lambda r: r["id"])
+def test_screens_keep_the_findings_of_corpus_robots(entry, monkeypatch):
+    for k, v in corpus_env(entry).items():
+        monkeypatch.setenv(k, v)
+    _check(corpus_model(entry), monkeypatch)
+
+
+@pytest.mark.parametrize("path", sorted(ERD.glob("*/urdf/*.urdf")), ids=lambda p: p.stem)
+def test_screens_keep_the_findings_of_erd_robots(path, monkeypatch):
+    _check(load_robot(path, package_paths=[ERD]), monkeypatch)
+
+
+def test_screens_clear_the_bundled_robot():
+    """No link of the bundled robot is a suspect of I006, I007 or I010 (they have no finding there)."""
+    ctx = Context(load_robot(None), CheckOptions())
+    solid = [(n, s) for n, s in IG.solids(ctx).items() if s.props is not None]
+    assert len(solid) > 40
+    assert IG._beyond_limit(solid) == [] and IG._gyration_suspects(ctx) == {} and IG._outside_suspects(ctx) == set()
+
+
+def test_combine_pure_matches_combine():
+    """Rotated and offset primitives (the shapes combine_pure measures) against numpy's combine."""
+    from types import SimpleNamespace as NS
+
+    from myrabot_desc.model import shapes as G
+    from myrabot_desc.model.transforms import pose_T
+
+    shapes = [NS(kind="box", size=(0.3, 0.2, 0.1)), NS(kind="cylinder", radius=0.05, length=0.4),
+              NS(kind="sphere", radius=0.07)]
+    poses = [NS(xyz=(0.1, -0.2, 0.05), rpy=(1.5707963, 0.0, 0.3), is_identity=False),
+             NS(xyz=(0.0, 0.3, 0.0), rpy=(0.0, 0.7, -2.0), is_identity=False),
+             NS(xyz=(-0.4, 0.0, 0.2), rpy=(0.0, 0.0, 0.0), is_identity=False)]
+    for mass in (0.5, 3.0):
+        parts = [(*G.shape_props(g), o) for g, o in zip(shapes, poses)]
+        want = G.combine([(*p[:3], pose_matrix(p[3])) for p in parts], mass)
+        got = G.combine_pure([(*p[:3], pose_T(p[3])) for p in parts], mass)
+        assert got.volume == want.volume and got.mass == want.mass
+        assert list(got.com) == pytest.approx(list(want.com), rel=1e-13)
+        for a, b in zip(got.inertia, want.inertia):
+            assert list(a) == pytest.approx(list(b), rel=1e-12, abs=1e-15)
+        assert all(math.isfinite(v) for row in got.inertia for v in row)
+
+
+def test_pure_measures_equal_numpy_on_every_link(tmp_path, monkeypatch):
+    """Unrotated primitives and diagonal tensors (what I007 and I010 measure in pure Python), made
+    to be reported on every link: equal moments in every order (LAPACK's selection sort), shapes
+    that end on a plane through the origin, visuals that widen the box, several shapes a link."""
+    import random
+
+    rnd = random.Random(7)
+    kinds = ['<box size="{a} {b} {c}"/>', '<cylinder radius="{a}" length="{b}"/>', '<sphere radius="{a}"/>']
+    out = ['<robot name="r">', '<link name="base"/>']
+    for n in range(120):
+        shapes = []
+        for _ in range(rnd.choice((1, 1, 2, 3))):
+            a, b, c = (rnd.choice((0.05, 0.1, 0.2, rnd.uniform(0.01, 0.3))) for _ in range(3))
+            xyz = " ".join(str(rnd.choice((0, -0.0, 0.05, -0.1, rnd.uniform(-0.3, 0.3)))) for _ in range(3))
+            shapes.append(f'<origin xyz="{xyz}"/><geometry>{rnd.choice(kinds).format(a=a, b=b, c=c)}</geometry>')
+        body = "".join(f"<collision>{g}</collision>" for g in shapes[:2])
+        body += "".join(f"<visual>{g}</visual>" for g in shapes[1:])
+        moments = rnd.choice(((2, 2, 1), (1, 2, 2), (2, 1, 2), (3, 3, 3), (0, 1, 0), (1, 5, 3)))
+        scale = rnd.choice((1e-4, 1e-2, 1.0, 30.0))
+        ixx, iyy, izz = (m * scale for m in moments)
+        xyz = " ".join(str(rnd.choice((0, 0.05, rnd.uniform(-1, 1)))) for _ in range(3))
+        out.append(f'<link name="l{n}"><inertial><origin xyz="{xyz}"/><mass value="{rnd.uniform(0.1, 3)}"/>'
+                   f'<inertia ixx="{ixx}" ixy="0" ixz="0" iyy="{iyy}" iyz="0" izz="{izz}"/></inertial>{body}</link>')
+        out.append(f'<joint name="j{n}" type="fixed"><parent link="base"/><child link="l{n}"/></joint>')
+    path = tmp_path / "r.urdf"
+    path.write_text("\n".join(out + ["</robot>"]))
+    robot = load_robot(path)
+    pure, ref = _pure_on_every_link(robot, monkeypatch), _numpy_on_every_link(robot, monkeypatch)
+    assert len(ref) > 120 and pure == ref
+    assert _findings(robot, False, monkeypatch) == _findings(robot, True, monkeypatch)

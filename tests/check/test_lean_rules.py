@@ -27,14 +27,27 @@ CASES = {
 }
 
 
-def imports_numpy(args: list[str], env: dict, select: str) -> tuple[bool, str]:
-    """(numpy imported, output) of `check --no-cache --select SELECT ARGS` in a fresh process."""
+def imported(args: list[str], env: dict, select: str | None) -> tuple[set, str]:
+    """(the top-level modules imported, output) of `check --no-cache [--select SELECT] ARGS` in a fresh
+    process, from Python's import log."""
     e = {**os.environ, **env, "PYTHONPATH": str(ROOT)}
     p = subprocess.run([sys.executable, "-X", "importtime", "-m", "myrabot_desc", "check", "--no-cache",
-                        "--select", select, *args], capture_output=True, text=True, env=e, cwd=ROOT, timeout=300)
+                        *(["--select", select] if select else []), *args],
+                       capture_output=True, text=True, env=e, cwd=ROOT, timeout=300)
     assert p.returncode in (0, 1, 2), p.stderr[-2000:]
-    log = p.stderr.splitlines()
-    return any(line.rstrip().endswith("| numpy") for line in log), p.stdout
+    return {line.rsplit("|", 1)[1].strip() for line in p.stderr.splitlines() if line.startswith("import time:")}, \
+        p.stdout
+
+
+def imports_numpy(args: list[str], env: dict, select: str) -> tuple[bool, str]:
+    mods, out = imported(args, env, select)
+    return "numpy" in mods, out
+
+
+def test_the_whole_check_of_the_bundled_robot_imports_no_numpy_coal_or_pinocchio():
+    mods, out = imported([], {}, None)
+    assert "warning" in out or "error" in out or "info" in out      # the rules ran and reported
+    assert not {"numpy", "coal", "pinocchio", "trimesh", "scipy"} & mods, out
 
 
 @pytest.mark.parametrize("name", list(CASES))

@@ -165,7 +165,7 @@ def rest_poses(robot: Robot) -> dict[str, Tf]:
     What check's rules, the drive model and convert read of an ordinary robot: importing numpy for a
     few hundred 4x4 products costs more than the rules themselves."""
     def build():
-        order, via, _ = robot.derive("kinematics.walk", lambda: _walk(robot, robot.joints_by_parent()))
+        order, via, _ = walk(robot)
         out: dict[str, Tf] = {}
         for link in order:
             j = via[link]
@@ -186,7 +186,7 @@ def poses_at(robot: Robot, q: dict, W: dict | None = None, q0: dict | None = Non
     q = _with_mimic(robot, q)
     if any(type(v) not in (float, int) for v in q.values()):
         return None, set()
-    order, via, _ = robot.derive("kinematics.walk", lambda: _walk(robot, robot.joints_by_parent()))
+    order, via, _ = walk(robot)
     changed = None
     if W is not None:
         q0 = _with_mimic(robot, q0)
@@ -225,6 +225,11 @@ def _at_zero(robot: Robot, q: dict) -> bool:
     return True
 
 
+def walk(robot: Robot) -> tuple[list[str], dict, dict]:
+    """``_walk`` of the robot's own joints, made once per robot (every placement shares it)."""
+    return robot.derive("kinematics.walk", lambda: _walk(robot, robot.joints_by_parent()))
+
+
 def _walk(robot: Robot, children) -> tuple[list[str], dict, dict]:
     """(links in walk order from the roots, link -> the joint that placed it (None: a root), link
     -> the joints that placed its children); a link reached twice (a cycle, a second parent) keeps
@@ -254,11 +259,10 @@ def _world_transforms(robot: Robot, q, root_pose, frozen: bool = False) -> dict[
     import numpy as np
 
     q = _with_mimic(robot, q)
-    children = robot.joints_by_parent()
     base = np.eye(4) if root_pose is None else root_pose
     if frozen:
         base.flags.writeable = False
-    order, via, kids = _walk(robot, children)
+    order, via, kids = walk(robot)
     out: dict[str, np.ndarray] = {}
     level = [link for link in order if via[link] is None]
     for link in level:
@@ -344,7 +348,7 @@ def _replan(robot: Robot, changed: frozenset) -> tuple[list, frozenset]:
     placed again. The same for every position of those joints (a sweep samples each joint's range),
     so it is made once per robot and set of joints."""
     def build():
-        order, via, kids = robot.derive("kinematics.walk", lambda: _walk(robot, robot.joints_by_parent()))
+        order, via, kids = walk(robot)
         dirty: set[str] = set()
         steps = []
         level = [link for link in order if via[link] is None]
@@ -414,8 +418,7 @@ def centers_of_mass(robot: Robot, q: dict) -> tuple[float, np.ndarray]:
     for j in robot.joints.values():
         if j.mimic and j.mimic.joint in q and j.name not in q:
             q[j.name] = q[j.mimic.joint] * j.mimic.multiplier + j.mimic.offset
-    children = robot.joints_by_parent()
-    order, via, kids = _walk(robot, children)
+    order, via, kids = walk(robot)
     # A link no joint of ``q`` moves has one pose for every configuration: it is computed once, as a
     # (1, 4, 4) stack that broadcasts (the same per-matrix kernel, so the same bits as n copies).
     # sim's arm moves a few links of the robot's dozens.

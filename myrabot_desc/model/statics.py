@@ -31,8 +31,8 @@ from __future__ import annotations
 import math
 from typing import NamedTuple
 
-from myrabot_desc.model.kinematics import _axis_angle_rows, _norms, _walk, axis_angle, pose_matrix, pose_stack, poses_at, \
-    world_transforms, world_transforms_from
+from myrabot_desc.model.kinematics import _axis_angle_rows, _norms, axis_angle, pose_matrix, pose_stack, poses_at, \
+    walk, world_transforms, world_transforms_from
 from myrabot_desc.model.transforms import compose, pose_T, rotate
 
 SAMPLES = 13             # values per joint range: 15 degrees apart on a half-turn range
@@ -153,7 +153,7 @@ def _gravity_needs_py(robot, samples: int = SAMPLES, joints=None) -> list[Need] 
     stacked products). None when the model is not a tree, a number is not finite, or the sweep is
     larger than ``PURE_WORK``: the numpy form then."""
     rest = robot.rest_pose()
-    order, via, _ = robot.derive("kinematics.walk", lambda: _walk(robot, robot.joints_by_parent()))
+    order, via, _ = walk(robot)
     W = poses_at(robot, rest)[0]
     if W is None:
         return None

@@ -18,7 +18,8 @@ Measures, on the bundled MYRAbot at a 1 kHz fixed step:
   with contacts, no controller, for scale (compiling the MJCF timed apart;
   stepping median and best of --repeat, each from a fresh MjData); the ratio with the robot
   prepared in the run (issue 29: >= 15x) is given in wall and in CPU time, medians both (CPU is
-  the figure a shared machine keeps);
+  the figure a shared machine keeps; for it each MuJoCo stepping is paired with a run of ours just
+  before it, since this machine's speed drifts by tens of percent within a minute);
 * the whole command ``sim vuelta --duration S`` (interpreter start, imports, build,
   run, verdict) against a plain MuJoCo script that imports MuJoCo, compiles the
   converted MJCF (written once beforehand) and steps the same S seconds at 1 ms:
@@ -120,10 +121,12 @@ def main(argv=None):
     res["seguir_simulated_s"] = s.duration
 
     if not a.no_mujoco:
-        res.update(bench_mujoco(S, a.repeat))
+        res.update(bench_mujoco(S, a.repeat, ours=unprepared))
         if "mujoco_step_s" in res:
             res["ratio_mujoco_over_vuelta"] = round(res["mujoco_step_s"] / med, 1)
             res["ratio_mujoco_over_vuelta_with_preparation"] = round(res["mujoco_step_s"] / med_p, 1)
+            # CPU, paired: each MuJoCo stepping right after one run of ours (prepared in the run)
+            res["vuelta_full_with_preparation_cpu_s"] = res.pop("paired_ours_cpu_s")
             res["ratio_mujoco_over_vuelta_with_preparation_cpu"] = round(
                 res["mujoco_step_cpu_s"] / res["vuelta_full_with_preparation_cpu_s"], 1)
 
@@ -196,7 +199,10 @@ def format_whole(w, S) -> str:
             f"{'met' if w['whole_met'] else 'NOT met'})")
 
 
-def bench_mujoco(S, repeat=1):
+def bench_mujoco(S, repeat=1, ours=None):
+    """MuJoCo stepping the converted MJCF for S s at 1 ms, ``repeat`` times from a fresh MjData;
+    ``ours``: a run of ours timed (CPU) just before each stepping, so that both medians come from
+    the same stretches of a machine whose speed drifts by tens of percent within a minute."""
     out = {}
     try:
         import mujoco
@@ -213,8 +219,12 @@ def bench_mujoco(S, repeat=1):
         compile_s = time.perf_counter() - t0
     m.opt.timestep = 0.001
     n = int(round(S / m.opt.timestep))
-    steps, cpus = [], []
+    steps, cpus, paired = [], [], []
     for _ in range(repeat):
+        if ours is not None:
+            c0 = time.process_time()
+            ours()
+            paired.append(time.process_time() - c0)
         dd = mujoco.MjData(m)
         t0, c0 = time.perf_counter(), time.process_time()
         mujoco.mj_step(m, dd, nstep=n)
@@ -222,6 +232,8 @@ def bench_mujoco(S, repeat=1):
         cpus.append(time.process_time() - c0)
     one = statistics.median(steps)
     out["mujoco_step_cpu_s"] = round(statistics.median(cpus), 4)
+    if paired:
+        out["paired_ours_cpu_s"] = round(statistics.median(paired), 4)
     dd = mujoco.MjData(m)
     t0 = time.perf_counter()
     for _ in range(n):

@@ -277,40 +277,6 @@ def lowest_points(g, R, p, mesh=None, tol: float = 1e-3):
     return zmin, [q for q in pts if q[2] <= zmin + tol]
 
 
-def aabb_corners(g, mesh=None):
-    """8 corners (or hull points) bounding the shape in its own frame, or None: a list of (x, y, z)
-    tuples for a primitive, an (8, 3) array for a mesh."""
-    if g.kind == "box":
-        h = [s / 2 for s in g.size]
-    elif g.kind == "cylinder":
-        h = [g.radius, g.radius, g.length / 2]
-    elif g.kind == "sphere":
-        h = [g.radius] * 3
-    elif mesh is not None and not isinstance(mesh, str):
-        import numpy as np
-
-        lo, hi = mesh.bounds
-        return np.array([[a, b, c] for a in (lo[0], hi[0]) for b in (lo[1], hi[1]) for c in (lo[2], hi[2])])
-    else:
-        return None
-    return [(a, b, c) for a in (-h[0], h[0]) for b in (-h[1], h[1]) for c in (-h[2], h[2])]
-
-
-def contains(g, point, margin: float, mesh=None) -> bool | None:
-    """Is a point (in the shape's frame) inside the shape grown by margin? None if unknown."""
-    x, y, z = point
-    if g.kind == "box":
-        return all(abs(c) <= s / 2 + margin for c, s in zip(point, g.size))
-    if g.kind == "cylinder":
-        return math.hypot(x, y) <= g.radius + margin and abs(z) <= g.length / 2 + margin
-    if g.kind == "sphere":
-        return math.sqrt(x * x + y * y + z * z) <= g.radius + margin
-    if mesh is not None and not isinstance(mesh, str):
-        lo, hi = mesh.bounds
-        return all(lo[k] - margin <= point[k] <= hi[k] + margin for k in range(3))
-    return None
-
-
 def size_of(g, mesh=None) -> float | None:
     """Largest dimension of the shape (m), for relative tolerances."""
     if g.kind == "box":

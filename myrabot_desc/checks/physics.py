@@ -48,6 +48,7 @@ def _placed_points(g, pose, n: int, mesh):
 
 
 def _sign(x: float) -> float:
+    """numpy's sign of a float: 1, -1, or the zero (or NaN) itself."""
     return 1.0 if x > 0 else -1.0 if x < 0 else x
 
 

@@ -1,10 +1,13 @@
-"""Forward kinematics over the model (numpy; no Pinocchio needed for frames).
+"""Forward kinematics over the model (no Pinocchio needed for frames).
 
 URDF convention: a joint's origin places the child frame in the parent frame;
 rpy is fixed-axis X, Y, Z, i.e. R = Rz(yaw) @ Ry(pitch) @ Rx(roll).
 
-numpy is imported inside the functions that use it (~100 ms): modules that only need the model
-import this one at their top without paying for numpy until a transform is computed.
+Two forms of the same walk: pure Python (``rest_poses``, ``poses_at``, ``center_of_mass`` at rest),
+what check reads of an ordinary robot, and numpy's stacked products (``world_transforms``,
+``centers_of_mass``) for many links or many configurations. numpy is imported inside the functions
+that use it (~100 ms): modules that only need the model import this one at their top without
+paying for numpy until a stacked transform is computed.
 """
 
 from __future__ import annotations

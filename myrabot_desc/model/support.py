@@ -24,8 +24,8 @@ from typing import NamedTuple
 
 from myrabot_desc.model.hull2d import convex_hull
 from myrabot_desc.model.kinematics import center_of_mass, world_transforms
-from myrabot_desc.model.transforms import compose, pose_T
 from myrabot_desc.model.shapes import lowest_points, surface_points
+from myrabot_desc.model.transforms import compose, pose_T
 
 CONTACT_TOL = 0.005      # m: geometry this close to the lowest point holds the robot up (see above)
 

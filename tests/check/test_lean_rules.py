@@ -15,7 +15,7 @@ import sys
 
 import pytest
 
-from tests.helpers import ROOT, corpus_args, corpus_env, corpus_robot
+from helpers import ROOT, corpus_args, corpus_env, corpus_robot
 
 CASES = {
     # the bundled robot: a Create base, a structure of primitives, cameras, an arm

@@ -11,7 +11,7 @@ import pytest
 
 from myrabot_desc.model.kinematics import center_of_mass, centers_of_mass
 from myrabot_desc.model.loader import load_robot
-from tests.helpers import corpus_model, corpus_robot
+from helpers import corpus_model, corpus_robot
 
 ROBOTS = ["bundled", "ur5e", "pr2", "tiago", "robotiq_2f_85", "husky"]
 

@@ -89,6 +89,33 @@ def corpus_model(robot: dict):
     return load_robot(CORPUS / robot["top"], mappings=mappings, package_paths=[corpus_package_path(robot)])
 
 
+def corpus_models():
+    """(id, Robot) of every corpus entry this environment builds (``corpus_model``); an entry that
+    does not build is left out (its own tests say why)."""
+    for rb in corpus_robots():
+        try:
+            yield rb["id"], corpus_model(rb)
+        except Exception:
+            continue
+
+
+def erd_urdfs() -> list[Path]:
+    """example-robot-data's URDF files (its */urdf and */robots folders); [] when it is not installed."""
+    return sorted(ERD.glob("*/urdf/*.urdf")) + sorted(ERD.glob("*/robots/*.urdf"))
+
+
+def erd_models():
+    """(file name, Robot) of every ``erd_urdfs`` file the loader reads (the others are refused
+    elsewhere, with their reasons)."""
+    from myrabot_desc.model.loader import load_robot
+
+    for f in erd_urdfs():
+        try:
+            yield f.name, load_robot(f)
+        except Exception:
+            continue
+
+
 # ---------------------------------------------------------------- time limits in CPU time
 # A limit inside a test is CPU time, never wall time: on a loaded machine (five engineers' tests on
 # two cores, or a CI runner) wall time measures the neighbours. A generous wall-clock guard stays

@@ -18,7 +18,7 @@ from myrabot_desc.checks.rule import Finding, Fix, FixInfo, LazyFix, SetValue, r
 from myrabot_desc.model import shapes as G
 from myrabot_desc.model.inertia import eigh3, tensor
 from myrabot_desc.model.kinematics import pose_matrix, pose_stack
-from myrabot_desc.model.transforms import matmul3, pose_T, rotate, transpose3
+from myrabot_desc.model.transforms import matmul3, place, pose_T, rotate, transpose3
 
 
 def _part(body: str, name: str = "chassis") -> str:
@@ -577,10 +577,7 @@ def pure_hull_points(ctx) -> dict:
                 key = (g.__class__, *map(id, g), id(o.xyz), id(o.rpy))
                 pts = placed_of.get(key)
                 if pts is None:
-                    R, (px, py, pz) = pose_T(o)
-                    (a, b, c), (d, e, f), (gg, h, k) = R
-                    pts = placed_of[key] = [(a * x + b * y + c * z + px, d * x + e * y + f * z + py,
-                                             gg * x + h * y + k * z + pz) for x, y, z in G.surface_points(g, 32)]
+                    pts = placed_of[key] = place(pose_T(o), G.surface_points(g, 32))
                 lists.append(pts)
             out[name] = None if not items else lists[0] if len(lists) == 1 else [q for x in lists for q in x]
         return out
@@ -604,7 +601,6 @@ def _stack_hull_points(ctx) -> dict:
     parts: dict[str, list | None] = {}
     by_size: dict = {}      # point count or "box" -> [(points in the shape frame or box size, origin, key)]
     placed_of: dict = {}    # key -> its placed points, one array for the links that repeat a primitive
-    wanted = []             # (link, [key of each shape])
     for name, s in solids(ctx).items():
         items = _hull_items(s.link)
         keys = []

@@ -15,7 +15,7 @@ from myrabot_desc.model.parts import JOINT_TYPES
 from myrabot_desc.model.pin_model import MAX_DOF
 from myrabot_desc.model.shapes import surface_points
 from myrabot_desc.model.support import collision_shapes, lowest, signed_distance, stance
-from myrabot_desc.model.transforms import compose, pose_T
+from myrabot_desc.model.transforms import compose, place, pose_T
 from myrabot_desc.model.tree import MAX_TREE_DEPTH, depth
 
 _FINGER = """<link name="finger">{inertial}</link>
@@ -41,10 +41,8 @@ def _collision_world(ctx):
 
 def _placed_points(g, pose, n: int, mesh):
     """``surface_points(g, n, mesh)`` placed by the world pose (R, p): [(x, y, z)]."""
-    (r0, r1, r2), p = pose
     pts = surface_points(g, n, mesh)
-    return [(r0[0] * x + r0[1] * y + r0[2] * z + p[0], r1[0] * x + r1[1] * y + r1[2] * z + p[1],
-             r2[0] * x + r2[1] * y + r2[2] * z + p[2]) for x, y, z in (pts.tolist() if hasattr(pts, "tolist") else pts)]
+    return place(pose, pts.tolist() if hasattr(pts, "tolist") else pts)
 
 
 def _sign(x: float) -> float:

@@ -52,7 +52,7 @@ from myrabot_desc.expand.yaml_load import load_path
 from myrabot_desc.model import values as V
 from myrabot_desc.model.kinematics import rest_poses
 from myrabot_desc.model.shapes import surface_points
-from myrabot_desc.model.transforms import IDENTITY, compose, pose_T, rotate
+from myrabot_desc.model.transforms import IDENTITY, compose, place, pose_T, rotate
 from myrabot_desc.safety import display, limit
 
 ALIGNED = 0.99          # |cos| between a cylinder's axis and the joint axis for "a wheel drawn as a cylinder"
@@ -605,7 +605,7 @@ def _world_points(g, it, Rs, ps):
     except Exception as exc:       # a reader's own failure on a malformed file: the same, in one line
         return InputError(f"mesh {getattr(g, 'filename', '?')} cannot be read ({type(exc).__name__})",
                           getattr(it, "loc", None))
-    return [(_dot(Rs[0], q) + ps[0], _dot(Rs[1], q) + ps[1], _dot(Rs[2], q) + ps[2]) for q in _rows(pts)]
+    return place((Rs, ps), _rows(pts))
 
 
 def _rows(pts):

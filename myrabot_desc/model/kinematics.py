@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING
 
 from myrabot_desc.errors import InputError
 from myrabot_desc.model.parts import Joint, Pose, Robot
-from myrabot_desc.model.transforms import IDENTITY, Tf, compose, pose_T
+from myrabot_desc.model.transforms import IDENTITY, Tf, compose, place, pose_T
 
 if TYPE_CHECKING:
     import numpy as np
@@ -385,10 +385,7 @@ def center_of_mass(robot: Robot, q: dict[str, float] | None = None) -> tuple[flo
         places = {}
         for name, link in robot.links.items():
             if link.inertial is not None and name in P and link.inertial.mass > 0:
-                (r0, r1, r2), p = P[name]
-                x, y, z = link.inertial.origin.xyz
-                places[name] = (r0[0] * x + r0[1] * y + r0[2] * z + p[0], r1[0] * x + r1[1] * y + r1[2] * z + p[1],
-                                r2[0] * x + r2[1] * y + r2[2] * z + p[2])
+                places[name] = place(P[name], (link.inertial.origin.xyz,))[0]
     else:
         import numpy as np
 

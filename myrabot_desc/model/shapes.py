@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 from myrabot_desc.errors import InputError
 from myrabot_desc.model import meshes as meshio
-from myrabot_desc.model.transforms import matmul3, rotate, transpose3
+from myrabot_desc.model.transforms import matmul3, place, rotate, transpose3
 
 
 @dataclass
@@ -251,9 +251,7 @@ def lowest_points(g, R, p, mesh=None, tol: float = 1e-3):
         return p[2] - g.radius, [(p[0] - 0.0, p[1] - 0.0, p[2] - g.radius)]
     if g.kind == "box":
         sx, sy, sz = (s / 2 for s in g.size)
-        (a, b, c), (d, e, f), (h, i, j) = R
-        pts = [(a * x + b * y + c * z + p[0], d * x + e * y + f * z + p[1], h * x + i * y + j * z + p[2])
-               for x in (-sx, sx) for y in (-sy, sy) for z in (-sz, sz)]
+        pts = place((R, p), [(x, y, z) for x in (-sx, sx) for y in (-sy, sy) for z in (-sz, sz)])
     elif g.kind == "cylinder":
         axis = (R[0][2], R[1][2], R[2][2])
         down = (0.0 - axis[0] * -axis[2], 0.0 - axis[1] * -axis[2], -1.0 - axis[2] * -axis[2])  # -z, axis part removed

@@ -66,6 +66,13 @@ def rotate(R, v) -> tuple[float, float, float]:
     return tuple(r[0] * v[0] + r[1] * v[1] + r[2] * v[2] for r in R)
 
 
+def place(T: Tf, points) -> list[tuple[float, float, float]]:
+    """R x + p of each (x, y, z) point: a shape's points placed by the transform T = (R, p)."""
+    (a, b, c), (d, e, f), (g, h, i) = T[0]
+    px, py, pz = T[1]
+    return [(a * x + b * y + c * z + px, d * x + e * y + f * z + py, g * x + h * y + i * z + pz) for x, y, z in points]
+
+
 def compose(A: Tf, B: Tf) -> Tf:
     """A then B in A's frame: the 4x4 product A @ B."""
     if B is IDENTITY:       # most origins are identities: skip the arithmetic

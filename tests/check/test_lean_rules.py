@@ -3,12 +3,15 @@
 Importing numpy costs more CPU than all of check's rules on the bundled robot together, so a
 rule that needs a few frames, a centre of mass or a support polygon computes them in pure Python
 (model/kinematics.rest_poses, model/support) and numpy is left to loaded meshes and large models.
-Each case runs `check` in a fresh process with Python's import log and asserts numpy is absent;
-the findings themselves are pinned by the rules' own tests.
+Each case runs `check` in a fresh process with Python's import log and asserts numpy (and what
+else the case names) is absent; the findings themselves are pinned by the rules' own tests, and
+the pure forms' equality with numpy's by tests/check/test_inertia_screens.py,
+tests/model/test_lean_collisions.py and tests/model/test_statics_pure.py.
 """
 
 from __future__ import annotations
 
+import json
 import os
 import subprocess
 import sys
@@ -27,33 +30,46 @@ CASES = {
 }
 
 
-def imported(args: list[str], env: dict, select: str | None) -> tuple[set, str]:
-    """(the top-level modules imported, output) of `check --no-cache [--select SELECT] ARGS` in a fresh
-    process, from Python's import log."""
+def imported(args: list[str], env: dict, select: str | None) -> tuple[set, str, int]:
+    """(the top-level modules imported, output, exit code) of `check --no-cache [--select SELECT]
+    ARGS` in a fresh process, from Python's import log."""
     e = {**os.environ, **env, "PYTHONPATH": str(ROOT)}
     p = subprocess.run([sys.executable, "-X", "importtime", "-m", "myrabot_desc", "check", "--no-cache",
                         *(["--select", select] if select else []), *args],
                        capture_output=True, text=True, env=e, cwd=ROOT, timeout=300)
     assert p.returncode in (0, 1, 2), p.stderr[-2000:]
-    return {line.rsplit("|", 1)[1].strip() for line in p.stderr.splitlines() if line.startswith("import time:")}, \
-        p.stdout
-
-
-def imports_numpy(args: list[str], env: dict, select: str) -> tuple[bool, str]:
-    mods, out = imported(args, env, select)
-    return "numpy" in mods, out
+    mods = {line.rsplit("|", 1)[1].strip() for line in p.stderr.splitlines() if line.startswith("import time:")}
+    return mods, p.stdout, p.returncode
 
 
 def test_the_whole_check_of_the_bundled_robot_imports_no_numpy_coal_or_pinocchio():
-    mods, out = imported([], {}, None)
+    mods, out, _ = imported([], {}, None)
     assert "warning" in out or "error" in out or "info" in out      # the rules ran and reported
     assert not {"numpy", "coal", "pinocchio", "trimesh", "scipy"} & mods, out
+
+
+# each family alone on the bundled robot (none has a finding there): what it may not import
+FAMILIES = {
+    "I001,I002,I003,I004,I005,I009": {"numpy"},          # mass and tensor: principal moments by eigh3
+    "I004,I005,I006,I007,I008,I010": {"numpy"},          # the solid-body rules' screens
+    "P001,P002,P004,S003": {"numpy"},                    # support polygon, centre of mass, optical frames
+    "P005": {"numpy", "coal"},                           # the shapes' pure screen: no pair comes near
+    "P006": {"numpy"},                                   # the pure gravity sweep
+}
+
+
+@pytest.mark.parametrize("select", list(FAMILIES))
+def test_each_family_alone_imports_nothing_heavy(select):
+    mods, out, rc = imported(["--format", "json"], {}, select)
+    (report,) = json.loads(out)["files"]
+    assert rc == 0 and report["links"] == 76 and report["status"] == "ok", out
+    assert not FAMILIES[select] & mods, out
 
 
 @pytest.mark.parametrize("name", list(CASES))
 def test_support_mass_and_frame_rules_import_no_numpy(name):
     args, env = CASES[name] or (corpus_args(corpus_robot(name)), corpus_env(corpus_robot(name)))
-    numpy, out = imports_numpy(args, env, "P001,P002,P004,S003")
-    assert not numpy, out
+    mods, out, _ = imported(args, env, "P001,P002,P004,S003")
+    assert "numpy" not in mods, out
     if name == "kobuki_rosbuild":           # the lean path ran the finding's tip and its fix too
         assert "P001" in out and "it tips" in out

@@ -1,16 +1,14 @@
 """Self-collision's pure-Python screen (model/collisions.Scene._lean_near: bounding spheres, then
 boxes, at the rest pose without meshes) against numpy's (Scene._near on world_transforms): the same
 pairs on the bundled robot, the corpus and example-robot-data, so that a robot the screen finds
-clean is one numpy's path finds clean; and P005 of the bundled robot imports neither numpy nor coal."""
+clean is one numpy's path finds clean (that P005 of the bundled robot then imports neither numpy nor
+coal: tests/check/test_lean_rules.py)."""
 
 from __future__ import annotations
 
-import subprocess
-import sys
-
 import pytest
 
-from helpers import ERD, corpus_model, corpus_robots
+from helpers import ERD, corpus_models, erd_models, erd_urdfs
 from myrabot_desc.model import collisions as col
 from myrabot_desc.model.kinematics import world_transforms
 from myrabot_desc.model.loader import load_robot
@@ -49,30 +47,15 @@ def test_bundled_robot_screens_as_numpy():
 
 
 def test_corpus_screens_as_numpy():
-    done = judged = 0
-    for rb in corpus_robots():
-        try:
-            r = corpus_model(rb)
-        except Exception:          # an entry this environment cannot build (covered elsewhere)
-            continue
-        judged += compare(r, rb["id"])
-        done += 1
-    assert done >= 30 and judged > 100
+    judged = [compare(r, name) for name, r in corpus_models()]
+    assert len(judged) >= 30 and sum(judged) > 100
 
 
 def test_example_robot_data_screens_as_numpy():
-    files = sorted(ERD.glob("*/urdf/*.urdf")) + sorted(ERD.glob("*/robots/*.urdf"))
-    if not files:
+    if not erd_urdfs():
         pytest.skip("example-robot-data is not installed")
-    done = judged = 0
-    for f in files:
-        try:
-            r = load_robot(f)
-        except Exception:          # a file this loader refuses (covered elsewhere)
-            continue
-        judged += compare(r, f.name)
-        done += 1
-    assert done >= 60 and judged > 100
+    judged = [compare(r, name) for name, r in erd_models()]
+    assert len(judged) >= 60 and sum(judged) > 100
 
 
 class _Ball:
@@ -149,12 +132,3 @@ def test_screen_keeps_a_pair_numpy_keeps(tmp_path):
     assert col.Scene(near, False)._lean_near(near.rest_pose(), col.TOUCH) == [(0, 1)]
     (o,) = col.Scene(near, False).overlaps(near.rest_pose())
     assert (o.link_a, o.link_b) == ("a", "b") and abs(o.depth - 0.02) < 1e-9
-
-
-def test_self_collision_of_the_bundled_robot_imports_no_numpy():
-    code = ("import sys\nfrom myrabot_desc.commands.main import main\n"
-            "sys.argv = ['myrabot-desc', 'check', '--no-cache', '--select', 'P005']\n"
-            "try:\n    main()\nexcept SystemExit as e:\n    assert not e.code, e.code\n"
-            "print('HEAVY', [m for m in ('numpy', 'coal') if m in sys.modules])")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
-    assert "HEAVY []" in out

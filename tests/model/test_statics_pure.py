@@ -1,18 +1,17 @@
 """gravity_needs' two forms (model/statics.py): the pure-Python sweep an ordinary robot takes and the
 numpy one of large robots give the same needs, to rounding, and the same worst pose (the same sample
-of the same joint) on real robots; P006 on the bundled robot imports no numpy."""
+of the same joint) on real robots (that P006 of the bundled robot then imports no numpy:
+tests/check/test_lean_rules.py)."""
 
 from __future__ import annotations
 
 import math
-import os
 import random
-import subprocess
 import sys
 
 import pytest
 
-from helpers import ERD, ROOT, corpus_model, corpus_robots
+from helpers import ERD, ROOT, corpus_models, erd_models, erd_urdfs
 from myrabot_desc.model import statics as S
 from myrabot_desc.model.loader import load_robot
 from test_gravity_needs_reference import planar_urdf, random_urdf
@@ -43,30 +42,15 @@ def test_bundled_robot():
 
 
 def test_corpus():
-    done = pure = 0
-    for rb in corpus_robots():
-        try:
-            r = corpus_model(rb)
-        except Exception:          # an entry this environment cannot build (covered elsewhere)
-            continue
-        pure += same_needs(r, rb["id"])
-        done += 1
-    assert done >= 30 and pure >= 25
+    pure = [same_needs(r, name) for name, r in corpus_models()]
+    assert len(pure) >= 30 and sum(pure) >= 25
 
 
 def test_example_robot_data():
-    files = sorted(ERD.glob("*/urdf/*.urdf")) + sorted(ERD.glob("*/robots/*.urdf"))
-    if not files:
+    if not erd_urdfs():
         pytest.skip("example-robot-data is not installed")
-    done = pure = 0
-    for f in files:
-        try:
-            r = load_robot(f)
-        except Exception:          # a file this loader refuses (covered elsewhere)
-            continue
-        pure += same_needs(r, f.name)
-        done += 1
-    assert done >= 60 and pure >= 55
+    pure = [same_needs(r, name) for name, r in erd_models()]
+    assert len(pure) >= 60 and sum(pure) >= 55
 
 
 def test_asked_joints_and_a_pose_off_zero(tmp_path):
@@ -106,27 +90,19 @@ def test_planar_chains_tie_alike(tmp_path, axis, spread):
     assert same_needs(load_robot(str(f)), axis)
 
 
-def test_large_robots_take_numpy(tmp_path):
+def test_large_robots_take_numpy(tmp_path, monkeypatch):
     """Past the bounds the numpy form runs; a deep chain under them still takes the pure one."""
     sys.path.insert(0, str(ROOT / "bench"))
     from gen_tree import tree_urdf
 
+    numpy_form = S._gravity_needs_np
     for kind, n, pure in (("star", S.PURE_LINKS + 1, False), ("chain", 400, False), ("chain", 40, True)):
         f = tmp_path / f"{kind}{n}.urdf"
         f.write_text(tree_urdf(kind, n))
         r = load_robot(f)
-        assert (S._gravity_needs_py(r) is not None) == pure or len(r.links) > S.PURE_LINKS, (kind, n)
+        took = []
+        monkeypatch.setattr(S, "_gravity_needs_np", lambda *a, **k: took.append(1) or numpy_form(*a, **k))
+        S.gravity_needs(r)
+        assert bool(took) != pure, (kind, n)
         if pure:
             assert same_needs(r, f.name)
-
-
-def test_p006_imports_no_numpy():
-    code = ("import sys\n"
-            "from myrabot_desc.model.loader import load_robot\n"
-            "from myrabot_desc.checks.registry import load_all\n"
-            "from myrabot_desc.checks.context import Context, CheckOptions\n"
-            "found = list(load_all()['P006'].func(Context(load_robot(None), CheckOptions())))\n"
-            "assert 'numpy' not in sys.modules, 'numpy imported'\n")
-    env = {**os.environ, "PYTHONPATH": str(ROOT)}
-    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, cwd=ROOT)
-    assert p.returncode == 0, p.stderr

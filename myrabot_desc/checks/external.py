@@ -5,8 +5,6 @@ file that cannot be processed at all (X000). Each keeps its doc and example here
 the whole entry.
 """
 
-from __future__ import annotations
-
 from typing import NamedTuple
 
 from myrabot_desc.checks.rule import Example

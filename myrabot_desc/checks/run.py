@@ -5,8 +5,6 @@ commands/check.py is the command line of this; nothing here imports click (a pro
 handed in by the caller, see :func:`run_tasks`).
 """
 
-from __future__ import annotations
-
 import gc
 import importlib
 import os

@@ -15,8 +15,6 @@ every expansion of the macro. A suppression that silenced nothing in the whole r
 code the run checked) is reported as X009, like ruff's RUF100.
 """
 
-from __future__ import annotations
-
 from pathlib import Path
 from typing import NamedTuple
 

@@ -5,8 +5,6 @@ order, quotes and line endings around it are the file's own; a number is written
 style (``.260`` stays without its leading zero, ``1e-3`` keeps an exponent).
 """
 
-from __future__ import annotations
-
 import math
 import re
 from pathlib import Path

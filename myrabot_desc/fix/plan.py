@@ -13,8 +13,6 @@ Where the value came from decides the edit (model/sources.py):
   value needed and where the expression is written.
 """
 
-from __future__ import annotations
-
 from typing import NamedTuple
 
 from myrabot_desc.checks.rule import (

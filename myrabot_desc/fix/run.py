@@ -8,8 +8,6 @@ another rule compute an inertia) until nothing is left to fix. Nothing is writte
 writes every file of the run as one transaction.
 """
 
-from __future__ import annotations
-
 import os
 from pathlib import Path
 from typing import NamedTuple

@@ -21,8 +21,6 @@ robot at its rest pose without meshes is first screened in pure Python (``Scene.
 same bounding spheres and boxes), and a robot where no pair of shapes comes near needs neither.
 """
 
-from __future__ import annotations
-
 import math
 from typing import NamedTuple
 

@@ -41,8 +41,6 @@ sources (gazebo_ros_pkgs ``gazebo_ros_diff_drive.cpp`` ROS 1 and ROS 2,
 * Wheel joints named by the user (``sim drive --wheels A,B``).
 """
 
-from __future__ import annotations
-
 import math
 from typing import NamedTuple
 

@@ -13,13 +13,12 @@ Markup that convert carries into SDF as it is (a sensor's body, a plugin, a
 Pure Python on purpose (no numpy at import): ``build`` and ``--help`` stay fast.
 The parts are immutable records (``typing.NamedTuple``): read-only like frozen
 dataclasses, but each costs ~0.1 ms to define instead of ~1.3 ms, which was 20 ms of
-every command that loads a model. Like tuples they compare by value, not by type.
+every command that loads a model. Like tuples they compare by value, not by type. The annotations
+are objects, not strings (no ``from __future__ import annotations``): NamedTuple compiles each
+string annotation it is given, ~2 ms for this module.
 """
 
-from __future__ import annotations
-
 import math
-from dataclasses import dataclass, field
 from itertools import repeat
 from pathlib import Path
 from typing import Any, NamedTuple
@@ -427,36 +426,51 @@ class SourceLines:
         return (Loc(self.file, el.sourceline) for el in self.root.iter() if isinstance(el.tag, str))
 
 
-@dataclass
 class Robot:
-    name: str
-    links: dict[str, Link]
-    joints: dict[str, Joint]
-    materials: dict[str, Material]
-    gazebo: tuple[GazeboBlock, ...]
-    transmissions: tuple[Transmission, ...]
-    root_element: Any                     # lxml <robot> element (annotation-free)
-    source: Path | None                   # the file the user gave (xacro or urdf)
-    urdf_text: str                        # the URDF document as text (built or read)
-    loc: Loc | None = None
-    package_roots: dict[str, Path] = field(default_factory=dict)   # packages the build resolved
-    allow_roots: tuple = ()           # --allow-path folders: meshes and textures may come from them too
-    build_warnings: list = field(default_factory=list)              # Diagnostics from build (X codes)
-    from_xacro: bool = False
-    # Problems found while reading (bad numbers, unknown joint types...) that checks report.
-    load_issues: list = field(default_factory=list)
-    # id(lxml element of root_element) -> Loc, for consumers that walk the raw XML (check's T005/T006);
-    # a SourceLines for a URDF read from one file (use loc_of rather than this map).
-    element_locs: dict | SourceLines = field(default_factory=dict, repr=False)
-    _elements: list = field(default_factory=list, repr=False)      # keeps those lxml proxies (and ids) alive
-    # Where the build says each output value came from (expand/provenance.SourceMap), or for a
-    # URDF read from one file its bytes: Robot.sources reads spans from them when asked.
-    source_map: Any = field(default=None, repr=False, compare=False)
-    source_bytes: bytes | None = field(default=None, repr=False, compare=False)
-    # Facts derived from the robot, built once by whoever needs them first (``derive``); the robot
-    # is not modified after loading, so they stay true for its lifetime.
-    derived: dict = field(default_factory=dict, repr=False, compare=False)
-    ros2_control: tuple = ()                                        # Ros2Control blocks, in file order
+    """One robot: its parts by name, where it was read from, and the facts derived from it.
+
+    A plain class, not a dataclass: ``dataclasses`` imports ``inspect`` (~10 ms), which ``check``
+    would pay at every start for this one class."""
+
+    def __init__(self, name: str, links: dict[str, Link], joints: dict[str, Joint],
+                 materials: dict[str, Material], gazebo: tuple[GazeboBlock, ...],
+                 transmissions: tuple[Transmission, ...], root_element: Any, source: Path | None,
+                 urdf_text: str, loc: Loc | None = None, package_roots: dict[str, Path] | None = None,
+                 allow_roots: tuple = (), build_warnings: list | None = None, from_xacro: bool = False,
+                 load_issues: list | None = None, element_locs: dict | SourceLines | None = None,
+                 _elements: list | None = None, source_map: Any = None, source_bytes: bytes | None = None,
+                 derived: dict | None = None, ros2_control: tuple = ()):
+        self.name = name
+        self.links = links
+        self.joints = joints
+        self.materials = materials
+        self.gazebo = gazebo
+        self.transmissions = transmissions
+        self.root_element = root_element            # the lxml <robot> element
+        self.source = source                        # the file the user gave (xacro or urdf)
+        self.urdf_text = urdf_text                  # the URDF document as text (built or read)
+        self.loc = loc
+        self.package_roots = {} if package_roots is None else package_roots   # packages the build resolved
+        self.allow_roots = allow_roots    # --allow-path folders: meshes and textures may come from them too
+        self.build_warnings = [] if build_warnings is None else build_warnings   # Diagnostics from build (X codes)
+        self.from_xacro = from_xacro
+        # Problems found while reading (bad numbers, unknown joint types...) that checks report.
+        self.load_issues = [] if load_issues is None else load_issues
+        # id(lxml element of root_element) -> Loc, for consumers that walk the raw XML (check's T005/T006);
+        # a SourceLines for a URDF read from one file (use loc_of rather than this map).
+        self.element_locs = {} if element_locs is None else element_locs
+        self._elements = [] if _elements is None else _elements   # keeps those lxml proxies (and ids) alive
+        # Where the build says each output value came from (expand/provenance.SourceMap), or for a
+        # URDF read from one file its bytes: Robot.sources reads spans from them when asked.
+        self.source_map = source_map
+        self.source_bytes = source_bytes
+        # Facts derived from the robot, built once by whoever needs them first (``derive``); the robot
+        # is not modified after loading, so they stay true for its lifetime.
+        self.derived = {} if derived is None else derived
+        self.ros2_control = ros2_control            # Ros2Control blocks, in file order
+
+    def __repr__(self) -> str:
+        return f"Robot(name={self.name!r}, links={len(self.links)}, joints={len(self.joints)}, source={self.source!r})"
 
     def derive(self, key, build):
         """``build()``, built once for this robot under ``key``: the one cache of facts derived from

@@ -6,18 +6,15 @@ Cylinders have their axis along local z (URDF convention). numpy is imported ins
 functions so that importing the checks stays cheap.
 """
 
-from __future__ import annotations
-
 import math
-from dataclasses import dataclass
+from typing import NamedTuple
 
 from myrabot_desc.errors import InputError
 from myrabot_desc.model import meshes as meshio
 from myrabot_desc.model.transforms import matmul3, place, rotate, transpose3
 
 
-@dataclass
-class MassProps:
+class MassProps(NamedTuple):
     volume: float
     com: tuple           # (x, y, z) in the frame the props are expressed in
     inertia: tuple       # 3x3 as three row tuples, about com, per the given mass

@@ -21,8 +21,6 @@ found by reading the start tags of the source files at the byte offsets the buil
 (expand/provenance.py), when first asked: loading a robot costs nothing more.
 """
 
-from __future__ import annotations
-
 import re
 from bisect import bisect_left
 from pathlib import Path

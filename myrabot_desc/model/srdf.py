@@ -9,8 +9,6 @@ input size limit) and parsed by ``safety.parse_xml_bytes`` (no DTD, entities or 
 statement keeps the file:line it was written at.
 """
 
-from __future__ import annotations
-
 from typing import NamedTuple
 
 from myrabot_desc.diagnostics import Loc

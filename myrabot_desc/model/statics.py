@@ -26,8 +26,6 @@ as a BLAS product's bits depend on its shape). A long chain turning about tilted
 where the turns above a joint tie with its own, still keeps most turns: O(joints x depth) there.
 """
 
-from __future__ import annotations
-
 import math
 from typing import NamedTuple
 

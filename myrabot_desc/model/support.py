@@ -17,8 +17,6 @@ stand?" (P001) and "does it tip over?" (sim), are about. Something 5 mm up at a 
 already means a 3° rock, where a driver notices the robot dip.
 """
 
-from __future__ import annotations
-
 import math
 from typing import NamedTuple
 

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import difflib
 import math
 
 from myrabot_desc.checks.examples import ELECTRIC_IMU, MODERN_IMU, ackermann_example, controllers_yaml, \
@@ -707,6 +706,8 @@ def _unread_fix(plugin, el, key: str, known, hint, other) -> Fix | None:
     """G007's fix: rename a near miss of exactly one known parameter, else remove what nothing reads."""
     if other:
         return None
+    import difflib      # a near miss is rare: most runs never ask
+
     near = difflib.get_close_matches(key, sorted(known), n=2, cutoff=0.8)
     if len(near) == 1 and not hint:
         return Fix((RenameTag(el, near[0]),), "unsafe", f"<{key}> renamed <{near[0]}>")

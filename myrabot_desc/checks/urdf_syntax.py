@@ -13,7 +13,6 @@ it). So they, and only they outside model/, read the robot's raw XML (``Robot.ro
 
 from __future__ import annotations
 
-import difflib
 import functools
 
 from myrabot_desc.checks.rule import Finding, Fix, FixInfo, RemoveAttribute, RenameAttribute, RenameTag, rule
@@ -97,6 +96,8 @@ def _close(word: str, choices: tuple, n: int, cutoff: float) -> tuple:
     is taken best bound first and only while a name could still enter the best ``n``: the ratio is
     at most the quick ratio (matching blocks are some of the characters in common), so once a
     name's (quick ratio, name) is below the ``n``-th (ratio, name) kept, no later one can enter."""
+    import difflib      # a near miss is rare: most runs never ask
+
     s = difflib.SequenceMatcher()
     s.set_seq2(word)
     ranked = []

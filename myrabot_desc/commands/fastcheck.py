@@ -22,9 +22,6 @@ from myrabot_desc.checks.suppress import unused_findings
 from myrabot_desc.commands import options
 from myrabot_desc.commands.console import echo, guarded, out, unstyle
 from myrabot_desc.commands.options import CHECK_OPTS, INPUT_OPTS, UsageProblem, make_inputs, parse_plain
-from myrabot_desc.fix.report import summary, unified_diff
-from myrabot_desc.fix.run import fix_tasks
-from myrabot_desc.fix.write import write_fixed
 from myrabot_desc.output import write_output
 from myrabot_desc.sanitize import clean
 
@@ -128,6 +125,11 @@ def _fix(tasks, fmt, output, quiet, help_url, shard_spec, unsafe, write: bool) -
     """check --fix / --diff (fix/run.py). --fix writes every changed file as one transaction and
     reports what remains; --diff writes nothing: a unified diff in text format, else the report of the
     models as they are with each fix proposed (JSON "fixes", SARIF "fixes")."""
+    # the fixer only for --fix and --diff: a lint run on every commit does not load it
+    from myrabot_desc.fix.report import summary, unified_diff
+    from myrabot_desc.fix.run import fix_tasks
+    from myrabot_desc.fix.write import write_fixed
+
     run = fix_tasks(tasks, unsafe, write)
     results = run.results
     unused_findings(results)

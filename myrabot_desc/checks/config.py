@@ -335,11 +335,6 @@ def _nesting_line(text: str) -> int | None:
 def read_config(path: Path, known_codes) -> Config | None:
     """Read one configuration file; None when it is a pyproject.toml without our table.
     ``known_codes()`` gives the valid codes (called only when the file names some)."""
-    try:
-        import tomllib
-    except ModuleNotFoundError:          # Python 3.10
-        import tomli as tomllib
-
     try:      # the path gate: a regular file (no FIFO or device), read no further than the limit
         data = read_checked(path, None, MAX_CONFIG_BYTES, what="configuration")
     except InputError as exc:
@@ -349,6 +344,16 @@ def read_config(path: Path, known_codes) -> Config | None:
         text = data.decode("utf-8")
     except UnicodeDecodeError:
         raise InputError("configuration is not UTF-8 text", Loc(_display(path))) from None
+    if path.name == "pyproject.toml" and TOOL_TABLE.encode() not in data:
+        # cannot hold our table: not parsed (tomllib and datetime cost ~5 ms of every check run
+        # walking past a project's pyproject.toml; one that is not valid TOML is not ours to judge;
+        # a table name spelled with \\u escapes is the one spelling missed)
+        return None
+    try:
+        import tomllib
+    except ModuleNotFoundError:          # Python 3.10
+        import tomli as tomllib
+
     deep = _nesting_line(text)
     if deep is not None:
         raise InputError(f"arrays or tables nest deeper than {MAX_NESTING}", Loc(_display(path), deep))

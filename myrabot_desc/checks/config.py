@@ -21,7 +21,6 @@ from __future__ import annotations
 
 import os
 import re
-from dataclasses import dataclass, field
 from pathlib import Path
 
 from myrabot_desc.checks.codes import closest, unknown_code_message
@@ -57,26 +56,42 @@ KEYS = {
 }
 
 
-@dataclass
 class Config:
-    """One configuration file's settings (paths already absolute)."""
+    """One configuration file's settings (paths already absolute). A plain class (``dataclasses``
+    costs ~10 ms of start-up); each list or dict not given is a new empty one."""
 
-    path: Path | None = None                    # None: the defaults (no file found / --isolated)
-    select: list[str] = field(default_factory=list)
-    ignore: list[str] = field(default_factory=list)
-    per_file_ignores: list[tuple[str, list[str]]] = field(default_factory=list)
-    strict: bool = False
-    inertia: bool = False
-    meshes: bool = False
-    package_paths: list[str] = field(default_factory=list)
-    packages: dict[str, str] = field(default_factory=dict)
-    allow_paths: list[str] = field(default_factory=list)
-    no_env: bool = False
-    args: list[tuple[str, dict[str, str]]] = field(default_factory=list)
-    limits: dict[str, int] = field(default_factory=dict)     # Limits field -> value
-    exclude: list[str] = field(default_factory=list)
-    help_url: str | None = None
-    cache: bool = True
+    def __init__(self, path: Path | None = None,           # None: the defaults (no file found / --isolated)
+                 select: list[str] | None = None,
+                 ignore: list[str] | None = None,
+                 per_file_ignores: list[tuple[str, list[str]]] | None = None,
+                 strict: bool = False,
+                 inertia: bool = False,
+                 meshes: bool = False,
+                 package_paths: list[str] | None = None,
+                 packages: dict[str, str] | None = None,
+                 allow_paths: list[str] | None = None,
+                 no_env: bool = False,
+                 args: list[tuple[str, dict[str, str]]] | None = None,
+                 limits: dict[str, int] | None = None,     # Limits field -> value
+                 exclude: list[str] | None = None,
+                 help_url: str | None = None,
+                 cache: bool = True):
+        self.path = path
+        self.select = [] if select is None else select
+        self.ignore = [] if ignore is None else ignore
+        self.per_file_ignores = [] if per_file_ignores is None else per_file_ignores
+        self.strict = strict
+        self.inertia = inertia
+        self.meshes = meshes
+        self.package_paths = [] if package_paths is None else package_paths
+        self.packages = {} if packages is None else packages
+        self.allow_paths = [] if allow_paths is None else allow_paths
+        self.no_env = no_env
+        self.args = [] if args is None else args
+        self.limits = {} if limits is None else limits
+        self.exclude = [] if exclude is None else exclude
+        self.help_url = help_url
+        self.cache = cache
 
     @property
     def root(self) -> Path:
@@ -320,11 +335,6 @@ def _nesting_line(text: str) -> int | None:
 def read_config(path: Path, known_codes) -> Config | None:
     """Read one configuration file; None when it is a pyproject.toml without our table.
     ``known_codes()`` gives the valid codes (called only when the file names some)."""
-    try:
-        import tomllib
-    except ModuleNotFoundError:          # Python 3.10
-        import tomli as tomllib
-
     try:      # the path gate: a regular file (no FIFO or device), read no further than the limit
         data = read_checked(path, None, MAX_CONFIG_BYTES, what="configuration")
     except InputError as exc:
@@ -334,6 +344,16 @@ def read_config(path: Path, known_codes) -> Config | None:
         text = data.decode("utf-8")
     except UnicodeDecodeError:
         raise InputError("configuration is not UTF-8 text", Loc(_display(path))) from None
+    if path.name == "pyproject.toml" and TOOL_TABLE.encode() not in data:
+        # cannot hold our table: not parsed (tomllib and datetime cost ~5 ms of every check run
+        # walking past a project's pyproject.toml; one that is not valid TOML is not ours to judge;
+        # a table name spelled with \\u escapes is the one spelling missed)
+        return None
+    try:
+        import tomllib
+    except ModuleNotFoundError:          # Python 3.10
+        import tomli as tomllib
+
     deep = _nesting_line(text)
     if deep is not None:
         raise InputError(f"arrays or tables nest deeper than {MAX_NESTING}", Loc(_display(path), deep))

@@ -10,7 +10,6 @@ import functools
 import json
 import math
 import os
-from dataclasses import dataclass, field
 from pathlib import Path
 
 from myrabot_desc.checks.registry import EXTERNAL, RULES, load_all
@@ -32,21 +31,39 @@ def style(text: str, fg: str | None = None, bold: bool = False) -> str:
     return (f"\033[{_FG[fg]}m" if fg else "") + ("\033[1m" if bold else "") + text + "\033[0m"
 
 
-@dataclass
 class FileResult:
-    file: str                                   # as given ('' = the bundled model)
-    diagnostics: list = field(default_factory=list)
-    robot: str | None = None
-    links: int = 0
-    joints: int = 0
-    failure: str | None = None                  # one-line reason when the file could not be processed
-    suggestions: list = field(default_factory=list)   # (link, '<inertia .../>')
-    strict: bool = False                        # warnings fail this file (--strict or its configuration)
-    failure_loc: object = None                  # Loc of the failure (the input when nothing better is known)
-    suppressions_seen: list = field(default_factory=list)   # (file, line, code) for codes the run checks
-    suppressions_used: list = field(default_factory=list)   # those that silenced a finding
-    fixes: list | None = None                   # check --fix/--diff: each fix as data (fix/report.change_data)
-    suppressed: list = field(default_factory=list)   # (finding, (file, line, code)): listed in SARIF only
+    """What check found in one file (a plain class: ``dataclasses`` costs ~10 ms of start-up).
+    Each list not given is a new empty one."""
+
+    __slots__ = ("file", "diagnostics", "robot", "links", "joints", "failure", "suggestions", "strict",
+                 "failure_loc", "suppressions_seen", "suppressions_used", "fixes", "suppressed")
+
+    def __init__(self, file: str,                        # as given ('' = the bundled model)
+                 diagnostics: list | None = None,
+                 robot: str | None = None,
+                 links: int = 0,
+                 joints: int = 0,
+                 failure: str | None = None,             # one-line reason when the file could not be processed
+                 suggestions: list | None = None,        # (link, '<inertia .../>')
+                 strict: bool = False,                   # warnings fail this file (--strict or its configuration)
+                 failure_loc: object = None,             # Loc of the failure (the input when nothing better is known)
+                 suppressions_seen: list | None = None,  # (file, line, code) for codes the run checks
+                 suppressions_used: list | None = None,  # those that silenced a finding
+                 fixes: list | None = None,              # check --fix/--diff: each fix as data (fix/report.change_data)
+                 suppressed: list | None = None):        # (finding, (file, line, code)): listed in SARIF only
+        self.file = file
+        self.diagnostics = [] if diagnostics is None else diagnostics
+        self.robot = robot
+        self.links = links
+        self.joints = joints
+        self.failure = failure
+        self.suggestions = [] if suggestions is None else suggestions
+        self.strict = strict
+        self.failure_loc = failure_loc
+        self.suppressions_seen = [] if suppressions_seen is None else suppressions_seen
+        self.suppressions_used = [] if suppressions_used is None else suppressions_used
+        self.fixes = fixes
+        self.suppressed = [] if suppressed is None else suppressed
 
     def count(self, severity: str) -> int:
         return sum(1 for d in self.diagnostics if d.severity == severity)

@@ -11,11 +11,15 @@ version that keeps it quiet. Either is a whole document (it starts with ``<?xml`
 ``<robot``) or a snippet that :func:`document` places into :data:`TEMPLATE`, a minimal
 robot of one link. tests/check/test_rule_examples.py runs every example through ``check``,
 and docs/rules.md is generated from them (``python -m myrabot_desc.checks.docs``).
+
+Plain classes, not dataclasses: ``dataclasses`` imports ``inspect`` (~10 ms), which ``check``
+would pay at every start. The records are immutable and equal only to a record of their own
+class (:class:`_Record`), as the frozen dataclasses they were: not NamedTuples, under which a
+fix's InsertInto and InsertAfter of the same text would be equal.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 from typing import Callable
 
 FAMILIES = {
@@ -43,6 +47,40 @@ TEMPLATE = """<?xml version="1.0"?>
 """
 
 
+_set = object.__setattr__
+
+
+class _Record:
+    """An immutable record whose fields are its ``__slots__``, in constructor order: equal to a
+    record of its own class with equal fields, hashed by them (a dict field makes it unhashable),
+    shown as ``Name(field=value, ...)``."""
+
+    __slots__ = ()
+
+    def _values(self) -> tuple:
+        return tuple([getattr(self, n) for n in self.__slots__])
+
+    def __setattr__(self, name, value):
+        raise AttributeError(f"cannot assign to field '{name}'")
+
+    def __delattr__(self, name):
+        raise AttributeError(f"cannot delete field '{name}'")
+
+    def __eq__(self, other):
+        if other.__class__ is self.__class__:
+            return self._values() == other._values()
+        return NotImplemented
+
+    def __hash__(self):
+        return hash(self._values())
+
+    def __repr__(self) -> str:
+        return f"{self.__class__.__qualname__}({', '.join(f'{n}={getattr(self, n)!r}' for n in self.__slots__)})"
+
+    def __reduce__(self):
+        return (self.__class__, self._values())
+
+
 def is_document(text: str) -> bool:
     s = text.lstrip()
     return s.startswith("<?xml") or s.startswith("<robot")
@@ -56,17 +94,25 @@ def document(text: str) -> str:
     return TEMPLATE.replace("{snippet}", body)
 
 
-@dataclass(frozen=True)
-class Example:
+class Example(_Record):
     """A rule's example: ``bad`` fires with ``message``; ``good`` is quiet for the code."""
 
-    bad: str
-    message: str                     # as check prints it after "CODE " (numbers included)
-    good: str | None = None          # None: nothing to show (a summary such as P004)
-    options: tuple = ()              # CheckOptions flags the example needs: "inertia", "meshes"
-    files: dict = field(default_factory=dict)   # extra files next to the model: name -> text
-    filename: str = "robot.urdf"     # the model's file name ("robot.urdf.xacro" for xacro)
-    note: str = ""                   # one line shown with the example (what the extra files are)
+    __slots__ = ("bad", "message", "good", "options", "files", "filename", "note")
+
+    def __init__(self, bad: str,
+                 message: str,                    # as check prints it after "CODE " (numbers included)
+                 good: str | None = None,         # None: nothing to show (a summary such as P004)
+                 options: tuple = (),             # CheckOptions flags the example needs: "inertia", "meshes"
+                 files: dict | None = None,       # extra files next to the model: name -> text (default {})
+                 filename: str = "robot.urdf",    # the model's file name ("robot.urdf.xacro" for xacro)
+                 note: str = ""):                 # one line shown with the example (what the extra files are)
+        _set(self, "bad", bad)
+        _set(self, "message", message)
+        _set(self, "good", good)
+        _set(self, "options", options)
+        _set(self, "files", {} if files is None else files)
+        _set(self, "filename", filename)
+        _set(self, "note", note)
 
 
 # ---------------------------------------------------------------- fixes
@@ -74,87 +120,107 @@ class Example:
 # value, remove this attribute...); `check --fix` (fix/) finds where each value was written
 # (Robot.sources) and edits the source there. The intents hold model parts, never file positions.
 
-@dataclass(frozen=True)
-class FixInfo:
+class FixInfo(_Record):
     """A rule's documented fix: ``availability`` always | sometimes | never; ``safety`` safe |
     unsafe (what ``--fix`` alone applies, as ruff: safe fixes keep the model's meaning or restore one
     the model states elsewhere); ``how``: what is edited, and why it is safe or not."""
 
-    availability: str
-    safety: str
-    how: str
+    __slots__ = ("availability", "safety", "how")
+
+    def __init__(self, availability: str, safety: str, how: str):
+        _set(self, "availability", availability)
+        _set(self, "safety", safety)
+        _set(self, "how", how)
 
 
 NO_FIX = FixInfo("never", "", "")
 
 
-@dataclass(frozen=True)
-class SetValue:
+class SetValue(_Record):
     """Set ``field`` of model ``part`` (see model/sources.FIELDS; a plugin's parameter by name) to
     ``value``: a number, a tuple of numbers or a text."""
 
-    part: object
-    field: str
-    value: object
+    __slots__ = ("part", "field", "value")
+
+    def __init__(self, part: object, field: str, value: object):
+        _set(self, "part", part)
+        _set(self, "field", field)
+        _set(self, "value", value)
 
 
-@dataclass(frozen=True)
-class RemoveAttribute:
+class RemoveAttribute(_Record):
     """Remove attribute ``attr`` of the URDF element ``ref`` (where it is written)."""
 
-    ref: object
-    attr: str
+    __slots__ = ("ref", "attr")
+
+    def __init__(self, ref: object, attr: str):
+        _set(self, "ref", ref)
+        _set(self, "attr", attr)
 
 
-@dataclass(frozen=True)
-class RemoveElement:
+class RemoveElement(_Record):
     """Remove the child element ``field`` of ``part`` (a plugin parameter: its name), or the part's own
     element when ``field`` is None."""
 
-    part: object
-    field: str | None = None
+    __slots__ = ("part", "field")
+
+    def __init__(self, part: object, field: str | None = None):
+        _set(self, "part", part)
+        _set(self, "field", field)
 
 
-@dataclass(frozen=True)
-class RenameTag:
+class RenameTag(_Record):
     """Rename the URDF element ``ref`` (start and end tag) to ``tag``."""
 
-    ref: object
-    tag: str
+    __slots__ = ("ref", "tag")
+
+    def __init__(self, ref: object, tag: str):
+        _set(self, "ref", ref)
+        _set(self, "tag", tag)
 
 
-@dataclass(frozen=True)
-class RenameAttribute:
+class RenameAttribute(_Record):
     """Rename attribute ``attr`` of the URDF element ``ref`` to ``new`` (its value stays)."""
 
-    ref: object
-    attr: str
-    new: str
+    __slots__ = ("ref", "attr", "new")
+
+    def __init__(self, ref: object, attr: str, new: str):
+        _set(self, "ref", ref)
+        _set(self, "attr", attr)
+        _set(self, "new", new)
 
 
-@dataclass(frozen=True)
-class InsertInto:
+class InsertInto(_Record):
     """Append the XML ``text`` as the last child of ``part``'s element, at its children's indentation."""
 
-    part: object
-    text: str
+    __slots__ = ("part", "text")
+
+    def __init__(self, part: object, text: str):
+        _set(self, "part", part)
+        _set(self, "text", text)
 
 
-@dataclass(frozen=True)
-class InsertAfter:
+class InsertAfter(_Record):
     """Insert the XML ``text`` after ``part``'s element, in the same file, at its indentation."""
 
-    part: object
-    text: str
+    __slots__ = ("part", "text")
+
+    def __init__(self, part: object, text: str):
+        _set(self, "part", part)
+        _set(self, "text", text)
 
 
-@dataclass(frozen=True)
-class Fix:
+class Fix(_Record):
     """What repairs one finding: its edits, applied together or not at all."""
 
-    edits: tuple
-    safety: str = "safe"             # safe | unsafe
-    title: str = ""                  # "wheelSeparation 0.4 -> 0.3"
+    __slots__ = ("edits", "safety", "title")
+
+    def __init__(self, edits: tuple,
+                 safety: str = "safe",            # safe | unsafe
+                 title: str = ""):                # "wheelSeparation 0.4 -> 0.3"
+        _set(self, "edits", edits)
+        _set(self, "safety", safety)
+        _set(self, "title", title)
 
 
 class LazyFix:
@@ -176,27 +242,56 @@ class LazyFix:
     title = property(lambda self: self.get().title)
 
 
-@dataclass
 class Finding:
     """What a rule yields: the message with the numbers, where, and machine data."""
 
-    message: str
-    loc: object = None               # diagnostics.Loc or None
-    data: dict = field(default_factory=dict)
-    severity: str | None = None      # overrides the rule's default (documented per rule)
-    fix: Fix | LazyFix | None = None  # how --fix repairs it, when the rule knows
+    __slots__ = ("message", "loc", "data", "severity", "fix")
+
+    def __init__(self, message: str,
+                 loc: object = None,              # diagnostics.Loc or None
+                 data: dict | None = None,        # (default {})
+                 severity: str | None = None,     # overrides the rule's default (documented per rule)
+                 fix: Fix | LazyFix | None = None):   # how --fix repairs it, when the rule knows
+        self.message = message
+        self.loc = loc
+        self.data = {} if data is None else data
+        self.severity = severity
+        self.fix = fix
+
+    def _values(self) -> tuple:
+        return (self.message, self.loc, self.data, self.severity, self.fix)
+
+    def __eq__(self, other):
+        if other.__class__ is self.__class__:
+            return self._values() == other._values()
+        return NotImplemented
+
+    __hash__ = None     # mutable, compared by value
+
+    def __repr__(self) -> str:
+        return (f"Finding(message={self.message!r}, loc={self.loc!r}, data={self.data!r}, "
+                f"severity={self.severity!r}, fix={self.fix!r})")
 
 
-@dataclass(frozen=True)
-class Rule:
-    code: str
-    name: str                        # kebab-case, e.g. "inertia-triangle"
-    severity: str                    # default severity: error | warning | info
-    func: Callable
-    example: Example
-    needs: str | None = None         # 'meshes' (loads mesh files) or None
-    summary: str = ""
-    fix: FixInfo = NO_FIX
+class Rule(_Record):
+    __slots__ = ("code", "name", "severity", "func", "example", "needs", "summary", "fix")
+
+    def __init__(self, code: str,
+                 name: str,                       # kebab-case, e.g. "inertia-triangle"
+                 severity: str,                   # default severity: error | warning | info
+                 func: Callable,
+                 example: Example,
+                 needs: str | None = None,        # 'meshes' (loads mesh files) or None
+                 summary: str = "",
+                 fix: FixInfo = NO_FIX):
+        _set(self, "code", code)
+        _set(self, "name", name)
+        _set(self, "severity", severity)
+        _set(self, "func", func)
+        _set(self, "example", example)
+        _set(self, "needs", needs)
+        _set(self, "summary", summary)
+        _set(self, "fix", fix)
 
     @property
     def doc(self) -> str:
@@ -215,4 +310,3 @@ def rule(code: str, name: str, severity: str, *, bad: str, message: str, good: s
         return func
 
     return deco
-

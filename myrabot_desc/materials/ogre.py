@@ -38,15 +38,16 @@ same name, or, when unnamed, the one at the same position; otherwise it is appen
 Public functions: :func:`parse_text`, :func:`parse_file`, :func:`parse_raw` plus
 :func:`build_materials` (used by the resolver to link parents across files).
 Every error is an :class:`~myrabot_desc.errors.InputError` with the file:line.
+
+The records are ``typing.NamedTuple`` (immutable) or plain classes (mutable), not dataclasses:
+``dataclasses`` imports ``inspect`` (~10 ms), which ``check`` would pay at every start.
 """
 
-from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Callable, Iterable
+from typing import Callable, Iterable, NamedTuple
 
 from myrabot_desc.diagnostics import Loc
 from myrabot_desc.errors import InputError
@@ -75,13 +76,14 @@ _SKIPPED_TOP = {"vertex_program", "fragment_program", "geometry_program", "tesse
                 "tesselation_domain_program", "compute_program", "shared_params", "sampler",
                 "compositor", "particle_system", "overlay_template", "font"}
 
-_NUMBER = re.compile(r"^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$")
-_TOKEN = re.compile(r'"[^"\n]*"|[{}]|[^\s{}"]+|"')
+# Patterns as text: re compiles them on first use and keeps them, so importing this module
+# (check always does) does not pay ~0.6 ms of compiling for scripts most robots do not have.
+_NUMBER = r"^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$"
+_TOKEN = r'"[^"\n]*"|[{}]|[^\s{}"]+|"'
 
 
 # ------------------------------------------------------------------ result types
-@dataclass(frozen=True)
-class TextureUnit:
+class TextureUnit(NamedTuple):
     name: str | None = None
     texture: str | None = None
     rotate: float = 0.0                           # degrees
@@ -93,31 +95,28 @@ class TextureUnit:
     line: int | None = None
 
 
-@dataclass(frozen=True)
-class Pass:
-    name: str | None = None
-    props: dict = field(default_factory=dict)    # only what the script sets (see DEFAULTS)
-    texture_units: tuple[TextureUnit, ...] = ()
-    line: int | None = None
+class _PassFields(NamedTuple):
+    name: str | None
+    props: dict                                   # only what the script sets (see DEFAULTS)
+    texture_units: tuple[TextureUnit, ...]
+    line: int | None
 
 
-@dataclass(frozen=True)
-class Technique:
+class Pass(_PassFields):
+    __slots__ = ()
+
+    def __new__(cls, name=None, props=None, texture_units=(), line=None):
+        # A new dict per pass: a NamedTuple default would be one dict shared by all.
+        return _PassFields.__new__(cls, name, {} if props is None else props, texture_units, line)
+
+
+class Technique(NamedTuple):
     name: str | None = None
     passes: tuple[Pass, ...] = ()
     line: int | None = None
 
 
-@dataclass(frozen=True)
-class Material:
-    """One material after inheritance, plus a flat summary for SDF/MJCF.
-
-    The summary takes, for each property, the first pass of the first technique that sets
-    it (so a two-pass "ambient" + "light" material gets its ambient from the first and its
-    diffuse from the second), falling back to Ogre's defaults. ``explicit`` names the
-    properties some pass sets.
-    """
-
+class _MaterialFields(NamedTuple):
     name: str
     parent: str | None
     ambient: RGBA
@@ -135,9 +134,30 @@ class Material:
     texture_scale: tuple[float, float]
     explicit: frozenset
     techniques: tuple[Technique, ...]
-    loc: Loc | None = None
-    variables: dict = field(default_factory=dict)   # `set $name value`, parents' included
-    abstract: bool = False                          # `abstract material`: a template, not output
+    loc: Loc | None
+    variables: dict                # `set $name value`, parents' included
+    abstract: bool                 # `abstract material`: a template, not output
+
+
+class Material(_MaterialFields):
+    """One material after inheritance, plus a flat summary for SDF/MJCF.
+
+    The summary takes, for each property, the first pass of the first technique that sets
+    it (so a two-pass "ambient" + "light" material gets its ambient from the first and its
+    diffuse from the second), falling back to Ogre's defaults. ``explicit`` names the
+    properties some pass sets.
+    """
+
+    __slots__ = ()
+
+    def __new__(cls, name, parent, ambient, diffuse, specular, emissive, shininess, lighting, scene_blend,
+                depth_write, alpha_rejection, transparency, texture, texture_rotate, texture_scale, explicit,
+                techniques, loc=None, variables=None, abstract=False):
+        # A new dict per material: a NamedTuple default would be one dict shared by all.
+        return _MaterialFields.__new__(
+            cls, name, parent, ambient, diffuse, specular, emissive, shininess, lighting, scene_blend,
+            depth_write, alpha_rejection, transparency, texture, texture_rotate, texture_scale, explicit,
+            techniques, loc, {} if variables is None else variables, abstract)
 
     def as_dict(self) -> dict:
         return {
@@ -155,28 +175,61 @@ class Material:
         }
 
 
-@dataclass
 class RawMaterial:
     """A material as written, before its parent is applied."""
 
-    name: str
-    parent: str | None
-    techniques: list          # list[Technique] (child overrides)
-    loc: Loc
-    variables: dict = field(default_factory=dict)   # $name -> [tokens]
-    abstract: bool = False
+    __slots__ = ("name", "parent", "techniques", "loc", "variables", "abstract")
+
+    def __init__(self, name: str, parent: str | None, techniques: list, loc: Loc,
+                 variables: dict | None = None, abstract: bool = False):
+        self.name = name
+        self.parent = parent
+        self.techniques = techniques          # list[Technique] (child overrides)
+        self.loc = loc
+        self.variables = {} if variables is None else variables   # $name -> [tokens]
+        self.abstract = abstract
+
+    def _fields(self) -> tuple:
+        return (self.name, self.parent, self.techniques, self.loc, self.variables, self.abstract)
+
+    def __eq__(self, other):
+        if other.__class__ is self.__class__:
+            return self._fields() == other._fields()
+        return NotImplemented
+
+    __hash__ = None     # mutable, compared by value
+
+    def __repr__(self) -> str:
+        return (f"RawMaterial(name={self.name!r}, parent={self.parent!r}, techniques={self.techniques!r}, "
+                f"loc={self.loc!r}, variables={self.variables!r}, abstract={self.abstract!r})")
 
 
-@dataclass
 class Script:
-    path: str
-    materials: dict[str, Material]        # in file order
-    imports: list[str] = field(default_factory=list)
-    warnings: list[str] = field(default_factory=list)
+    __slots__ = ("path", "materials", "imports", "warnings")
+
+    def __init__(self, path: str, materials: dict[str, Material], imports: list[str] | None = None,
+                 warnings: list[str] | None = None):
+        self.path = path
+        self.materials = materials        # in file order
+        self.imports = [] if imports is None else imports
+        self.warnings = [] if warnings is None else warnings
+
+    def _fields(self) -> tuple:
+        return (self.path, self.materials, self.imports, self.warnings)
+
+    def __eq__(self, other):
+        if other.__class__ is self.__class__:
+            return self._fields() == other._fields()
+        return NotImplemented
+
+    __hash__ = None     # mutable, compared by value
+
+    def __repr__(self) -> str:
+        return (f"Script(path={self.path!r}, materials={self.materials!r}, imports={self.imports!r}, "
+                f"warnings={self.warnings!r})")
 
 
-@dataclass(frozen=True)
-class _Var:
+class _Var(NamedTuple):
     """A value written with $variables, parsed once the material's variables are known."""
 
     key: str
@@ -190,16 +243,19 @@ def _has_var(args) -> bool:
 
 
 # ------------------------------------------------------------------ tokens and blocks
-@dataclass
 class _Node:
-    key: str
-    args: list[str]
-    line: int
-    children: list | None = None      # None for a plain statement
-    end_line: int | None = None
+    __slots__ = ("key", "args", "line", "children", "end_line")
+
+    def __init__(self, key: str, args: list[str], line: int, children: list | None = None,
+                 end_line: int | None = None):
+        self.key = key
+        self.args = args
+        self.line = line
+        self.children = children      # None for a plain statement
+        self.end_line = end_line
 
 
-_COMMENT_OR_STRING = re.compile(r'"[^"\n]*"|//[^\n]*|/\*(?:.*?\*/|.*)', re.S)
+_COMMENT_OR_STRING = r'(?s)"[^"\n]*"|//[^\n]*|/\*(?:.*?\*/|.*)'
 
 
 def _strip_comments(text: str, file: str) -> str:
@@ -214,12 +270,12 @@ def _strip_comments(text: str, file: str) -> str:
             raise InputError("'/*' comment is never closed (truncated file?)", Loc(file, line))
         return "\n" * s.count("\n")
 
-    return _COMMENT_OR_STRING.sub(repl, text)
+    return re.sub(_COMMENT_OR_STRING, repl, text)
 
 
 def _tokens(text: str, file: str):
     for lineno, line in enumerate(text.split("\n"), 1):
-        for m in _TOKEN.finditer(line):
+        for m in re.finditer(_TOKEN, line):
             tok = m.group(0)
             if tok == '"':
                 raise InputError("unterminated string (a '\"' without its closing quote)", Loc(file, lineno))
@@ -278,7 +334,7 @@ def _tree(text: str, file: str, max_depth: int) -> list[_Node]:
 
 # ------------------------------------------------------------------ values
 def _num(tok: str, what: str, file: str, line: int) -> float:
-    if not _NUMBER.match(tok):
+    if not re.match(_NUMBER, tok):
         raise InputError(f"{what}: {tok!r} is not a number", Loc(file, line))
     v = float(tok)
     if not math.isfinite(v):
@@ -500,22 +556,16 @@ def _merge_unit(a: TextureUnit, b: TextureUnit) -> TextureUnit:
     for k, default in (("rotate", 0.0), ("scale", (1.0, 1.0)), ("tex_coord_set", 0)):
         if getattr(b, k) != default:
             changes[k] = getattr(b, k)
-    return _replace(a, changes)
-
-
-def _replace(obj, changes: dict):
-    from dataclasses import replace
-
-    return replace(obj, **changes)
+    return a._replace(**changes)
 
 
 def _merge_pass(a: Pass, b: Pass) -> Pass:
-    return _replace(a, {"props": {**a.props, **b.props},
-                        "texture_units": tuple(_merge_list(list(a.texture_units), b.texture_units, _merge_unit))})
+    return a._replace(props={**a.props, **b.props},
+                      texture_units=tuple(_merge_list(list(a.texture_units), b.texture_units, _merge_unit)))
 
 
 def _merge_technique(a: Technique, b: Technique) -> Technique:
-    return _replace(a, {"passes": tuple(_merge_list(list(a.passes), b.passes, _merge_pass))})
+    return a._replace(passes=tuple(_merge_list(list(a.passes), b.passes, _merge_pass)))
 
 
 def _substitute(techs: tuple[Technique, ...], variables: dict, owner: str) -> tuple[Technique, ...]:
@@ -550,12 +600,12 @@ def _substitute(techs: tuple[Technique, ...], variables: dict, owner: str) -> tu
                 col = _colour(node, v.file)
                 if col is not None:
                     props[k] = col
-        units = tuple(_replace(u, {"texture": expand([u.texture], "", u.line or 0)[0]})
+        units = tuple(u._replace(texture=expand([u.texture], "", u.line or 0)[0])
                       if u.texture and u.texture.startswith("$") and u.texture in variables else u
                       for u in p.texture_units)
-        return _replace(p, {"props": props, "texture_units": units})
+        return p._replace(props=props, texture_units=units)
 
-    return tuple(_replace(t, {"passes": tuple(fix_pass(p) for p in t.passes)}) for t in techs)
+    return tuple(t._replace(passes=tuple(fix_pass(p) for p in t.passes)) for t in techs)
 
 
 def summarize(name: str, parent: str | None, techniques: tuple[Technique, ...], loc: Loc | None,
@@ -603,8 +653,8 @@ def _did_you_mean(name: str, local, known=()) -> str:
     return f"; did you mean {' or '.join(map(repr, close))}?" if close else ""
 
 
-def build_materials(raws: list[RawMaterial], external: Callable[[str], Material | None] | None = None,
-                    on_error: Callable[[InputError], None] | None = None, known=()) -> dict[str, Material]:
+def build_materials(raws: list[RawMaterial], external: "Callable[[str], Material | None] | None" = None,
+                    on_error: "Callable[[InputError], None] | None" = None, known=()) -> dict[str, Material]:
     """Apply inheritance. Parents are looked up among ``raws`` first, then ``external(name)``
     (``known``: the names ``external`` knows, for did-you-mean hints).
 
@@ -657,7 +707,7 @@ def build_materials(raws: list[RawMaterial], external: Callable[[str], Material 
 
 
 # ------------------------------------------------------------------ entry points
-def parse_text(text: str, file: str = "<string>", *, parents: Callable[[str], Material | None] | None = None,
+def parse_text(text: str, file: str = "<string>", *, parents: "Callable[[str], Material | None] | None" = None,
                known=(), max_bytes: int | None = None, max_depth: int = MAX_DEPTH) -> Script:
     """Parse a script held in memory. Imports are not followed (see :func:`parse_file`).
 
@@ -695,7 +745,7 @@ def read_script_text(path: Path, file: str, max_bytes: int | None = None) -> str
         return data.decode("latin-1")     # old scripts (Spanish comments) are often Latin-1
 
 
-def parse_file(path: str | Path, *, parents: Callable[[str], Material | None] | None = None,
+def parse_file(path: str | Path, *, parents: "Callable[[str], Material | None] | None" = None,
                known=(), max_bytes: int | None = None, max_depth: int = MAX_DEPTH) -> Script:
     """Parse a .material file, following ``import ... from "x.material"`` next to it.
 

@@ -21,10 +21,9 @@ the first lookup. Script materials win over Gazebo's stock table; among scripts 
 (search-dir order, then file name) wins. Parents may live in any loaded script or in the stock table.
 """
 
-from __future__ import annotations
 
-from dataclasses import dataclass
 from pathlib import Path
+from typing import NamedTuple
 
 from myrabot_desc.errors import InputError
 from myrabot_desc.materials import ogre
@@ -37,8 +36,7 @@ SCRIPT_SUBDIRS = ("", "materials/scripts", "materials", "Media/materials/scripts
 MAX_SCRIPTS = 2000          # a search dir that is someone's whole disk should not hang `check`
 
 
-@dataclass(frozen=True)
-class ResolvedMaterial:
+class ResolvedMaterial(NamedTuple):
     """Explicit values for one material name."""
 
     name: str

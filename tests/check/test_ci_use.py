@@ -132,6 +132,30 @@ def test_unknown_configuration_key_is_an_error_at_its_line(tmp_path):
                                   "'max-mesh-bytes'?" in res.output
 
 
+def test_a_pyproject_that_does_not_name_us_is_not_parsed(tmp_path):
+    """Walking up from a model, a project's pyproject.toml that does not name myrabot-desc cannot hold
+    our table: it is passed over unparsed (no TOML parser is imported for it), so even one that is
+    not valid TOML is no error; one that names our table still is, at its line, and a
+    myrabot-desc.toml is always read."""
+    (tmp_path / "r.urdf").write_text(URDF.format(name="r"))
+    alone = run("r.urdf", "--isolated", cwd=tmp_path)
+    (tmp_path / "pyproject.toml").write_text('[project]\nname = "x"\nversion = \n')
+    res = run("r.urdf", cwd=tmp_path)
+    assert (res.exit_code, res.output) == (alone.exit_code, alone.output) and "I008" in res.output
+    code = ("import sys; from myrabot_desc.commands.entry import main; code = main(); "
+            "print('tomllib' in sys.modules, file=sys.stderr); sys.exit(code)")
+    p = subprocess.run([sys.executable, "-c", code, "check", "--no-cache", "r.urdf"], cwd=tmp_path,
+                       capture_output=True, text=True, timeout=120, stdin=subprocess.DEVNULL)
+    assert p.returncode == alone.exit_code and p.stderr.splitlines()[-1] == "False", p.stderr[-2000:]
+    (tmp_path / "pyproject.toml").write_text('[project]\nname = "x"\nversion = \n\n[tool.myrabot-desc]\n')
+    res = run("r.urdf", cwd=tmp_path)
+    assert res.exit_code == 2 and "pyproject.toml:3: error: invalid TOML" in res.output, res.output
+    (tmp_path / "pyproject.toml").unlink()
+    (tmp_path / "myrabot-desc.toml").write_text('select = \n')
+    res = run("r.urdf", cwd=tmp_path)
+    assert res.exit_code == 2 and "myrabot-desc.toml:1: error: invalid TOML" in res.output, res.output
+
+
 @pytest.mark.parametrize("flag,value,hint", [("--select", "Z999", None), ("--ignore", "I0088", "I008"),
                                              ("--select", "G,Q", None)])
 def test_unknown_code_exits_2_with_did_you_mean(flag, value, hint):

@@ -29,6 +29,12 @@ from myrabot_desc.errors import InputError
 from myrabot_desc.safety import LIMITS, display, limit, read_checked
 
 TOOL_TABLE = "myrabot-desc"
+# Where a pyproject.toml can hold [tool.myrabot-desc]: a line that opens that table (or a bare [tool]
+# table, whose keys could be ours) or starts a top-level ``tool`` key naming it. A project that only
+# lists us as a dependency or a script cannot, and is not parsed.
+_OUR_TABLE = re.compile(r"""(?mx)^[ \t]*(?:
+      \[\[?[ \t]*(?P<q1>["']?)tool(?P=q1)[ \t]*(?:\]|\.[ \t]*(?P<q2>["']?)myrabot-desc(?P=q2)[ \t]*[\].])
+    | (?P<q3>["']?)tool(?P=q3)[ \t]*(?:=|\.[ \t]*(?P<q4>["']?)myrabot-desc(?P=q4)[ \t]*[.=]))""")
 OWN_NAME = "myrabot-desc.toml"
 MAX_CONFIG_BYTES = 1_000_000
 MAX_PATTERNS = 1_000          # globs of one key (exclude, per-file-ignores, args)
@@ -344,7 +350,7 @@ def read_config(path: Path, known_codes) -> Config | None:
         text = data.decode("utf-8")
     except UnicodeDecodeError:
         raise InputError("configuration is not UTF-8 text", Loc(_display(path))) from None
-    if path.name == "pyproject.toml" and TOOL_TABLE.encode() not in data:
+    if path.name == "pyproject.toml" and (TOOL_TABLE not in text or not _OUR_TABLE.search(text)):
         # cannot hold our table: not parsed (tomllib and datetime cost ~5 ms of every check run
         # walking past a project's pyproject.toml; one that is not valid TOML is not ours to judge;
         # a table name spelled with \\u escapes is the one spelling missed)

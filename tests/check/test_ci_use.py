@@ -133,13 +133,14 @@ def test_unknown_configuration_key_is_an_error_at_its_line(tmp_path):
 
 
 def test_a_pyproject_that_does_not_name_us_is_not_parsed(tmp_path):
-    """Walking up from a model, a project's pyproject.toml that does not name myrabot-desc cannot hold
-    our table: it is passed over unparsed (no TOML parser is imported for it), so even one that is
-    not valid TOML is no error; one that names our table still is, at its line, and a
-    myrabot-desc.toml is always read."""
+    """Walking up from a model, a project's pyproject.toml that cannot hold our table (it lists
+    myrabot-desc as a dependency only) is passed over unparsed (no TOML parser is imported for it), so
+    even one that is not valid TOML is no error; one that names our table still is, at its line, and
+    a myrabot-desc.toml is always read."""
     (tmp_path / "r.urdf").write_text(URDF.format(name="r"))
     alone = run("r.urdf", "--isolated", cwd=tmp_path)
-    (tmp_path / "pyproject.toml").write_text('[project]\nname = "x"\nversion = \n')
+    (tmp_path / "pyproject.toml").write_text('[project]\nname = "x"\ndependencies = ["myrabot-desc"]\nversion = \n'
+                                             '[project.scripts]\nmyrabot-desc = "x:y"\n')
     res = run("r.urdf", cwd=tmp_path)
     assert (res.exit_code, res.output) == (alone.exit_code, alone.output) and "I008" in res.output
     code = ("import sys; from myrabot_desc.commands.entry import main; code = main(); "
@@ -154,6 +155,21 @@ def test_a_pyproject_that_does_not_name_us_is_not_parsed(tmp_path):
     (tmp_path / "myrabot-desc.toml").write_text('select = \n')
     res = run("r.urdf", cwd=tmp_path)
     assert res.exit_code == 2 and "myrabot-desc.toml:1: error: invalid TOML" in res.output, res.output
+
+
+@pytest.mark.parametrize("text,ours", [
+    ("[tool.myrabot-desc]", True), ('  [ tool . "myrabot-desc" ]', True), ("['tool'.'myrabot-desc']", True),
+    ("[tool.myrabot-desc.per-file-ignores]", True), ("[tool]\nmyrabot-desc = {}", True),
+    ('tool.myrabot-desc.select = ["I"]', True), ("tool = {myrabot-desc = {}}", True),
+    ('"tool".myrabot-desc = {}', True), ("[[tool.myrabot-desc]]", True),
+    ('[project]\nname = "myrabot-desc"', False), ('[project.scripts]\nmyrabot-desc = "a:b"', False),
+    ('dependencies = ["myrabot-desc>=1"]', False), ('[tool.hatch]\nx = "myrabot-desc"', False),
+    ("[tool.myrabot-descx]", False), ("tools.myrabot-desc = 1", False), ('[tool."myrabot-desc2"]', False)])
+def test_which_pyproject_can_hold_our_table(text, ours):
+    """Every way TOML can open [tool.myrabot-desc] is read; a project naming us elsewhere is not."""
+    from myrabot_desc.checks.config import _OUR_TABLE
+
+    assert bool(_OUR_TABLE.search(text)) is ours
 
 
 @pytest.mark.parametrize("flag,value,hint", [("--select", "Z999", None), ("--ignore", "I0088", "I008"),

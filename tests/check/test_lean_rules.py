@@ -46,6 +46,11 @@ def test_the_whole_check_of_the_bundled_robot_imports_no_numpy_coal_or_pinocchio
     mods, out, _ = imported([], {}, None)
     assert "warning" in out or "error" in out or "info" in out      # the rules ran and reported
     assert not {"numpy", "coal", "pinocchio", "trimesh", "scipy"} & mods, out
+    # nor what a lint run on every commit need not start with: dataclasses (~10 ms with what it
+    # imports; the records are plain classes and NamedTuples), the fixer (--fix and --diff only) and
+    # difflib (a near miss only)
+    assert not {"dataclasses", "difflib"} & mods, sorted(mods)
+    assert not [m for m in mods if m.startswith("myrabot_desc.fix")], sorted(mods)
 
 
 # each family alone on the bundled robot (none has a finding there): what it may not import

@@ -12,10 +12,10 @@ version that keeps it quiet. Either is a whole document (it starts with ``<?xml`
 robot of one link. tests/check/test_rule_examples.py runs every example through ``check``,
 and docs/rules.md is generated from them (``python -m myrabot_desc.checks.docs``).
 
-Plain classes, not dataclasses: ``dataclasses`` imports ``inspect`` (~10 ms), which ``check``
-would pay at every start. The records are immutable and equal only to a record of their own
-class (:class:`_Record`), as the frozen dataclasses they were: not NamedTuples, under which a
-fix's InsertInto and InsertAfter of the same text would be equal.
+Plain classes, not dataclasses: a dataclass compiles its generated methods when it is defined
+(~0.6 ms a class), which ``check`` would pay at every start. The records are immutable and equal
+only to a record of their own class (:class:`_Record`), as the frozen dataclasses they were: not
+NamedTuples, under which a fix's InsertInto and InsertAfter of the same text would be equal.
 """
 
 from __future__ import annotations

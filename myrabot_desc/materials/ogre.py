@@ -39,10 +39,10 @@ Public functions: :func:`parse_text`, :func:`parse_file`, :func:`parse_raw` plus
 :func:`build_materials` (used by the resolver to link parents across files).
 Every error is an :class:`~myrabot_desc.errors.InputError` with the file:line.
 
-The records are ``typing.NamedTuple`` (immutable) or plain classes (mutable), not dataclasses:
-``dataclasses`` imports ``inspect`` (~10 ms), which ``check`` would pay at every start.
+The records are ``typing.NamedTuple`` (immutable) or plain classes (mutable), not dataclasses: a
+dataclass compiles its generated methods when it is defined (~0.6 ms a class), which ``check``
+would pay at every start.
 """
-
 
 import math
 import re

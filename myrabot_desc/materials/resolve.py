@@ -21,7 +21,6 @@ the first lookup. Script materials win over Gazebo's stock table; among scripts 
 (search-dir order, then file name) wins. Parents may live in any loaded script or in the stock table.
 """
 
-
 from pathlib import Path
 from typing import NamedTuple
 

@@ -429,8 +429,8 @@ class SourceLines:
 class Robot:
     """One robot: its parts by name, where it was read from, and the facts derived from it.
 
-    A plain class, not a dataclass: ``dataclasses`` imports ``inspect`` (~10 ms), which ``check``
-    would pay at every start for this one class."""
+    A plain class, not a dataclass: a dataclass compiles its generated methods when it is defined
+    (~0.6 ms a class), which every command that loads a model would pay at start."""
 
     def __init__(self, name: str, links: dict[str, Link], joints: dict[str, Joint],
                  materials: dict[str, Material], gazebo: tuple[GazeboBlock, ...],

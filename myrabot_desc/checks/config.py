@@ -63,8 +63,8 @@ KEYS = {
 
 
 class Config:
-    """One configuration file's settings (paths already absolute). A plain class (``dataclasses``
-    costs ~10 ms of start-up); each list or dict not given is a new empty one."""
+    """One configuration file's settings (paths already absolute). A plain class, not a
+    dataclass (see checks/rule.py); each list or dict not given is a new empty one."""
 
     def __init__(self, path: Path | None = None,           # None: the defaults (no file found / --isolated)
                  select: list[str] | None = None,

@@ -9,8 +9,8 @@ from myrabot_desc.model.kinematics import rest_poses, world_transforms
 
 
 class CheckOptions:
-    """What a check run does beyond the rules' defaults (a plain class: ``dataclasses`` costs
-    ~10 ms of start-up). Compared by value."""
+    """What a check run does beyond the rules' defaults (a plain class, not a
+    dataclass: see checks/rule.py). Compared by value."""
 
     __slots__ = ("inertia", "suggest", "meshes", "srdf")
 

@@ -32,8 +32,8 @@ def style(text: str, fg: str | None = None, bold: bool = False) -> str:
 
 
 class FileResult:
-    """What check found in one file (a plain class: ``dataclasses`` costs ~10 ms of start-up).
-    Each list not given is a new empty one."""
+    """What check found in one file (a plain class, not a dataclass: see checks/rule.py). Each list
+    not given is a new empty one."""
 
     __slots__ = ("file", "diagnostics", "robot", "links", "joints", "failure", "suggestions", "strict",
                  "failure_loc", "suppressions_seen", "suppressions_used", "fixes", "suppressed")

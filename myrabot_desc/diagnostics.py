@@ -1,31 +1,27 @@
 """Locations and diagnostics shared by build warnings and check findings.
 
-Plain classes, not dataclasses: ``dataclasses`` imports ``inspect`` (~10 ms), which ``build``
-would pay at every start for two small records.
+Records of :mod:`myrabot_desc.records`, not dataclasses: ``dataclasses`` imports ``inspect``
+(~10 ms), which ``build`` would pay at every start for two small records.
 """
 
 from __future__ import annotations
 
+from myrabot_desc.records import Frozen, Record, set_field
 from myrabot_desc.sanitize import clean
 
 SEVERITIES = ("error", "warning", "info")
 
 
-class Loc:
+class Loc(Frozen):
     """A place in a source file (a xacro or URDF file); line is 1-based. Immutable, hashable."""
 
     __slots__ = ("file", "line")
 
     def __init__(self, file: str, line: int | None = None):
-        object.__setattr__(self, "file", file)
-        object.__setattr__(self, "line", line)
+        set_field(self, "file", file)
+        set_field(self, "line", line)
 
-    def __setattr__(self, name, value):
-        raise AttributeError(f"cannot assign to field '{name}'")
-
-    def __delattr__(self, name):
-        raise AttributeError(f"cannot delete field '{name}'")
-
+    # equality and hash without the generic field walk: a large robot compares and hashes 40,000
     def __eq__(self, other):
         if other.__class__ is self.__class__:
             return (self.file, self.line) == (other.file, other.line)
@@ -34,17 +30,11 @@ class Loc:
     def __hash__(self):
         return hash((self.file, self.line))
 
-    def __repr__(self) -> str:
-        return f"Loc(file={self.file!r}, line={self.line!r})"
-
-    def __reduce__(self):
-        return (Loc, (self.file, self.line))
-
     def __str__(self) -> str:
         return f"{self.file}:{self.line}" if self.line else self.file
 
 
-class Diagnostic:
+class Diagnostic(Record):
     """One finding: a stable code, a severity, a message with the numbers that matter."""
 
     __slots__ = ("code", "severity", "message", "loc", "data")
@@ -56,20 +46,6 @@ class Diagnostic:
         self.loc = loc
         # Machine-readable extras (numbers, suggested fix) for JSON output.
         self.data = {} if data is None else data
-
-    def _fields(self) -> tuple:
-        return (self.code, self.severity, self.message, self.loc, self.data)
-
-    def __eq__(self, other):
-        if other.__class__ is self.__class__:
-            return self._fields() == other._fields()
-        return NotImplemented
-
-    __hash__ = None     # mutable, compared by value (as the dataclass it was)
-
-    def __repr__(self) -> str:
-        return (f"Diagnostic(code={self.code!r}, severity={self.severity!r}, message={self.message!r}, "
-                f"loc={self.loc!r}, data={self.data!r})")
 
     def __str__(self) -> str:
         where = f"{clean(self.loc)}: " if self.loc else ""

@@ -6,11 +6,11 @@ from myrabot_desc.diagnostics import Loc
 from myrabot_desc.model import shapes as geometry
 from myrabot_desc.model import tree
 from myrabot_desc.model.kinematics import rest_poses, world_transforms
+from myrabot_desc.records import Record
 
 
-class CheckOptions:
-    """What a check run does beyond the rules' defaults (a plain class, not a
-    dataclass: see checks/rule.py). Compared by value."""
+class CheckOptions(Record):
+    """What a check run does beyond the rules' defaults."""
 
     __slots__ = ("inertia", "suggest", "meshes", "srdf")
 
@@ -22,20 +22,6 @@ class CheckOptions:
         self.suggest = suggest
         self.meshes = meshes
         self.srdf = srdf
-
-    def _values(self) -> tuple:
-        return (self.inertia, self.suggest, self.meshes, self.srdf)
-
-    def __eq__(self, other):
-        if other.__class__ is self.__class__:
-            return self._values() == other._values()
-        return NotImplemented
-
-    __hash__ = None     # mutable, compared by value
-
-    def __repr__(self) -> str:
-        return (f"CheckOptions(inertia={self.inertia!r}, suggest={self.suggest!r}, meshes={self.meshes!r}, "
-                f"srdf={self.srdf!r})")
 
     @property
     def load_meshes(self) -> bool:

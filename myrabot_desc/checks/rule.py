@@ -12,15 +12,18 @@ version that keeps it quiet. Either is a whole document (it starts with ``<?xml`
 robot of one link. tests/check/test_rule_examples.py runs every example through ``check``,
 and docs/rules.md is generated from them (``python -m myrabot_desc.checks.docs``).
 
-Plain classes, not dataclasses: a dataclass compiles its generated methods when it is defined
-(~0.6 ms a class), which ``check`` would pay at every start. The records are immutable and equal
-only to a record of their own class (:class:`_Record`), as the frozen dataclasses they were: not
-NamedTuples, under which a fix's InsertInto and InsertAfter of the same text would be equal.
+The records are :mod:`myrabot_desc.records`' (not dataclasses, whose definition every ``check``
+would pay at start): immutable and equal only to a record of their own class, as the frozen
+dataclasses they were; not NamedTuples, under which a fix's InsertInto and InsertAfter of the same
+text would be equal.
 """
 
 from __future__ import annotations
 
 from typing import Callable
+
+from myrabot_desc.records import Frozen, Record
+from myrabot_desc.records import set_field as _set
 
 FAMILIES = {
     "X": "build (xacro)",
@@ -47,40 +50,6 @@ TEMPLATE = """<?xml version="1.0"?>
 """
 
 
-_set = object.__setattr__
-
-
-class _Record:
-    """An immutable record whose fields are its ``__slots__``, in constructor order: equal to a
-    record of its own class with equal fields, hashed by them (a dict field makes it unhashable),
-    shown as ``Name(field=value, ...)``."""
-
-    __slots__ = ()
-
-    def _values(self) -> tuple:
-        return tuple([getattr(self, n) for n in self.__slots__])
-
-    def __setattr__(self, name, value):
-        raise AttributeError(f"cannot assign to field '{name}'")
-
-    def __delattr__(self, name):
-        raise AttributeError(f"cannot delete field '{name}'")
-
-    def __eq__(self, other):
-        if other.__class__ is self.__class__:
-            return self._values() == other._values()
-        return NotImplemented
-
-    def __hash__(self):
-        return hash(self._values())
-
-    def __repr__(self) -> str:
-        return f"{self.__class__.__qualname__}({', '.join(f'{n}={getattr(self, n)!r}' for n in self.__slots__)})"
-
-    def __reduce__(self):
-        return (self.__class__, self._values())
-
-
 def is_document(text: str) -> bool:
     s = text.lstrip()
     return s.startswith("<?xml") or s.startswith("<robot")
@@ -94,7 +63,7 @@ def document(text: str) -> str:
     return TEMPLATE.replace("{snippet}", body)
 
 
-class Example(_Record):
+class Example(Frozen):
     """A rule's example: ``bad`` fires with ``message``; ``good`` is quiet for the code."""
 
     __slots__ = ("bad", "message", "good", "options", "files", "filename", "note")
@@ -120,7 +89,7 @@ class Example(_Record):
 # value, remove this attribute...); `check --fix` (fix/) finds where each value was written
 # (Robot.sources) and edits the source there. The intents hold model parts, never file positions.
 
-class FixInfo(_Record):
+class FixInfo(Frozen):
     """A rule's documented fix: ``availability`` always | sometimes | never; ``safety`` safe |
     unsafe (what ``--fix`` alone applies, as ruff: safe fixes keep the model's meaning or restore one
     the model states elsewhere); ``how``: what is edited, and why it is safe or not."""
@@ -136,7 +105,7 @@ class FixInfo(_Record):
 NO_FIX = FixInfo("never", "", "")
 
 
-class SetValue(_Record):
+class SetValue(Frozen):
     """Set ``field`` of model ``part`` (see model/sources.FIELDS; a plugin's parameter by name) to
     ``value``: a number, a tuple of numbers or a text."""
 
@@ -148,7 +117,7 @@ class SetValue(_Record):
         _set(self, "value", value)
 
 
-class RemoveAttribute(_Record):
+class RemoveAttribute(Frozen):
     """Remove attribute ``attr`` of the URDF element ``ref`` (where it is written)."""
 
     __slots__ = ("ref", "attr")
@@ -158,7 +127,7 @@ class RemoveAttribute(_Record):
         _set(self, "attr", attr)
 
 
-class RemoveElement(_Record):
+class RemoveElement(Frozen):
     """Remove the child element ``field`` of ``part`` (a plugin parameter: its name), or the part's own
     element when ``field`` is None."""
 
@@ -169,7 +138,7 @@ class RemoveElement(_Record):
         _set(self, "field", field)
 
 
-class RenameTag(_Record):
+class RenameTag(Frozen):
     """Rename the URDF element ``ref`` (start and end tag) to ``tag``."""
 
     __slots__ = ("ref", "tag")
@@ -179,7 +148,7 @@ class RenameTag(_Record):
         _set(self, "tag", tag)
 
 
-class RenameAttribute(_Record):
+class RenameAttribute(Frozen):
     """Rename attribute ``attr`` of the URDF element ``ref`` to ``new`` (its value stays)."""
 
     __slots__ = ("ref", "attr", "new")
@@ -190,7 +159,7 @@ class RenameAttribute(_Record):
         _set(self, "new", new)
 
 
-class InsertInto(_Record):
+class InsertInto(Frozen):
     """Append the XML ``text`` as the last child of ``part``'s element, at its children's indentation."""
 
     __slots__ = ("part", "text")
@@ -200,7 +169,7 @@ class InsertInto(_Record):
         _set(self, "text", text)
 
 
-class InsertAfter(_Record):
+class InsertAfter(Frozen):
     """Insert the XML ``text`` after ``part``'s element, in the same file, at its indentation."""
 
     __slots__ = ("part", "text")
@@ -210,7 +179,7 @@ class InsertAfter(_Record):
         _set(self, "text", text)
 
 
-class Fix(_Record):
+class Fix(Frozen):
     """What repairs one finding: its edits, applied together or not at all."""
 
     __slots__ = ("edits", "safety", "title")
@@ -242,7 +211,7 @@ class LazyFix:
     title = property(lambda self: self.get().title)
 
 
-class Finding:
+class Finding(Record):
     """What a rule yields: the message with the numbers, where, and machine data."""
 
     __slots__ = ("message", "loc", "data", "severity", "fix")
@@ -258,22 +227,8 @@ class Finding:
         self.severity = severity
         self.fix = fix
 
-    def _values(self) -> tuple:
-        return (self.message, self.loc, self.data, self.severity, self.fix)
 
-    def __eq__(self, other):
-        if other.__class__ is self.__class__:
-            return self._values() == other._values()
-        return NotImplemented
-
-    __hash__ = None     # mutable, compared by value
-
-    def __repr__(self) -> str:
-        return (f"Finding(message={self.message!r}, loc={self.loc!r}, data={self.data!r}, "
-                f"severity={self.severity!r}, fix={self.fix!r})")
-
-
-class Rule(_Record):
+class Rule(Frozen):
     __slots__ = ("code", "name", "severity", "func", "example", "needs", "summary", "fix")
 
     def __init__(self, code: str,

@@ -39,9 +39,8 @@ Public functions: :func:`parse_text`, :func:`parse_file`, :func:`parse_raw` plus
 :func:`build_materials` (used by the resolver to link parents across files).
 Every error is an :class:`~myrabot_desc.errors.InputError` with the file:line.
 
-The records are ``typing.NamedTuple`` (immutable) or plain classes (mutable), not dataclasses: a
-dataclass compiles its generated methods when it is defined (~0.6 ms a class), which ``check``
-would pay at every start.
+The records are ``typing.NamedTuple`` (immutable) or :mod:`myrabot_desc.records` (mutable), not
+dataclasses, whose definition ``check`` would pay at every start.
 """
 
 import math
@@ -51,6 +50,7 @@ from typing import Callable, Iterable, NamedTuple
 
 from myrabot_desc.diagnostics import Loc
 from myrabot_desc.errors import InputError
+from myrabot_desc.records import Record
 from myrabot_desc.safety import limit as table_limit
 from myrabot_desc.safety import read_checked
 
@@ -175,7 +175,7 @@ class Material(_MaterialFields):
         }
 
 
-class RawMaterial:
+class RawMaterial(Record):
     """A material as written, before its parent is applied."""
 
     __slots__ = ("name", "parent", "techniques", "loc", "variables", "abstract")
@@ -189,22 +189,8 @@ class RawMaterial:
         self.variables = {} if variables is None else variables   # $name -> [tokens]
         self.abstract = abstract
 
-    def _fields(self) -> tuple:
-        return (self.name, self.parent, self.techniques, self.loc, self.variables, self.abstract)
 
-    def __eq__(self, other):
-        if other.__class__ is self.__class__:
-            return self._fields() == other._fields()
-        return NotImplemented
-
-    __hash__ = None     # mutable, compared by value
-
-    def __repr__(self) -> str:
-        return (f"RawMaterial(name={self.name!r}, parent={self.parent!r}, techniques={self.techniques!r}, "
-                f"loc={self.loc!r}, variables={self.variables!r}, abstract={self.abstract!r})")
-
-
-class Script:
+class Script(Record):
     __slots__ = ("path", "materials", "imports", "warnings")
 
     def __init__(self, path: str, materials: dict[str, Material], imports: list[str] | None = None,
@@ -213,20 +199,6 @@ class Script:
         self.materials = materials        # in file order
         self.imports = [] if imports is None else imports
         self.warnings = [] if warnings is None else warnings
-
-    def _fields(self) -> tuple:
-        return (self.path, self.materials, self.imports, self.warnings)
-
-    def __eq__(self, other):
-        if other.__class__ is self.__class__:
-            return self._fields() == other._fields()
-        return NotImplemented
-
-    __hash__ = None     # mutable, compared by value
-
-    def __repr__(self) -> str:
-        return (f"Script(path={self.path!r}, materials={self.materials!r}, imports={self.imports!r}, "
-                f"warnings={self.warnings!r})")
 
 
 class _Var(NamedTuple):

@@ -16,6 +16,7 @@ from myrabot_desc.checks.registry import EXTERNAL, RULES, load_all
 from myrabot_desc.diagnostics import Loc
 from myrabot_desc.errors import InputError
 from myrabot_desc.expand.packages import bundled_path
+from myrabot_desc.records import Record
 from myrabot_desc.sanitize import clean, json_safe
 
 JSON_SCHEMA = "myrabot-desc/check-report/1"
@@ -31,9 +32,8 @@ def style(text: str, fg: str | None = None, bold: bool = False) -> str:
     return (f"\033[{_FG[fg]}m" if fg else "") + ("\033[1m" if bold else "") + text + "\033[0m"
 
 
-class FileResult:
-    """What check found in one file (a plain class, not a dataclass: see checks/rule.py). Each list
-    not given is a new empty one."""
+class FileResult(Record):
+    """What check found in one file. Each list not given is a new empty one."""
 
     __slots__ = ("file", "diagnostics", "robot", "links", "joints", "failure", "suggestions", "strict",
                  "failure_loc", "suppressions_seen", "suppressions_used", "fixes", "suppressed")

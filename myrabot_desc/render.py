@@ -14,12 +14,12 @@ from __future__ import annotations
 
 import math
 import os
-from typing import NamedTuple
 
 from myrabot_desc.diagnostics import Loc
 from myrabot_desc.errors import InputError
 from myrabot_desc.expand.yaml_load import load_path
 from myrabot_desc.model.kinematics import center_of_mass
+from myrabot_desc.records import Struct
 from myrabot_desc.safety import limit
 from myrabot_desc.view.facts import inertia_box
 from myrabot_desc.view.scene import parse_joint_values
@@ -37,13 +37,13 @@ BACKGROUND = (228, 232, 238)      # light blue-grey: white parts stay visible
 MAX_PIXELS = 4096 * 4096
 
 
-class Layers(NamedTuple):
+class Layers(Struct):
     collision: bool = False
     frames: bool = False
     inertia: bool = False
 
 
-class Camera(NamedTuple):
+class Camera(Struct):
     lookat: object       # (3,) numpy
     forward: object
     right: object

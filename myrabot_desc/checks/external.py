@@ -5,12 +5,12 @@ file that cannot be processed at all (X000). Each keeps its doc and example here
 the whole entry.
 """
 
-from typing import NamedTuple
 
 from myrabot_desc.checks.rule import Example
+from myrabot_desc.records import Struct
 
 
-class ExternalRule(NamedTuple):
+class ExternalRule(Struct):
     code: str
     name: str
     severity: str

@@ -11,7 +11,6 @@ import os
 import re
 from contextlib import nullcontext
 from pathlib import Path
-from typing import NamedTuple
 
 from myrabot_desc.checks import CheckOptions, cache, check_robot
 from myrabot_desc.checks.codes import known_codes, split_codes, unknown_code_message
@@ -24,6 +23,7 @@ from myrabot_desc.errors import InputError, UsageProblem
 from myrabot_desc.expand.driver import build_file
 from myrabot_desc.expand.packages import resolve_resource_uri
 from myrabot_desc.model.loader import is_xacro, load_robot
+from myrabot_desc.records import Struct
 from myrabot_desc.safety import LIMIT_ENV, SKIP_DIRS, included_names, walk_models
 from myrabot_desc.vcs import changed_files, repo_top
 
@@ -62,7 +62,7 @@ def expand_inputs(files: list[str], recursive: bool = False) -> list[str]:
     return out
 
 
-class Task(NamedTuple):
+class Task(Struct):
     """Everything one worker needs to check one file (picklable)."""
 
     path: str | None

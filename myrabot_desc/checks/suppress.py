@@ -16,11 +16,11 @@ code the run checked) is reported as X009, like ruff's RUF100.
 """
 
 from pathlib import Path
-from typing import NamedTuple
 
 from myrabot_desc.checks.codes import known_codes, unknown_code_message
 from myrabot_desc.diagnostics import Diagnostic, Loc, sort_diagnostics
 from myrabot_desc.errors import InputError
+from myrabot_desc.records import Struct
 from myrabot_desc.safety import limit, read_checked, safe_parser
 
 MARKER = b"myrabot-desc:"
@@ -62,7 +62,7 @@ def comment_suppressions(text: str):
         pos = close + 1
 
 
-class Suppression(NamedTuple):
+class Suppression(Struct):
     file: str            # as the findings name it (display path)
     line: int            # the comment's line
     codes: tuple         # codes or prefixes, upper case

@@ -11,23 +11,29 @@ and ``build --help`` import this module and must start fast (bench/bench_start.p
 from __future__ import annotations
 
 import os
-from collections import namedtuple
 
 from myrabot_desc.errors import UsageProblem
+from myrabot_desc.records import Struct
 from myrabot_desc.safety import LIMITS
 
 __all__ = ["BUILD_OPTS", "CHECK_OPTS", "DIFF_OPTS", "INPUT_OPTS", "Inputs", "Opt", "UsageProblem", "input_options", "make_inputs",
            "parse_plain", "usage_error"]
 
 
-class Opt(namedtuple("Opt", "decls dest kind help metavar choices default", defaults=(None,))):
+class Opt(Struct):
     """One command-line option, the one definition of it: click's option and the fast parser
     (parse_plain) both come from it. kind: "flag", "value" (one string), "multi" (repeatable, a
     tuple), "choice" (default choices[0], shown), "count" (a whole number >= 1), "file" (a path
     that is not a folder), "folder" (a path that is not a file). ``default``: of "value", "count",
     "file" and "folder" (None; shown when set)."""
 
-    __slots__ = ()
+    decls: tuple
+    dest: str
+    kind: str
+    help: str
+    metavar: str | None
+    choices: tuple | None
+    default: object = None
 
     def click_option(self):
         import click      # here, not at the top: the plain build path must not pay for click

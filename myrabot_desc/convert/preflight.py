@@ -11,13 +11,13 @@ reads every mesh anyway, adds what its reader finds.
 from __future__ import annotations
 
 from pathlib import Path
-from typing import NamedTuple
 
 
 from myrabot_desc.errors import InputError
 from myrabot_desc.expand.packages import unresolved_reason
 from myrabot_desc.model import meshes as meshio
 from myrabot_desc.model import tree
+from myrabot_desc.records import Struct
 
 # loader issues that no URDF reader would accept (urdfdom refuses the document): the text is not a
 # number, the element lacks what identifies it. NaN, inf and out-of-range numbers parse; they stay
@@ -26,7 +26,7 @@ UNREADABLE = ("not a number", "expected 3 numbers", "expected 4 numbers", "witho
               "unknown geometry", "<geometry> is empty")
 
 
-class Problem(NamedTuple):
+class Problem(Struct):
     message: str
     loc: object = None
     kind: str = "model"          # report kind of what it concerns

@@ -14,14 +14,15 @@ plugin and sensor of the URDF gets one entry with its fate in the target:
 
 from __future__ import annotations
 
-from typing import NamedTuple
+from myrabot_desc.records import Struct
+
 
 FATES = ("kept", "translated", "approximated", "dropped")
 SINGULAR = {"gazebo": "Gazebo setting"}
 PLURAL = {"gazebo": "Gazebo settings", "gazebo-joint": "gazebo-joints"}
 
 
-class Entry(NamedTuple):
+class Entry(Struct):
     kind: str                   # 'link', 'joint', 'visual', 'collision', 'inertial', 'mimic', 'gazebo', ...
     name: str
     fate: str                   # one of FATES

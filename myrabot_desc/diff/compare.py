@@ -17,12 +17,12 @@ from __future__ import annotations
 import filecmp
 import math
 import os
-from typing import Any, NamedTuple
 
 from myrabot_desc.errors import InputError
 from myrabot_desc.model import drive as drive_model
 from myrabot_desc.model.kinematics import world_transforms
 from myrabot_desc.model.meshes import vertices
+from myrabot_desc.records import Struct
 
 REL = 1e-9
 ABS = 1e-12
@@ -31,7 +31,7 @@ TURNED_DEG = 1e-6
 STRUCTURAL = 1000.0       # the size of an added, removed, renamed or retyped part: ranked first
 
 
-class Item(NamedTuple):
+class Item(Struct):
     """One change, flat: what it is about and how big it is (for ranking and the text/Markdown tables)."""
 
     section: str              # link | joint | sensor | frame | mass | drive | element | finding | robot
@@ -41,14 +41,14 @@ class Item(NamedTuple):
     new: str                  # the new value as text ('' when removed)
     change: str               # the change as text: '+1.0 mm', '×1.04', 'added'
     size: float               # for ranking: mm, deg, % or STRUCTURAL
-    where: Any = None         # Where of the new value (None: no source span)
+    where: object = None         # Where of the new value (None: no source span)
     values: tuple = ()        # the new value's numbers as written (SI units), to find the line that wrote them
 
 
-class Where(NamedTuple):
+class Where(Struct):
     """Where a value is written: the span of the literal (or definition) and how it got there."""
 
-    span: Any                 # model.sources.Span
+    span: object                 # model.sources.Span
     kind: str                 # literal | property | param | default | arg | expr | element | changed-line
     name: str | None = None   # the property, parameter or arg name
     side: str = "new"         # 'old' for a removed part (its place in the old revision)
@@ -70,7 +70,7 @@ class Where(NamedTuple):
         return loc
 
 
-class Comparison(NamedTuple):
+class Comparison(Struct):
     data: dict
     items: list
 
@@ -610,7 +610,7 @@ def frames_moved(so: Side, sn: Side, lmap, pose: str) -> dict:
     return moved
 
 
-def _first_changed_joint(robot_new, link, changed_joints) -> Any:
+def _first_changed_joint(robot_new, link, changed_joints) -> object:
     """The joint nearest the root on the way to ``link`` whose values changed (the cause of a move)."""
     path = []
     seen = set()

@@ -20,7 +20,6 @@ import shutil
 import tempfile
 import threading
 from pathlib import Path
-from typing import NamedTuple
 
 from myrabot_desc.checks import CheckOptions, check_robot
 from myrabot_desc.checks.baseline import finding_key
@@ -30,11 +29,12 @@ from myrabot_desc.diff.compare import STRUCTURAL, Item, compare
 from myrabot_desc.errors import InputError, UsageProblem
 from myrabot_desc.expand.driver import build_file, load_engine
 from myrabot_desc.model.loader import is_xacro, load_robot, read_urdf_text
+from myrabot_desc.records import Struct
 from myrabot_desc.safety import display
 from myrabot_desc.vcs import export, load_export, repo_top
 
 
-class DiffResult(NamedTuple):
+class DiffResult(Struct):
     old_label: str
     new_label: str
     data: dict                  # the changes (compare.Comparison.data, findings added)

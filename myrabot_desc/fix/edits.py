@@ -8,10 +8,11 @@ style (``.260`` stays without its leading zero, ``1e-3`` keeps an exponent).
 import math
 import re
 from pathlib import Path
-from typing import NamedTuple
+
+from myrabot_desc.records import Struct
 
 
-class Edit(NamedTuple):
+class Edit(Struct):
     """Replace bytes ``start:end`` of ``path`` (shown as ``file``) with ``new``."""
 
     file: str

@@ -13,7 +13,6 @@ Where the value came from decides the edit (model/sources.py):
   value needed and where the expression is written.
 """
 
-from typing import NamedTuple
 
 from myrabot_desc.checks.rule import (
     InsertAfter,
@@ -25,9 +24,10 @@ from myrabot_desc.checks.rule import (
     SetValue,
 )
 from myrabot_desc.fix.edits import Edit, number, numbers, removal
+from myrabot_desc.records import Struct
 
 
-class Change(NamedTuple):
+class Change(Struct):
     """One finding's repair: its edits, applied together."""
 
     code: str
@@ -38,7 +38,7 @@ class Change(NamedTuple):
     notes: tuple = ()                # why unsafe, the other uses of an edited definition
 
 
-class NotFixed(NamedTuple):
+class NotFixed(Struct):
     """A finding whose rule has a fix that cannot be written into the sources (or was not applied)."""
 
     code: str

@@ -10,7 +10,6 @@ writes every file of the run as one transaction.
 
 import os
 from pathlib import Path
-from typing import NamedTuple
 
 from myrabot_desc.checks import check_robot
 from myrabot_desc.checks.baseline import SUBJECT_KEYS, subject  # noqa: F401  (fix's notion of a finding's subject)
@@ -22,11 +21,12 @@ from myrabot_desc.fix.edits import Conflict, apply
 from myrabot_desc.fix.plan import Change, Planner
 from myrabot_desc.fix.report import change_data, not_fixed_data
 from myrabot_desc.model.loader import load_robot
+from myrabot_desc.records import Struct
 
 MAX_PASSES = 4
 
 
-class FileFix(NamedTuple):
+class FileFix(Struct):
     """One source file: what it holds on disk and what the fixes make of it."""
 
     name: str                         # as shown in reports
@@ -35,7 +35,7 @@ class FileFix(NamedTuple):
     new: bytes
 
 
-class FixResult(NamedTuple):
+class FixResult(Struct):
     model: str
     robot: object                     # the fixed model (Robot)
     context: object                   # its check Context
@@ -120,7 +120,7 @@ class _Session:
         return (overlay, robot2, diags2, ctx2), None
 
 
-class _Keyed(NamedTuple):
+class _Keyed(Struct):
     change: Change
     key: tuple
 
@@ -183,7 +183,7 @@ def fix_model(path, build: dict | None = None, options=None, select=(), ignore=(
                      before, diags, applied_data)
 
 
-class RunResult(NamedTuple):
+class RunResult(Struct):
     results: list                     # FileResult per model (the fixed model's findings)
     files: list                       # FileFix over the whole run (one per changed file)
     fixes: list                       # FixResult per model (None where the model failed)

@@ -39,18 +39,19 @@ Public functions: :func:`parse_text`, :func:`parse_file`, :func:`parse_raw` plus
 :func:`build_materials` (used by the resolver to link parents across files).
 Every error is an :class:`~myrabot_desc.errors.InputError` with the file:line.
 
-The records are ``typing.NamedTuple`` (immutable) or :mod:`myrabot_desc.records` (mutable), not
-dataclasses, whose definition ``check`` would pay at every start.
+The records are :mod:`myrabot_desc.records` structs (immutable) or records (mutable), not
+dataclasses or NamedTuples, whose definition ``check`` would pay at every start.
 """
 
 import math
 import re
 from pathlib import Path
-from typing import Callable, Iterable, NamedTuple
+from collections.abc import Callable, Iterable
 
 from myrabot_desc.diagnostics import Loc
 from myrabot_desc.errors import InputError
 from myrabot_desc.records import Record
+from myrabot_desc.records import Struct
 from myrabot_desc.safety import limit as table_limit
 from myrabot_desc.safety import read_checked
 
@@ -83,7 +84,7 @@ _TOKEN = r'"[^"\n]*"|[{}]|[^\s{}"]+|"'
 
 
 # ------------------------------------------------------------------ result types
-class TextureUnit(NamedTuple):
+class TextureUnit(Struct):
     name: str | None = None
     texture: str | None = None
     rotate: float = 0.0                           # degrees
@@ -95,7 +96,7 @@ class TextureUnit(NamedTuple):
     line: int | None = None
 
 
-class _PassFields(NamedTuple):
+class _PassFields(Struct):
     name: str | None
     props: dict                                   # only what the script sets (see DEFAULTS)
     texture_units: tuple[TextureUnit, ...]
@@ -110,13 +111,13 @@ class Pass(_PassFields):
         return _PassFields.__new__(cls, name, {} if props is None else props, texture_units, line)
 
 
-class Technique(NamedTuple):
+class Technique(Struct):
     name: str | None = None
     passes: tuple[Pass, ...] = ()
     line: int | None = None
 
 
-class _MaterialFields(NamedTuple):
+class _MaterialFields(Struct):
     name: str
     parent: str | None
     ambient: RGBA
@@ -201,7 +202,7 @@ class Script(Record):
         self.warnings = [] if warnings is None else warnings
 
 
-class _Var(NamedTuple):
+class _Var(Struct):
     """A value written with $variables, parsed once the material's variables are known."""
 
     key: str

@@ -22,12 +22,12 @@ the first lookup. Script materials win over Gazebo's stock table; among scripts 
 """
 
 from pathlib import Path
-from typing import NamedTuple
 
 from myrabot_desc.errors import InputError
 from myrabot_desc.materials import ogre
 from myrabot_desc.materials.stock import names as stock_names
 from myrabot_desc.materials.stock import stock_material
+from myrabot_desc.records import Struct
 
 RGBA = tuple[float, float, float, float]
 
@@ -35,7 +35,7 @@ SCRIPT_SUBDIRS = ("", "materials/scripts", "materials", "Media/materials/scripts
 MAX_SCRIPTS = 2000          # a search dir that is someone's whole disk should not hang `check`
 
 
-class ResolvedMaterial(NamedTuple):
+class ResolvedMaterial(Struct):
     """Explicit values for one material name."""
 
     name: str

@@ -10,14 +10,14 @@ simulator) and are not commanded themselves.
 
 from __future__ import annotations
 
-from typing import NamedTuple
 
 from myrabot_desc.model import drive as D
+from myrabot_desc.records import Struct
 
 UNCOMMANDED_TYPES = ("fixed", "floating", "planar")
 
 
-class Command(NamedTuple):
+class Command(Struct):
     kind: str | None          # 'velocity', 'position', or None (passive)
     why: str = ""             # for a passive joint: why nothing commands it
 

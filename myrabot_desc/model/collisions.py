@@ -22,7 +22,6 @@ same bounding spheres and boxes), and a robot where no pair of shapes comes near
 """
 
 import math
-from typing import NamedTuple
 
 from myrabot_desc.errors import InputError
 from myrabot_desc.model import meshes as meshio
@@ -31,6 +30,7 @@ from myrabot_desc.model.shapes import describe
 from myrabot_desc.model.support import _mesh_reader, collision_shapes
 from myrabot_desc.model.transforms import compose, pose_T, transpose3
 from myrabot_desc.model.tree import maps
+from myrabot_desc.records import Struct
 from myrabot_desc.safety import limit
 
 TOUCH = 0.001        # m: overlaps this shallow are contact (see the module docstring)
@@ -94,7 +94,7 @@ def _sphere_pairs(np, items, min_depth: float) -> list:
     return list(zip(ii[keep].tolist(), jj[keep].tolist()))
 
 
-class Overlap(NamedTuple):
+class Overlap(Struct):
     link_a: str                  # the links whose collision shapes overlap (a first in the file)
     link_b: str
     body_a: str                  # their rigid bodies, by the link that heads each
@@ -135,7 +135,7 @@ def adjacent_bodies(robot, body_of: dict) -> set:
             if j.type != "fixed" and j.parent in body_of and j.child in body_of}
 
 
-class _Item(NamedTuple):
+class _Item(Struct):
     link: str
     body: str
     collision: object

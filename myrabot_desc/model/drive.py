@@ -42,7 +42,6 @@ sources (gazebo_ros_pkgs ``gazebo_ros_diff_drive.cpp`` ROS 1 and ROS 2,
 """
 
 import math
-from typing import NamedTuple
 
 from myrabot_desc.errors import InputError
 from myrabot_desc.expand.packages import resource_roots
@@ -51,6 +50,7 @@ from myrabot_desc.model import values as V
 from myrabot_desc.model.kinematics import rest_poses
 from myrabot_desc.model.shapes import surface_points
 from myrabot_desc.model.transforms import IDENTITY, compose, place, pose_T, rotate
+from myrabot_desc.records import Struct
 from myrabot_desc.safety import display, limit
 
 ALIGNED = 0.99          # |cos| between a cylinder's axis and the joint axis for "a wheel drawn as a cylinder"
@@ -59,7 +59,7 @@ POINTS_N = 720          # samples around a circle when a wheel is measured from 
 LEVEL = 0.17            # |z| of a wheel axis (root frame, q = 0): a wheel rolls about a level axle (10°)
 
 
-class Spec(NamedTuple):
+class Spec(Struct):
     """One plugin dialect's parameter names and the defaults the plugin uses when one is missing."""
 
     dialect: str                      # 'electric' | 'ros1' | 'ros2' | 'gz' | 'vendor' | 'skid'
@@ -87,7 +87,7 @@ class Spec(NamedTuple):
         return out
 
 
-class Quantity(NamedTuple):
+class Quantity(Struct):
     """A drive plugin's numeric parameter: its value (None when it is not a number), unit and the
     parameter as written (a Node: ``loc``, ``text``; ``robot.origin(drive.plugin, key)`` for its span)."""
 
@@ -154,7 +154,7 @@ KOBUKI_ELECTRIC = CREATE._replace(label="gazebo_ros_kobuki (Electric)")
 PLUGIN_SPECS = (ROS1, ROS2, GZ, CREATE, KOBUKI_ELECTRIC, VENDOR, SKID)
 
 
-class Drive(NamedTuple):
+class Drive(Struct):
     """A declared drive: the wheels it turns and the numbers it believes.
 
     ``source``: 'plugin', 'ros_control' (transmissions), 'ros2_control', 'user' or 'guess'
@@ -232,7 +232,7 @@ class Drive(NamedTuple):
         return self._replace(separation=sep, radius=rad), notes
 
 
-class Wheel(NamedTuple):
+class Wheel(Struct):
     """One wheel as built (root frame, q = 0)."""
 
     joint: str
@@ -251,7 +251,7 @@ class Wheel(NamedTuple):
         return self.origin[0], self.origin[1]
 
 
-class Geometry(NamedTuple):
+class Geometry(Struct):
     """The wheels of a drive as the URDF builds them."""
 
     left: tuple[Wheel, ...]
@@ -676,7 +676,7 @@ CONTROLLER_KINDS = (("mecanum", "mecanum"), ("omni", "omni"), ("swerve", "swerve
 PLANAR_LIBS = ("planar_move", "force_based_move", "velocity-control", "velocity_control", "velocitycontrol")
 
 
-class Controller(NamedTuple):
+class Controller(Struct):
     """A drive controller read from the ros2_control YAML a plugin's ``<parameters>`` names."""
 
     name: str
@@ -694,7 +694,7 @@ class Controller(NamedTuple):
         return (node.loc if node is not None else None) or p.loc
 
 
-class Base(NamedTuple):
+class Base(Struct):
     """How the base moves: its kind, the joints that drive and steer it, its geometry on the URDF
     (joint origins at q = 0 in the root frame; radius as ``wheel`` measures it) and the numbers the
     declared controller drives with (after its multipliers), None where nothing gives one."""
@@ -804,7 +804,7 @@ def _times(v, m):
     return None if v is None else v * (m if m is not None else 1.0)
 
 
-class Term(NamedTuple):
+class Term(Struct):
     """One geometric number a controller or plugin drives with: what it is, the key as written,
     the value before and after its multiplier (controllers) or the plugin's default when the key is
     not written."""
@@ -896,7 +896,7 @@ def plugin_terms(p) -> list[Term]:
     return out
 
 
-class Declared(NamedTuple):
+class Declared(Struct):
     """A number a drive's controller or plugin declares about the base, beside the URDF's."""
 
     term: Term
@@ -1137,7 +1137,7 @@ def _base(robot) -> Base | None:
 FRICTION_DEFAULT = 1.0      # sdformat's <ode><mu>/<mu2> and Gazebo classic's mu1/mu2 when not written
 
 
-class Contact(NamedTuple):
+class Contact(Struct):
     """A wheel link's friction as the simulator reads it: ``mu`` along ``fdir1`` (root frame, unit,
     None when not given: then both coefficients act in every direction), ``mu2`` across it."""
 
@@ -1182,7 +1182,7 @@ def wheel_contact(robot, link: str, T=None) -> Contact:
     return Contact(link, FRICTION_DEFAULT, FRICTION_DEFAULT, None, "default")
 
 
-class RollerResponse(NamedTuple):
+class RollerResponse(Struct):
     """What a mecanum base driven by its wheels does for unit commands, given its wheels' contact:
     achieved (vx, vy, ωz) for a forward (vx 1), a sideways (vy 1) and a turning (ωz 1) command."""
 

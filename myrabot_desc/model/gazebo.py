@@ -13,9 +13,9 @@ the SDF, where sdformat's Param reads them (model/values.SDF).
 that are text (``material``) or unknown; None for a number or vector that cannot be read.
 """
 
-from typing import Any, NamedTuple
 
 from myrabot_desc.model import values as V
+from myrabot_desc.records import Struct
 
 NUMBERS = frozenset({
     "mu1", "mu2", "kp", "kd", "maxVel", "minDepth", "maxContacts", "laserRetro", "dampingFactor",
@@ -32,7 +32,7 @@ SDF_FLAGS = frozenset({"gravity", "kinematic", "self_collide", "allow_auto_disab
 EMITTERS = ("light", "projector")
 
 
-class Emitter(NamedTuple):
+class Emitter(Struct):
     """A ``<light>`` or ``<projector>`` in a ``<gazebo reference="LINK">`` block."""
 
     kind: str                       # 'light' | 'projector'
@@ -40,8 +40,8 @@ class Emitter(NamedTuple):
     reference: str                  # the link whose block holds it
     pose: tuple | None              # x y z roll pitch yaw as written (None: no <pose>, or unreadable)
     relative_to: str | None         # the <pose relative_to=...> frame, if any
-    node: Any                       # the element (model Node), copied as written
-    loc: Any = None
+    node: object                       # the element (model Node), copied as written
+    loc: object = None
 
 
 def emitters(robot) -> list[Emitter]:

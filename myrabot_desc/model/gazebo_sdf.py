@@ -5,16 +5,17 @@ copies them; `convert --to mjcf` reports them dropped.
 
 from __future__ import annotations
 
-from typing import Any, NamedTuple
+
+from myrabot_desc.records import Struct
 
 SDF_MODEL_CHILDREN = ("joint", "link", "frame", "model")
 
 
-class SdfElement(NamedTuple):
+class SdfElement(Struct):
     tag: str                 # 'joint', 'link', 'frame' or 'model'
     name: str | None
-    loc: Any = None          # where it was written (the block's location when unknown)
-    node: Any = None         # the element as a model/nodes.Node, for a converter that copies it
+    loc: object = None          # where it was written (the block's location when unknown)
+    node: object = None         # the element as a model/nodes.Node, for a converter that copies it
 
 
 def sdf_elements(robot) -> list[SdfElement]:

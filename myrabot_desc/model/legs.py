@@ -20,16 +20,16 @@ legged robot a free base, as a mobile one.
 
 from __future__ import annotations
 
-from typing import NamedTuple
 
 from myrabot_desc.model import drive as D
 from myrabot_desc.model.collisions import rigid_bodies
 from myrabot_desc.model.support import ground_support
+from myrabot_desc.records import Struct
 
 MIN_LIMB_JOINTS = 2
 
 
-class Stance(NamedTuple):
+class Stance(Struct):
     legged: bool
     feet: tuple            # the links touching the ground
     limbs: dict            # first joint below the root body -> the feet on that limb

@@ -7,14 +7,14 @@ functions so that importing the checks stays cheap.
 """
 
 import math
-from typing import NamedTuple
 
 from myrabot_desc.errors import InputError
 from myrabot_desc.model import meshes as meshio
 from myrabot_desc.model.transforms import matmul3, place, rotate, transpose3
+from myrabot_desc.records import Struct
 
 
-class MassProps(NamedTuple):
+class MassProps(Struct):
     volume: float
     com: tuple           # (x, y, z) in the frame the props are expressed in
     inertia: tuple       # 3x3 as three row tuples, about com, per the given mass

@@ -24,9 +24,9 @@ found by reading the start tags of the source files at the byte offsets the buil
 import re
 from bisect import bisect_left
 from pathlib import Path
-from typing import NamedTuple
 
 from myrabot_desc.diagnostics import Loc
+from myrabot_desc.records import Struct
 
 _NEWLINE = re.compile(rb"\n")
 _TAG = re.compile(rb"<([^\s/>]+)")
@@ -46,7 +46,7 @@ def unescape(text: str) -> str:
     return text.replace("&amp;", "&")
 
 
-class Span(NamedTuple):
+class Span(Struct):
     """A piece of text in a source file: bytes ``start:end`` of ``path``; ``line``/``col`` (1-based,
     col in characters) of its first character; ``text`` as written (XML-escaped)."""
 
@@ -70,13 +70,13 @@ class Span(NamedTuple):
         return f"{self.file}:{self.line}:{self.col}"
 
 
-class Hop(NamedTuple):
+class Hop(Struct):
     kind: str                 # literal | property | param | default | arg | expr | unknown
     name: str | None
     span: Span | None
 
 
-class Origin(NamedTuple):
+class Origin(Struct):
     """How one value reached the URDF (see the module doc)."""
 
     kind: str

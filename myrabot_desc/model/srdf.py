@@ -9,14 +9,14 @@ input size limit) and parsed by ``safety.parse_xml_bytes`` (no DTD, entities or 
 statement keeps the file:line it was written at.
 """
 
-from typing import NamedTuple
 
 from myrabot_desc.diagnostics import Loc
 from myrabot_desc.errors import InputError
+from myrabot_desc.records import Struct
 from myrabot_desc.safety import display, limit, parse_xml_bytes, read_checked
 
 
-class Disabled(NamedTuple):
+class Disabled(Struct):
     """A link pair the SRDF lets touch, with its reason ("Adjacent", "Never", "Default"...)."""
 
     link1: str
@@ -25,7 +25,7 @@ class Disabled(NamedTuple):
     loc: Loc
 
 
-class State(NamedTuple):
+class State(Struct):
     """A ``<group_state>``: joint name -> value (a tuple for a multi-valued joint such as a
     floating ``root_joint``: x y z qx qy qz qw)."""
 
@@ -35,7 +35,7 @@ class State(NamedTuple):
     loc: Loc
 
 
-class Srdf(NamedTuple):
+class Srdf(Struct):
     path: str
     disabled: dict            # frozenset({link1, link2}) -> Disabled
     never: dict               # link -> Loc of <disable_default_collisions link=...>

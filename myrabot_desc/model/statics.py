@@ -27,18 +27,18 @@ where the turns above a joint tie with its own, still keeps most turns: O(joints
 """
 
 import math
-from typing import NamedTuple
 
 from myrabot_desc.model.kinematics import _axis_angle_rows, _norms, axis_angle, pose_matrix, pose_stack, poses_at, \
     walk, world_transforms, world_transforms_from
 from myrabot_desc.model.transforms import compose, pose_T, rotate
+from myrabot_desc.records import Struct
 
 SAMPLES = 13             # values per joint range: 15 degrees apart on a half-turn range
 MOVING = ("revolute", "continuous", "prismatic")
 GRAVITY = 9.81             # m/s², along the root frame's -z (Pinocchio's and MuJoCo's default)
 
 
-class Need(NamedTuple):
+class Need(Struct):
     joint: str
     torque: float            # N·m (N for a prismatic joint): the largest |gravity torque| sampled
     at_rest: float           # the same at the rest pose

@@ -18,17 +18,17 @@ already means a 3° rock, where a driver notices the robot dip.
 """
 
 import math
-from typing import NamedTuple
 
 from myrabot_desc.model.hull2d import convex_hull
 from myrabot_desc.model.kinematics import center_of_mass, world_transforms
 from myrabot_desc.model.shapes import lowest_points, surface_points
 from myrabot_desc.model.transforms import compose, pose_T
+from myrabot_desc.records import Struct
 
 CONTACT_TOL = 0.005      # m: geometry this close to the lowest point holds the robot up (see above)
 
 
-class Support(NamedTuple):
+class Support(Struct):
     ground_z: float                      # height of the lowest collision point (root frame)
     contacts: dict                       # link name -> [(x, y, z)] points within CONTACT_TOL of the ground
     polygon: list                        # convex hull of the contacts' (x, y), counter-clockwise

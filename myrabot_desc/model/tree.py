@@ -6,9 +6,9 @@ and gigabytes), and recursive walks overflow the C stack (Pinocchio crashes past
 deep). Everything here is a dict lookup per joint or one iterative pass.
 """
 
-from typing import NamedTuple
 
 from myrabot_desc.model.transforms import IDENTITY, compose, pose_T
+from myrabot_desc.records import Struct
 
 # Deepest chain of joints handed to Pinocchio: its URDF parser recurses once per joint and dies
 # with SIGSEGV between 3,000 and 5,000 (8 MB stack); real robots are under 100 deep.
@@ -76,7 +76,7 @@ def is_tree(robot) -> bool:
     return robot.derive("tree.is_tree", build)
 
 
-class Bodies(NamedTuple):
+class Bodies(Struct):
     """The links merged into rigid bodies across fixed joints (see ``rigid_bodies``)."""
 
     host: dict          # link -> the link heading its body (itself when not merged)

@@ -11,19 +11,19 @@ their ``initial_positions.yaml``); else ``Robot.rest_pose`` (every joint at 0, o
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
 
 from myrabot_desc.diagnostics import Loc
 from myrabot_desc.errors import InputError
 from myrabot_desc.expand.yaml_load import load_path
 from myrabot_desc.model import values as V
 from myrabot_desc.model.srdf import load_srdf
+from myrabot_desc.records import Struct
 from myrabot_desc.safety import display, limit
 
 MOVING = ("revolute", "continuous", "prismatic")
 
 
-class Start(NamedTuple):
+class Start(Struct):
     q: dict                  # joint -> value (every moving, non-mimic joint)
     source: str              # what gave it, in words
     kind: str                # "pose-file" | "srdf" | "initial-positions" | "rest"

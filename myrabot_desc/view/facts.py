@@ -11,13 +11,13 @@ model's other derived facts; nothing here depends on viser or MuJoCo.
 
 from __future__ import annotations
 
-from typing import NamedTuple
 
 from myrabot_desc.model.kinematics import pose_matrix
 from myrabot_desc.model.support import stance as support  # noqa: F401  (the viewer's ground overlay)
+from myrabot_desc.records import Struct
 
 
-class InertiaBox(NamedTuple):
+class InertiaBox(Struct):
     size: tuple[float, float, float]     # edge lengths (m) along the principal axes
     pose: object                         # 4x4 numpy: link frame -> box centre and principal axes
     valid: bool                          # False when the moments break the triangle inequality

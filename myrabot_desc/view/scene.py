@@ -11,7 +11,6 @@ Link poses come from ``kinematics.world_transforms``; joint ranges for the slide
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
 
 from myrabot_desc.convert.appearance import Appearance, texture_mean_rgb
 from myrabot_desc.convert.common import Notes
@@ -19,13 +18,14 @@ from myrabot_desc.convert.gazebo import GazeboProps
 from myrabot_desc.errors import InputError
 from myrabot_desc.model import meshes
 from myrabot_desc.model.kinematics import pose_matrix, world_transforms
+from myrabot_desc.records import Struct
 
 DEFAULT_RGBA = (0.7, 0.7, 0.72, 1.0)
 COLLISION_RGBA = (1.0, 0.55, 0.1, 0.55)
 CYLINDER_SECTIONS = 32
 
 
-class Part(NamedTuple):
+class Part(Struct):
     link: str
     layer: str                 # 'visual' or 'collision'
     index: int                 # position among the link's visuals / collisions
@@ -41,7 +41,7 @@ class Part(NamedTuple):
         return f"{self.link}/{self.layer}/{self.index}"
 
 
-class JointRange(NamedTuple):
+class JointRange(Struct):
     name: str
     type: str
     lower: float

@@ -33,7 +33,6 @@ world body.
 from __future__ import annotations
 
 from pathlib import Path
-from typing import NamedTuple
 
 from myrabot_desc.convert.appearance import Appearance, texture_mean_rgb
 from myrabot_desc.convert.common import num, nums
@@ -43,13 +42,14 @@ from myrabot_desc.model import drive as D
 from myrabot_desc.model.tree import rigid_bodies
 from myrabot_desc.model.inertia import describe, repaired
 from myrabot_desc.model.transforms import matmul3, transform, transpose3
+from myrabot_desc.records import Struct
 
 TINY_MASS = 1e-3
 TINY_INERTIA = 1e-6
 WORLD = "world"
 
 
-class Tree(NamedTuple):
+class Tree(Struct):
     """What the body builder left out or made up, for the writer to refuse or say."""
 
     collision_errors: list                 # (message, loc) of collision meshes left out

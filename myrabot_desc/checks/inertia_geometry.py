@@ -49,11 +49,11 @@ class Solid:
     """A link's geometry as a uniform solid at the declared mass (link frame), or why not.
 
     ``props`` of primitives only are pure Python: placed_primitive's (numpy's floats to the bit) or
-    combine_pure's (combine's volume and centroid, its tensor within a few ulps); ``exact()`` gives
-    combine's, the tensor a finding reports, computed only for the links the screen cannot clear."""
+    combine_pure's (combine's volume and centroid, its tensor within a few ulps); with meshes,
+    combine's (numpy is loaded with them)."""
 
     # (20,000 of them in a star)
-    __slots__ = ("link", "source", "items", "props", "why_not", "marker", "desc", "parts", "_exact")
+    __slots__ = ("link", "source", "items", "props", "why_not", "marker", "desc")
 
     def __init__(self, ctx, link, same: dict | None = None):
         self.link = link
@@ -61,7 +61,6 @@ class Solid:
         self.props = None
         self.why_not = None
         self.marker = False
-        self.parts = None               # (volume, com, unit inertia, origin) of each shape, while props are not exact
         if len(self.items) == 1:        # most links: one primitive, unrotated (no numpy for it)
             mass = link.inertial.mass if link.inertial else 0.0
             one = _one_shape(self.items[0], mass if mass > 0 else 1.0, same)
@@ -101,42 +100,18 @@ class Solid:
             self.props = G.combine([(*pt[:3], pose_matrix(pt[3])) for pt in parts], mass if mass > 0 else 1.0)
         else:
             self.props = G.combine_pure([(*pt[:3], pose_T(pt[3])) for pt in parts], mass if mass > 0 else 1.0)
-            if self.props is not None:
-                self.parts = parts
         sizes = [G.size_of(it.geometry, ctx.mesh(it.geometry) if it.geometry.kind == "mesh" else None)
                  for it in self.items]
         self.marker = all(sz is not None and sz < MARKER_SIZE for sz in sizes)
-
-    def exact(self):
-        """``props`` as combine computes them (what I006 reports): the same object when they are."""
-        if self.parts is None:
-            return self.props
-        try:
-            return self._exact
-        except AttributeError:
-            mass = self.link.inertial.mass if self.link.inertial else 0.0
-            self._exact = G.combine([(*pt[:3], pose_matrix(pt[3])) for pt in self.parts], mass if mass > 0 else 1.0)
-            return self._exact
 
     @property
     def severity(self):
         """info for frame markers (a 1 mm box on a sensor frame), else the rule's default."""
         return "info" if self.marker else None
 
-    def in_inertial_frame(self):
-        """(com in inertial frame, tensor in inertial axes about the solid's com), of ``exact()``."""
-        import numpy as np
-
-        props = self.exact()
-        T = pose_matrix(self.link.inertial.origin)
-        R, p = T[:3, :3], T[:3, 3]
-        t = R.T @ np.array(props.inertia, dtype=float) @ R
-        t[abs(t) < 1e-6 * abs(t).max()] = 0.0          # rotation round-off (rpy 1.570796) is not a product of inertia
-        return R.T @ (np.array(props.com, dtype=float) - p), t
-
     def framed(self) -> tuple:
-        """``in_inertial_frame`` of ``props`` in pure Python: (com, tensor as three row lists), within
-        a few ulps of it (before the zeroing of round-off, which a screen treats with a margin)."""
+        """(com in the inertial frame, tensor in the inertial axes about the solid's com as three
+        row lists) of ``props``: R^T (com - p) and R^T I R, R and p the inertial origin's."""
         R, p = pose_T(self.link.inertial.origin)
         Rt = transpose3(R)
         t = [list(row) for row in matmul3(matmul3(Rt, self.props.inertia), R)]
@@ -209,26 +184,12 @@ def inertia_vs_geometry(ctx):
         return
     # links repeat (the same props and origin objects: _one_shape, the loader): each frame and
     # comparison is made once per distinct set of the objects it reads (kept alive by the links)
-    frame_key = [(id(s.exact()), id(s.link.inertial.origin.xyz), id(s.link.inertial.origin.rpy)) for _, s in solid]
+    frame_key = [(id(s.props), id(s.link.inertial.origin.xyz), id(s.link.inertial.origin.rpy)) for _, s in solid]
     first: dict = {}
     for k, key in enumerate(frame_key):
         first.setdefault(key, k)
-    framed_of = {key: _unrotated(solid[k][1].exact(), solid[k][1].link.inertial.origin) for key, k in first.items()}
-    rest = [k for key, k in first.items() if framed_of[key] is None]
-    if rest:
-        import numpy as np
-
-        # in_inertial_frame of the other links at once: stacked products take the per-matrix kernel
-        # of one product per link, so the numbers are the same to the bit
-        T = pose_stack(solid[k][1].link.inertial.origin for k in rest)
-        R, p = T[:, :3, :3], T[:, :3, 3]
-        Rt = np.swapaxes(R, 1, 2)
-        comps = Rt @ np.array([solid[k][1].exact().inertia for k in rest], dtype=float) @ R
-        comps[abs(comps) < 1e-6 * abs(comps).max(axis=(1, 2))[:, None, None]] = 0.0   # as in in_inertial_frame
-        coms = (Rt @ (np.array([solid[k][1].exact().com for k in rest], dtype=float) - p)[:, :, None])[:, :, 0]
-        cf, mf = comps.ravel().tolist(), coms.ravel().tolist()      # flat: no list per row per link
-        for n, k in enumerate(rest):
-            framed_of[frame_key[k]] = (cf[9 * n:9 * n + 9], tuple(mf[3 * n:3 * n + 3]))
+    framed_of = {key: _unrotated(solid[k][1].props, solid[k][1].link.inertial.origin) or _rotated(solid[k][1])
+                 for key, k in first.items()}
     compared: dict = {}
     for (name, s), fkey in zip(solid, frame_key):
         i = s.link.inertial
@@ -248,15 +209,14 @@ def inertia_vs_geometry(ctx):
                 severity=s.severity, fix=LazyFix(_solid_fix, i, texts, name, s.source))
 
 
-SCREEN = 1e-6      # relative: a pure-Python measure this close to a limit leaves the verdict to numpy's floats
+SCREEN = 1e-6      # relative: a screen's measure this close to a limit leaves the verdict to the reported floats
 
 
 def _beyond_limit(solid: list) -> list:
     """The (name, Solid) of ``solid`` whose diagonal may differ more than RATIO_LIMIT from the solid
-    body's: framed()'s floats, within a few ulps of the reported ones, clear the others (a margin of
-    SCREEN on the ratio and on in_inertial_frame's zeroing of round-off), so that numpy's products
-    are made for the findings only. Links repeat their objects (the loader, _one_shape): each set
-    is screened once."""
+    body's: framed()'s floats clear the others (a margin of SCREEN on the ratio and on the zeroing
+    of round-off), so that the texts and the <inertia/> line are made for the findings only. Links
+    repeat their objects (the loader, _one_shape): each set is screened once."""
     seen: dict = {}
     out = []
     for name, s in solid:
@@ -320,11 +280,12 @@ def _compare(i, desc: str, framed) -> tuple:
 
 
 def _unrotated(props, origin):
-    """(flat tensor, com) of in_inertial_frame for an inertial frame without rotation, or None.
+    """(flat tensor, com) of ``props`` in an inertial frame without rotation (less round-off), or
+    None (a rotated frame: ``_rotated``; a value that is not finite).
 
     R is then the identity (zeros of either sign): every product of R^T t R and R^T (com - p) is
     by 1 or a zero, and neither t nor com holds a -0 (combine's sums start at +0), so the floats
-    are t's and com - p's; the stacked products are needed only for a rotated frame."""
+    are t's and com - p's."""
     r, p, y = origin.rpy
     if r != 0 or p != 0 or y != 0:
         return None
@@ -336,6 +297,18 @@ def _unrotated(props, origin):
     if not all(map(math.isfinite, t9)) or not all(map(math.isfinite, com)):
         return None
     lim = 1e-6 * max(map(abs, t9))
+    return [0.0 if abs(v) < lim else v for v in t9], com
+
+
+def _rotated(s) -> tuple:
+    """(flat tensor, com) of Solid ``s`` in its inertial frame: ``framed()``, less the round-off of
+    the rotation (rpy 1.570796 leaves products of inertia of 1e-17 that no part has). In pure
+    Python, as the screens: numpy's 3x3 products would differ in the last bits only, and would cost
+    a check its import (~0.1 s) for a robot with one rotated part."""
+    com, t = s.framed()
+    t9 = [v for row in t for v in row]
+    mags = [abs(v) for v in t9]
+    lim = 1e-6 * (math.nan if any(map(math.isnan, mags)) else max(mags))    # (NaN: nothing is round-off)
     return [0.0 if abs(v) < lim else v for v in t9], com
 
 

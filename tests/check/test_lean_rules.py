@@ -78,3 +78,13 @@ def test_support_mass_and_frame_rules_import_no_numpy(name):
     assert "numpy" not in mods, out
     if name == "kobuki_rosbuild":           # the lean path ran the finding's tip and its fix too
         assert "P001" in out and "it tips" in out
+
+
+@pytest.mark.parametrize("name", ["kobuki_rosbuild", "turtlebot3_burger"])
+def test_a_finding_on_a_rotated_part_needs_no_numpy(name):
+    """I006 frames the solid body of a part whose collision shape is rotated (TurtleBot3's caster
+    box, rpy -1.57 0 0) in pure Python, as its screen does."""
+    entry = corpus_robot(name)
+    mods, out, _ = imported(corpus_args(entry), corpus_env(entry), None)
+    assert "numpy" not in mods, out
+    assert "I006" in out

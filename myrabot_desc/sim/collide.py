@@ -43,7 +43,9 @@ class CollisionReport:
 
 
 class ArmCollider:
-    def __init__(self, arm, scene=()):
+    def __init__(self, arm, scene=(), triangles=meshes.triangles):
+        """``triangles``: path -> (vertices, faces) of a mesh file (sim/prepared.py shares one read
+        of each file between the collider and the support)."""
         import coal
         import numpy as np
         import pinocchio as pin
@@ -52,7 +54,7 @@ class ArmCollider:
         robot = arm.robot
         model = arm.model
         self.notes = []
-        gm = geometry_model(model, robot, self.notes)
+        gm = geometry_model(model, robot, self.notes, triangles)
         # scene objects: fixed in the robot's root frame (the base stands still in escoja/seguir)
         for obj in scene:
             for name, shape, M in obj.coal_shapes():
@@ -239,7 +241,7 @@ def cold_gjk(gdata):
             r.enable_cached_gjk_guess = False
 
 
-def geometry_model(model, robot, notes: list):
+def geometry_model(model, robot, notes: list, triangles=meshes.triangles):
     """A Pinocchio GeometryModel of the robot's collision shapes, from our model (meshes read
     through model/meshes.py, with its roots and limits); named ``{link}_{index}`` as Pinocchio's
     URDF reader names them. A mesh that cannot be read is left out, with a note."""
@@ -253,7 +255,7 @@ def geometry_model(model, robot, notes: list):
         fid = model.getFrameId(ln)
         f = model.frames[fid]
         for i, c in enumerate(link.collisions):
-            shape = coal_shape(c.geometry)
+            shape = coal_shape(c.geometry, triangles)
             if shape is None:
                 if c.geometry is not None and c.geometry.kind == "mesh":
                     skipped.append(c.geometry.filename)
@@ -268,8 +270,9 @@ def geometry_model(model, robot, notes: list):
     return gm
 
 
-def coal_shape(g):
-    """A coal collision shape of a URDF geometry (meshes as bounding-volume hierarchies), or None."""
+def coal_shape(g, triangles=meshes.triangles):
+    """A coal collision shape of a URDF geometry (meshes as bounding-volume hierarchies, their
+    triangles read by ``triangles``), or None."""
     import coal
 
     if g is None:
@@ -284,7 +287,7 @@ def coal_shape(g):
         import numpy as np
 
         try:            # the lean STL/COLLADA readers: trimesh (and scipy) only for other formats
-            v, f = meshes.triangles(g.path)
+            v, f = triangles(g.path)
         except meshes.MeshError:
             return None
         bvh = coal.BVHModelOBBRSS()

@@ -20,13 +20,14 @@ from myrabot_desc.model.support import CONTACT_TOL, Support, ground_support, sig
 G = 9.81
 
 
-def support_polygon(robot, drive) -> tuple[Support, list[str]]:
-    """model/support.py's ground support, and notes on how the drive wheels take part in it."""
+def support_polygon(robot, drive, meshes=True) -> tuple[Support, list[str]]:
+    """model/support.py's ground support, and notes on how the drive wheels take part in it.
+    ``meshes``: how mesh collisions are read (model/support.ground_support)."""
 
     wheels = {drive.urdf.left.link: drive.urdf.left, drive.urdf.right.link: drive.urdf.right}
     tf = world_transforms(robot)
     wheel_ground = float(min(tf[w.link][2, 3] - w.radius for w in wheels.values()))
-    s = ground_support(robot, world=tf)
+    s = ground_support(robot, meshes=meshes, world=tf)
     notes = []
     if s is None:      # no collision shape at all: the wheels (measured from their visuals) alone
         contacts = {n: [(w.xy[0], w.xy[1], wheel_ground)] for n, w in sorted(wheels.items())}

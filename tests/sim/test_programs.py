@@ -375,3 +375,30 @@ def test_prepared_robot_gives_the_same_run():
     for r in (b, c):
         assert r.as_json() == a.as_json()
         assert np.array_equal(r.arm_q, a.arm_q) and np.array_equal(r.base.x, a.base.x)
+
+
+def test_preparing_the_robot_reads_each_mesh_once(monkeypatch):
+    """The collider's shapes and the support's lowest points come from one read of each mesh file,
+    and the support's points are the ones its own reader gives (model/shapes.surface_points)."""
+    import numpy as np
+
+    from myrabot_desc.model import meshes
+    from myrabot_desc.model.loader import load_robot
+    from myrabot_desc.model.shapes import surface_points
+    from myrabot_desc.sim import prepared, vuelta
+
+    robot = load_robot(None)
+    reads = []
+    real = meshes.triangles
+    monkeypatch.setattr(meshes, "triangles", lambda path, *a, **k: reads.append(str(path)) or real(path, *a, **k))
+    monkeypatch.setattr(meshes, "vertices", lambda *a, **k: pytest.fail("the support read a mesh again"))
+    vuelta.run(robot, duration=2)
+    files = {str(c.geometry.path) for link in robot.links.values() for c in link.collisions
+             if c.geometry is not None and c.geometry.kind == "mesh"}
+    assert len(files) > 5 and sorted(reads) == sorted(files)
+    monkeypatch.undo()
+    of = prepared.mesh_vertices(robot)
+    for link in robot.links.values():
+        for c in link.collisions:
+            if c.geometry is not None and c.geometry.kind == "mesh":
+                assert np.array_equal(of(c.geometry), surface_points(c.geometry))

@@ -56,6 +56,7 @@ from myrabot_desc.model.parts import (
     Visual,
 )
 from myrabot_desc.safety import Limits, parse_xml_bytes, read_input
+from myrabot_desc.xmltree import attribute_values
 
 # Sizes, offsets, masses and inertias beyond this (SI units) are typing errors or attacks: 1e300
 # overflows volumes and inertias downstream. Joint limits and dynamics are exempt (1e16 is a
@@ -369,7 +370,7 @@ def _read_model(root, text, src: Path, locations, package_roots, build_warnings,
     # the attributes themselves, as plain strings: a third faster than their elements (in C: 260,000
     # elements in a big tree); and none at all when no value can start with package:// (the scan of
     # every attribute is most of the cost)
-    named = root.xpath("descendant-or-self::*/@filename", smart_strings=False) if _may_name_packages(root, text) else ()
+    named = attribute_values(root, "filename") if _may_name_packages(root, text) else ()
     for fn in named:
         parts = split_package_uri(fn) if fn else None
         if parts and parts[0] not in roots:

@@ -46,16 +46,17 @@ def ProcessingInstruction():
     """The tag of a processing instruction node (as lxml's ``etree.ProcessingInstruction``)."""
 
 
-class Document:
-    """The document around the root element: the comments and instructions beside it, the bytes
-    (lines are counted from them when asked), the declared encoding. ``getroottree()`` of any node
-    and its own ``docinfo``, as lxml's ElementTree."""
+class Document(list):
+    """The document around the root element: the list of the root and its siblings (comments,
+    instructions), the bytes (lines are counted from them when asked), the declared encoding.
+    ``getroottree()`` of any node and its own ``docinfo``, as lxml's ElementTree."""
 
-    __slots__ = ("root", "top", "data", "encoding", "nodes", "_newlines", "_big")
+    __slots__ = ("root", "data", "encoding", "nodes", "text", "_newlines", "_big")
 
     def __init__(self, data: bytes):
+        super().__init__()
         self.root = None
-        self.top: list = []             # the root and its siblings, in order
+        self.text = None                # (what the parser would give the document: dropped)
         self.data = data
         self.encoding = "UTF-8"         # lxml's for a document that declares none
         self.nodes: list = []           # every node inside the root (and the root), in document order
@@ -83,8 +84,8 @@ class Document:
         return self._big[id(node)]
 
     def _order(self) -> list:
-        i = self.top.index(self.root)
-        return self.top[:i] + self.nodes + self.top[i + 1:]
+        i = next(k for k, n in enumerate(self) if n is self.root)
+        return self[:i] + self.nodes + self[i + 1:]
 
     def getroot(self):
         return self.root
@@ -171,7 +172,7 @@ class Element(list):
     def itersiblings(self, tag=None, preceding: bool = False):
         """The following (or, ``preceding``, the earlier, nearest first) siblings; with ``tag``, those with it."""
         p = self._parent
-        sibs = list(p) if type(p) is Element else p.top
+        sibs = list(p)
         i = next(k for k, s in enumerate(sibs) if s is self)
         seq = reversed(sibs[:i]) if preceding else iter(sibs[i + 1:])
         return seq if tag is None else (s for s in seq if s.tag == tag)
@@ -214,8 +215,6 @@ def parse(data: bytes) -> Element:
     p.namespace_prefixes = True
     p.buffer_text = True
     p.SetParamEntityParsing(expat.XML_PARAM_ENTITY_PARSING_NEVER)
-    # no declaration and no xml: attribute, no name is namespaced: no name need be looked at
-    plain = b"xmlns" not in data and b"xml:" not in data
 
     cur = doc                           # the node whose children come next
     last = None                         # the child of cur that ended last (its tail comes next), or None
@@ -230,32 +229,25 @@ def parse(data: bytes) -> Element:
         if texts:
             s = "".join(texts)
             texts.clear()
-            if cur is not doc:          # (between the top-level nodes lxml keeps no text)
-                if last is None:
-                    cur.text = s
-                else:
-                    last.tail = s
+            if last is None:
+                cur.text = s
+            else:
+                last.tail = s
         depth += 1
         if depth > MAX_DEPTH:
             raise Refused
         el = Element()
-        if plain:
-            el.tag = name
+        if _SEP in name:
+            el.tag, el.prefix = _clark(name)
         else:
-            el.tag, prefix = _clark(name)
-            if prefix is not None:
-                el.prefix = prefix
-            if attrs and _SEP in "".join(attrs):
-                attrs = {_clark(k)[0]: v for k, v in attrs.items()}
+            el.tag = name
+        if attrs and _SEP in "".join(attrs):
+            attrs = {_clark(k)[0]: v for k, v in attrs.items()}
         el.attrib = attrs
         el.text = el.tail = None
         el._pos = p.CurrentByteIndex
-        if cur is doc:
-            doc.root = el
-            doc.top.append(el)
-        else:
-            cur.append(el)
         el._parent = cur
+        cur.append(el)
         add_node(el)
         cur = el
         last = None
@@ -279,20 +271,16 @@ def parse(data: bytes) -> Element:
         if texts:
             s = "".join(texts)
             texts.clear()
-            if cur is not doc:
-                if last is None:
-                    cur.text = s
-                else:
-                    last.tail = s
+            if last is None:
+                cur.text = s
+            else:
+                last.tail = s
         n = Element()
         n.tag, n.attrib, n.text, n.tail, n._pos, n._parent = tag, {}, text, None, p.CurrentByteIndex, cur
         if target is not None:
             n.target = target
-        if cur is doc:
-            doc.top.append(n)
-        else:
-            cur.append(n)
-            add_node(n)
+        cur.append(n)
+        add_node(n)
         last = n
 
     def xml_decl(version, encoding, standalone):
@@ -308,7 +296,7 @@ def parse(data: bytes) -> Element:
     p.CommentHandler = lambda data: other(Comment, data)
     p.ProcessingInstructionHandler = lambda target, data: other(ProcessingInstruction, data, target)
     p.XmlDeclHandler = xml_decl
-    if not plain:                       # a prefix declared and never used is a name too
+    if b"xmlns:" in data:               # a prefix declared and never used is a name too
         p.StartNamespaceDeclHandler = lambda prefix, uri: prefix is not None and len(prefix) > MAX_NAME and refuse()
     p.StartDoctypeDeclHandler = refuse
     p.EntityDeclHandler = refuse
@@ -325,8 +313,16 @@ def parse(data: bytes) -> Element:
         if paused:
             gc.enable()
     # every tag, attribute name and instruction target passed through expat's table of names
-    if doc.root is None or any(len(part) > MAX_NAME for n in p.intern if n for part in n.split(_SEP)[1:] or (n,)):
+    if any(len(part) > MAX_NAME for n in p.intern if n for part in n.split(_SEP)[1:] or (n,)):
         raise Refused
+    before = None
+    for i, n in enumerate(doc):
+        n.tail = None                   # lxml keeps no text beside the root
+        if type(n.tag) is str:
+            doc.root, before = n, i
+    nodes = doc.nodes                   # the root's own nodes: leave out its siblings
+    del nodes[len(nodes) - (len(doc) - before - 1):]
+    del nodes[:before]
     return doc.root
 
 

@@ -21,7 +21,7 @@ import re
 from bisect import bisect_left
 from xml.parsers import expat
 
-from myrabot_desc.safety import parse_xml_bytes
+from myrabot_desc.safety import check_xml_bytes, parse_xml_bytes
 
 # libxml2's limits without huge_tree: elements nested deeper than 256, names over 50,000
 # characters, a text node over 10 MB (a smaller document cannot hold one). Past these, lxml judges.
@@ -31,7 +31,7 @@ MAX_BYTES = 10_000_000
 _ENCODINGS = {"utf-8", "utf8", "us-ascii", "ascii", "iso-8859-1", "latin-1", "latin1"}
 _SEP = "\x01"                    # expat's namespace separator: no XML name or URI can hold it
 # a start tag from its "<" to its ">" (a quoted value may hold ">"): where libxml2's line is taken
-_START_TAG = re.compile(rb"<[^\s/>]*(?:[^\"'>]++|\"[^\"]*+\"|'[^']*+')*+>")
+_START_TAG = re.compile(rb"<[^\"'>]*+(?:(?:\"[^\"]*+\"|'[^']*+')[^\"'>]*+)*+>")
 
 
 class Refused(Exception):
@@ -180,9 +180,10 @@ class Element(list):
     @property
     def sourceline(self) -> int:
         """libxml2's line: the line of the ``>`` that ends the start tag (comment, instruction)."""
-        if self._line is None:
-            self._line = self.getroottree().line_of(self)
-        return self._line
+        line = self._line
+        if line is None:
+            line = self._line = self.getroottree().line_of(self)
+        return line
 
 
 def _matches(tag, tags) -> bool:
@@ -324,6 +325,16 @@ def parse(data: bytes) -> Element:
     del nodes[len(nodes) - (len(doc) - before - 1):]
     del nodes[:before]
     return doc.root
+
+
+def parse_safely(data: bytes, name: str):
+    """A model file's root element, as ``safety.parse_xml_bytes`` reads it (the same checks, the
+    same verdict and message on what it refuses), in this tree wherever expat reads the file."""
+    check_xml_bytes(data, name)
+    try:
+        return parse(data)
+    except Refused:
+        return parse_xml_bytes(data, name)
 
 
 def _clark(name: str) -> tuple:

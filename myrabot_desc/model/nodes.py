@@ -128,8 +128,8 @@ class Node:
 
 
 def node(el, loc_of) -> Node:
-    """The Node of element ``el`` (xmltree's or lxml's) (its children read when first asked for); ``loc_of(el)``:
-    an element's location (the loader's)."""
+    """The Node of element ``el``, xmltree's or lxml's (its children read when first asked for);
+    ``loc_of(el)``: an element's location (the loader's)."""
     tag = el.tag
     if not isinstance(tag, str):
         if tag is xmltree.Comment:

@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import gc
 import re
-from bisect import bisect_left
 from xml.parsers import expat
 
 from myrabot_desc.safety import check_xml_bytes, parse_xml_bytes
@@ -31,7 +30,8 @@ MAX_BYTES = 10_000_000
 _ENCODINGS = {"utf-8", "utf8", "us-ascii", "ascii", "iso-8859-1", "latin-1", "latin1"}
 _SEP = "\x01"                    # expat's namespace separator: no XML name or URI can hold it
 # a start tag from its "<" to its ">" (a quoted value may hold ">"): where libxml2's line is taken
-_START_TAG = re.compile(rb"<[^\"'>]*+(?:(?:\"[^\"]*+\"|'[^']*+')[^\"'>]*+)*+>")
+# (compiled when a line is first asked for: `build` imports this module and never does)
+_START_TAG = rb"<[^\"'>]*+(?:(?:\"[^\"]*+\"|'[^']*+')[^\"'>]*+)*+>"
 
 
 class Refused(Exception):
@@ -70,10 +70,12 @@ class Document(list):
         elif node.tag is ProcessingInstruction:
             end = data.find(b"?>", pos) + 2
         else:
-            m = _START_TAG.match(data, pos)
+            m = re.compile(_START_TAG).match(data, pos)    # (re's cache keeps it compiled)
             end = m.end() if m else pos + 1
         if self._newlines is None:
             self._newlines = [m.start() for m in re.finditer(b"\n", data)]
+        from bisect import bisect_left   # (lines are rarely asked for: not at import)
+
         line = bisect_left(self._newlines, end - 1) + 1
         if line < 65535:
             return line

@@ -30,9 +30,9 @@ import re
 import sys
 from pathlib import Path
 
+from myrabot_desc import xmltree
 from myrabot_desc.diagnostics import Diagnostic, Loc
 from myrabot_desc.errors import InputError
-from myrabot_desc import xmltree
 from myrabot_desc.expand import domread, safe_eval, yaml_load
 from myrabot_desc.expand import fast as xacro_fast
 from myrabot_desc.expand import legacy as lg

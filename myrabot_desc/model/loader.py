@@ -123,10 +123,10 @@ def load_robot(path=None, **build_options) -> Robot:
 
 
 # A URDF file up to this size is read by expat into xmltree's elements, saving lxml's import (~15 ms);
-# past it lxml's parse in C saves more than that (xmltree builds each element in Python: ~1 us more
-# an element of a plain file, where lxml makes few of its own; measured on generated stars, even at
-# ~1,300 links and 500 kB). A built document is always read by expat (driver.BuildResult.root): the
-# loader's map of every element costs lxml more than that.
+# past it lxml's parse in C saves more than that: xmltree builds each element in Python, ~1 us more
+# an element of a plain file, where lxml makes few proxies (on generated stars the two are level
+# near 1,300 links, 500 kB). A built document is always read by expat (driver.BuildResult.root):
+# there the loader maps every element, and lxml's proxies cost more than that.
 LEAN_READ_BYTES = 500_000
 
 

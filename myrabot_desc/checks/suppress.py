@@ -17,6 +17,7 @@ code the run checked) is reported as X009, like ruff's RUF100.
 
 from pathlib import Path
 
+from myrabot_desc import xmltree
 from myrabot_desc.checks.codes import known_codes, unknown_code_message
 from myrabot_desc.diagnostics import Diagnostic, Loc, sort_diagnostics
 from myrabot_desc.errors import InputError
@@ -100,14 +101,19 @@ def suppressions_in(file: str) -> list[Suppression]:
 
 
 def _parse(data: bytes, file: str) -> list[Suppression]:
-    from lxml import etree
-
     try:
-        root = etree.fromstring(data, parser=safe_parser())
-    except (etree.XMLSyntaxError, ValueError):
-        return []
-    comments = list(root.itersiblings(etree.Comment, preceding=True)) + list(root.iter(etree.Comment)) + \
-        list(root.itersiblings(etree.Comment))
+        root = xmltree.parse(data)      # the same tree lxml reads, lines included, without importing it
+        comment = xmltree.Comment
+    except xmltree.Refused:             # what expat leaves to lxml (see xmltree.py)
+        from lxml import etree
+
+        try:
+            root = etree.fromstring(data, parser=safe_parser())
+        except (etree.XMLSyntaxError, ValueError):
+            return []
+        comment = etree.Comment
+    comments = list(root.itersiblings(comment, preceding=True)) + list(root.iter(comment)) + \
+        list(root.itersiblings(comment))
     found = [(c, kind, body) for c in comments if MARKER.decode() in (c.text or "")
              for kind, body in comment_suppressions(c.text or "")]
     if not found:

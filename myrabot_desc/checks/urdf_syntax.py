@@ -241,7 +241,7 @@ def ros_block(ctx):
     (and in a ROS 1 setup `<ros>` is never read at all). Fix: move it into the `<plugin>`
     it configures, or delete it (ROS 1: use `robotNamespace` and launch-file remaps).
     """
-    for el in ctx.robot.root_element.iterchildren("{*}ros"):     # <ros> in any namespace or none, picked in C
+    for el in ctx.robot.root_element.iterchildren("{*}ros"):     # <ros> in any namespace or none
         inner = ", ".join(f"<{local(c.tag)}>{(c.text or '').strip()}" for c in el if isinstance(c.tag, str))
         yield Finding(f"ROS 2 <ros> block at robot level ({inner}) is read by no one; it belongs inside "
                       "a ROS 2 gazebo_ros <plugin>", ctx.loc_of(el), {"content": inner})

@@ -30,6 +30,7 @@ import re
 import sys
 from pathlib import Path
 
+from myrabot_desc import xmltree
 from myrabot_desc.diagnostics import Diagnostic, Loc
 from myrabot_desc.errors import InputError
 from myrabot_desc.expand import domread, safe_eval, yaml_load
@@ -60,9 +61,10 @@ class BuildResult:
 
     @property
     def root(self):
-        """The URDF parsed with lxml, safely, on first use (the loader reads it; ``build`` never
-        does, and so never imports lxml). InputError when lxml cannot read the output (e.g. an
-        attribute value over its 10 MB cap, built by ${}s)."""
+        """The URDF's root element, parsed safely on first use (the loader reads it; ``build`` never
+        does): by expat into xmltree's elements, or by lxml for what expat leaves to it (see
+        xmltree.py). InputError when lxml cannot read the output (e.g. an attribute value over
+        its 10 MB cap, built by ${}s)."""
         if self._root is None:
             self._root = _parse_output(self.text, self._src_name)
         return self._root
@@ -77,10 +79,15 @@ LXML_MAX_TEXT = 10_000_000
 
 
 def _parse_output(text: str, src_name: str):
+    data = text.encode("utf-8")
+    try:
+        return xmltree.parse(data)      # no lxml for the usual document (its import: ~15 ms of a check)
+    except xmltree.Refused:
+        pass
     from lxml import etree
 
     try:
-        return etree.fromstring(text.encode("utf-8"), parser=safe_parser())
+        return etree.fromstring(data, parser=safe_parser())
     except etree.XMLSyntaxError as exc:
         line = exc.position[0] if exc.position else "?"
         why = re.sub(r",? line \d+, column \d+$", "", " ".join((exc.msg or str(exc)).split())).strip()

@@ -56,6 +56,7 @@ from myrabot_desc.model.parts import (
     Visual,
 )
 from myrabot_desc.safety import Limits, parse_xml_bytes, read_input
+from myrabot_desc.xmltree import attribute_values, parse_safely
 
 # Sizes, offsets, masses and inertias beyond this (SI units) are typing errors or attacks: 1e300
 # overflows volumes and inertias downstream. Joint limits and dynamics are exempt (1e16 is a
@@ -121,8 +122,16 @@ def load_robot(path=None, **build_options) -> Robot:
                            allow_paths=build_options.get("allow_paths") or ())
 
 
+# A URDF file up to this size is read by expat into xmltree's elements, saving lxml's import (~15 ms);
+# past it lxml's parse in C saves more than that: xmltree builds each element in Python, ~1 us more
+# an element of a plain file, where lxml makes few proxies (on generated stars the two are level
+# near 1,300 links, 500 kB). A built document is always read by expat (driver.BuildResult.root):
+# there the loader maps every element, and lxml's proxies cost more than that.
+LEAN_READ_BYTES = 500_000
+
+
 def read_urdf_bytes(data: bytes, src: Path, packages=None, package_paths=(), allow_paths=()) -> Robot:
-    root = parse_xml_bytes(data, str(src))
+    root = parse_safely(data, str(src)) if len(data) <= LEAN_READ_BYTES else parse_xml_bytes(data, str(src))
     text = data.decode("utf-8", errors="replace")
     robot = _read(root, text, src, None, {}, [], False, packages, package_paths, allow_paths)
     robot.source_bytes = data
@@ -135,7 +144,7 @@ def read_urdf_text(text: str, src: Path, locations=None, package_roots=None, bui
     """Read URDF text into a Robot; ``root`` is the text already parsed (the build hands it over)."""
 
     if root is None:
-        root = parse_xml_bytes(text.encode("utf-8"), str(src))
+        root = parse_safely(text.encode("utf-8"), str(src))
     robot = _read(root, text, src, locations, package_roots or {}, list(build_warnings or []), from_xacro,
                   packages, package_paths, allow_paths)
     robot.source_map = source_map
@@ -369,7 +378,7 @@ def _read_model(root, text, src: Path, locations, package_roots, build_warnings,
     # the attributes themselves, as plain strings: a third faster than their elements (in C: 260,000
     # elements in a big tree); and none at all when no value can start with package:// (the scan of
     # every attribute is most of the cost)
-    named = root.xpath("descendant-or-self::*/@filename", smart_strings=False) if _may_name_packages(root, text) else ()
+    named = attribute_values(root, "filename") if _may_name_packages(root, text) else ()
     for fn in named:
         parts = split_package_uri(fn) if fn else None
         if parts and parts[0] not in roots:

@@ -7,7 +7,7 @@ tag, namespace and prefix, attributes in document order, text, tail, children, w
 written (``loc``, the xacro file:line) and ``ref``, the opaque handle ``Robot.sources`` reads
 spans with. The loader builds them (``node``); consumers read them and, to write them out, build
 their own elements from them (convert/common.element_of). Nobody outside model/ touches the
-robot's lxml elements.
+robot's XML elements.
 
 Values inside are text; read them through model/values.py (``node.number("mu1")``).
 """
@@ -16,6 +16,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from myrabot_desc import xmltree
 from myrabot_desc.diagnostics import Loc
 from myrabot_desc.model import values as V
 
@@ -127,11 +128,15 @@ class Node:
 
 
 def node(el, loc_of) -> Node:
-    """The Node of lxml element ``el`` (its children read when first asked for); ``loc_of(el)``:
-    an element's location (the loader's)."""
+    """The Node of element ``el``, xmltree's or lxml's (its children read when first asked for);
+    ``loc_of(el)``: an element's location (the loader's)."""
     tag = el.tag
     if not isinstance(tag, str):
-        from lxml import etree
+        if tag is xmltree.Comment:
+            return Node("", text=el.text, tail=el.tail, kind="comment")
+        if tag is xmltree.ProcessingInstruction:
+            return Node("", text=el.text, tail=el.tail, kind="pi", target=el.target)
+        from lxml import etree          # (an element lxml read: see xmltree.py)
 
         if isinstance(el, etree._Comment):
             return Node("", text=el.text, tail=el.tail, kind="comment")

@@ -1,6 +1,7 @@
 """The robot model: a typed, read-only view of one URDF document.
 
-Built once (``load_robot`` in loader.py) from a URDF lxml tree; every item keeps
+Built once (``load_robot`` in loader.py) from a URDF element tree (xmltree's, or lxml's
+for what expat leaves to it); every item keeps
 its source location (the xacro file:line it came from when the URDF was built
 from xacro) and ``ref``, the element it was read from, an opaque handle for
 ``Robot.sources`` (where each value was written). Checks, converters, the
@@ -445,7 +446,7 @@ class Robot:
         self.materials = materials
         self.gazebo = gazebo
         self.transmissions = transmissions
-        self.root_element = root_element            # the lxml <robot> element
+        self.root_element = root_element            # the <robot> element (xmltree's or lxml's)
         self.source = source                        # the file the user gave (xacro or urdf)
         self.urdf_text = urdf_text                  # the URDF document as text (built or read)
         self.loc = loc
@@ -455,10 +456,10 @@ class Robot:
         self.from_xacro = from_xacro
         # Problems found while reading (bad numbers, unknown joint types...) that checks report.
         self.load_issues = [] if load_issues is None else load_issues
-        # id(lxml element of root_element) -> Loc, for consumers that walk the raw XML (check's T005/T006);
+        # id(element of root_element) -> Loc, for consumers that walk the raw XML (check's T005/T006);
         # a SourceLines for a URDF read from one file (use loc_of rather than this map).
         self.element_locs = {} if element_locs is None else element_locs
-        self._elements = [] if _elements is None else _elements   # keeps those lxml proxies (and ids) alive
+        self._elements = [] if _elements is None else _elements   # keeps those elements (lxml's proxies) and ids alive
         # Where the build says each output value came from (expand/provenance.SourceMap), or for a
         # URDF read from one file its bytes: Robot.sources reads spans from them when asked.
         self.source_map = source_map

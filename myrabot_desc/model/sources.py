@@ -177,7 +177,7 @@ class Sources:
     """The source spans of one robot's values (``Robot.sources``)."""
 
     def __init__(self, root, source_map=None, plain: tuple | None = None):
-        """``root``: the URDF's lxml root; ``source_map``: the build's (expand/provenance.SourceMap);
+        """``root``: the URDF's root element; ``source_map``: the build's (expand/provenance.SourceMap);
         ``plain``: (name, path, bytes) of a URDF read from one file."""
         self.root = root
         self.map = source_map

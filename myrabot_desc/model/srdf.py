@@ -5,15 +5,16 @@ ships ``half_sitting`` and ``standing`` ones, which Pinocchio users load with
 ``loadReferenceConfigurations``).
 
 The file is untrusted like a model: it is read through ``safety.read_checked`` (a regular file, the
-input size limit) and parsed by ``safety.parse_xml_bytes`` (no DTD, entities or network). Each
-statement keeps the file:line it was written at.
+input size limit) and parsed by ``xmltree.parse_safely`` (expat, with the checks and the verdicts of
+``safety.parse_xml_bytes``: no DTD, entities or network). Each statement keeps the file:line it was
+written at.
 """
-
 
 from myrabot_desc.diagnostics import Loc
 from myrabot_desc.errors import InputError
 from myrabot_desc.records import Struct
-from myrabot_desc.safety import display, limit, parse_xml_bytes, read_checked
+from myrabot_desc.safety import display, limit, read_checked
+from myrabot_desc.xmltree import parse_safely
 
 
 class Disabled(Struct):
@@ -87,7 +88,7 @@ def load_srdf(path) -> Srdf:
     """Read an SRDF file; InputError (file:line) for a file that is not one."""
     name = display(path)
     data = read_checked(path, None, limit("max_input_bytes"), what="SRDF file")
-    root = parse_xml_bytes(data, name)
+    root = parse_safely(data, name)
     if _local(root.tag) != "robot":
         raise InputError(f"not an SRDF: the root element is <{_local(root.tag)}>, not <robot>",
                          Loc(name, root.sourceline))

@@ -53,6 +53,16 @@ def test_the_whole_check_of_the_bundled_robot_imports_no_numpy_coal_or_pinocchio
     assert not [m for m in mods if m.startswith("myrabot_desc.fix")], sorted(mods)
 
 
+@pytest.mark.parametrize("name", list(CASES))
+def test_the_whole_check_imports_no_lxml(name):
+    # the build's output (and a small URDF file, and the suppression comments) are read by expat into
+    # xmltree's elements: lxml's import, with the inspect and the rest it brings, is ~15 ms of a check
+    args, env = CASES[name] or (corpus_args(corpus_robot(name)), corpus_env(corpus_robot(name)))
+    mods, out, _ = imported(args, env, None)
+    assert "warning" in out or "error" in out or "info" in out, out     # the rules ran and reported
+    assert not {m for m in mods if m.split(".")[0] == "lxml"}, sorted(mods)
+
+
 # each family alone on the bundled robot (none has a finding there): what it may not import
 FAMILIES = {
     "I001,I002,I003,I004,I005,I009": {"numpy"},          # mass and tensor: principal moments by eigh3

@@ -365,7 +365,7 @@ def test_one_package_name_everywhere(robot):
 def test_gazebo_blocks_reference_real_links_and_resolve(robot):
     from myrabot_desc.materials.resolve import MaterialResolver
 
-    assert not robot.root_element.xpath("//gaezebo")
+    assert not [el for el in robot.root_element.iter() if el.tag == "gaezebo"]
     names = set(robot.links) | set(robot.joints)
     res = MaterialResolver([ROOT])
     used = set()

@@ -8,7 +8,7 @@ code, severity and rule name when findings become Diagnostics.
 
 from __future__ import annotations
 
-from typing import Iterable
+from collections.abc import Iterable
 
 from myrabot_desc.checks import (
     collisions,

@@ -20,7 +20,7 @@ text would be equal.
 
 from __future__ import annotations
 
-from typing import Callable
+from collections.abc import Callable
 
 from myrabot_desc.records import Frozen, Record
 from myrabot_desc.records import set_field as _set

@@ -14,8 +14,6 @@ Values inside are text; read them through model/values.py (``node.number("mu1")`
 
 from __future__ import annotations
 
-from typing import Any
-
 from myrabot_desc import xmltree
 from myrabot_desc.diagnostics import Loc
 from myrabot_desc.model import values as V
@@ -29,7 +27,7 @@ class Node:
     __slots__ = ("tag", "attrs", "text", "loc", "ref", "ns", "prefix", "tail", "kind", "target", "_kids", "_loc_of")
 
     def __init__(self, tag: str, attrs: tuple = (), text: str | None = None, children: tuple | None = (),
-                 loc: Loc | None = None, ref: Any = None, ns: str = "", prefix: str | None = None,
+                 loc: Loc | None = None, ref: object = None, ns: str = "", prefix: str | None = None,
                  tail: str | None = None, kind: str = "element", target: str | None = None, loc_of=None):
         self.tag = tag                # local name ('' for a comment or processing instruction)
         self.attrs = attrs            # ((name, value), ...) in document order (Clark {ns}name when namespaced)

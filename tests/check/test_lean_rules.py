@@ -63,6 +63,12 @@ def test_the_whole_check_imports_no_lxml(name):
     assert not {m for m in mods if m.split(".")[0] == "lxml"}, sorted(mods)
 
 
+def test_a_check_without_configuration_imports_no_typing():
+    # typing (~3 ms) came with lxml and tomllib; the package itself uses records.Struct and collections.abc
+    mods, out, _ = imported(["--isolated"], {}, None)
+    assert "links" in out and "typing" not in mods and "tomllib" not in mods, sorted(mods)
+
+
 # each family alone on the bundled robot (none has a finding there): what it may not import
 FAMILIES = {
     "I001,I002,I003,I004,I005,I009": {"numpy"},          # mass and tensor: principal moments by eigh3

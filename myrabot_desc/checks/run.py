@@ -211,14 +211,15 @@ def _balanced(ex, tasks: list):
 
 
 def _preload(tasks) -> None:
-    """Import what every worker needs once, before forking: the workers share those pages
-    (numpy, lxml, xacro and their imports, which each would otherwise hold) and skip the imports.
-    gc.freeze() keeps the collector from touching (and so copying) them."""
-    names = ["lxml.etree", "xacro", "numpy", "myrabot_desc.model.loader", "myrabot_desc.checks.registry"]
+    """Import what the workers need once, before forking: they share those pages (numpy, xacro
+    and their imports, which each would otherwise hold) and skip the imports. gc.freeze() keeps
+    the collector from touching (and so copying) them."""
+    names = ["xacro", "numpy", "myrabot_desc.model.loader", "myrabot_desc.checks.registry"]
     if any(t.options.load_meshes for t in tasks):
-        # the lean mesh readers (STL, COLLADA, OBJ) need numpy and, for COLLADA materials, pycollada;
-        # trimesh (0.6 s, ~60 MB) is imported only by a worker meeting a format they do not read
-        names += ["myrabot_desc.model.meshes", "collada"]
+        # the lean mesh readers (STL, COLLADA, OBJ) need numpy and, for COLLADA, lxml and pycollada;
+        # trimesh (0.6 s, ~60 MB) is imported only by a worker meeting a format they do not read.
+        # (Without meshes lxml reads only a URDF file over 500 kB or what expat refuses: xmltree.py.)
+        names += ["myrabot_desc.model.meshes", "lxml.etree", "collada"]
     for name in names:
         try:
             importlib.import_module(name)

@@ -33,7 +33,8 @@ _NEW_CODE: dict = {}        # arity -> the code of ``lambda _cls, _0, _1...: _tu
 def _constructor(qualname: str, names: tuple, defaults: tuple) -> FunctionType:
     """``__new__(cls, <names>)`` with ``defaults`` for the last fields. Compiling a constructor is
     what makes a NamedTuple slow to define, so one is compiled per arity and given each class's
-    field names (a code object's local names are its parameters' names)."""
+    field names (a code object's local names are its parameters' names). The compiled text is ours
+    alone: only the number of fields varies, as in collections.namedtuple."""
     code = _NEW_CODE.get(len(names))
     if code is None:
         args = "".join(f"_{i}, " for i in range(len(names)))

@@ -208,24 +208,92 @@ def attribute_values(root, name: str) -> list:
     return [v for v in (el.attrib.get(name) for el in root.iter()) if v is not None]
 
 
-def parse(data: bytes) -> Element:
-    """The root element of XML ``data``; Refused for what lxml should judge (see the module docstring)."""
+def _parser(data: bytes, doc=None):
+    """An expat parser for ``data`` that raises Refused on what lxml should judge (a DTD or entity,
+    an encoding of its own, a declared prefix past libxml2's longest name): ``_run`` parses with
+    it. Refused at once for a document too big for libxml2 or in UTF-16. ``doc``: the Document
+    that takes the declared encoding."""
     if len(data) > MAX_BYTES or data[:2] in (b"\xff\xfe", b"\xfe\xff") or b"\x00" in data[:4]:
         raise Refused                   # too big for libxml2 without huge_tree; UTF-16 (lines counted in bytes)
-    doc = Document(data)
-    add_node = doc.nodes.append
     p = expat.ParserCreate(namespace_separator=_SEP)
     p.namespace_prefixes = True
-    p.buffer_text = True
     p.SetParamEntityParsing(expat.XML_PARAM_ENTITY_PARSING_NEVER)
+
+    def refuse(*args):
+        raise Refused
+
+    def xml_decl(version, encoding, standalone):
+        if encoding is not None:
+            if encoding.lower() not in _ENCODINGS:
+                raise Refused           # expat's single-byte tables need not be libxml2's
+            if doc is not None:
+                doc.encoding = encoding
+
+    p.XmlDeclHandler = xml_decl
+    if b"xmlns:" in data:               # a prefix declared and never used is a name too
+        p.StartNamespaceDeclHandler = lambda prefix, uri: prefix is not None and len(prefix) > MAX_NAME and refuse()
+    p.StartDoctypeDeclHandler = refuse
+    p.EntityDeclHandler = refuse
+    p.UnparsedEntityDeclHandler = refuse
+    p.ExternalEntityRefHandler = refuse
+    p.SkippedEntityHandler = refuse
+    return p
+
+
+def _run(p, data: bytes) -> None:
+    """Parse the whole of ``data`` with ``_parser``'s ``p``; Refused where expat stops or a name
+    is longer than libxml2 takes."""
+    paused = gc.isenabled()
+    gc.disable()                        # a tree of long-lived nodes, no garbage: each collection would rescan them
+    try:
+        p.Parse(data, True)
+    except (expat.ExpatError, ValueError, RecursionError):
+        raise Refused from None
+    finally:
+        if paused:
+            gc.enable()
+    # every tag, attribute name and instruction target passed through expat's table of names
+    if any(len(part) > MAX_NAME for n in p.intern if n for part in n.split(_SEP)[1:] or (n,)):
+        raise Refused
+
+
+def any_element(data: bytes, test) -> bool:
+    """Whether ``test(local name, attributes)`` holds for an element of XML ``data``, read whole as
+    ``parse`` reads it (Refused likewise) but without a tree or its text: a mesh's bytes are mostly
+    numbers."""
+    p = _parser(data)
+    found = False
+    depth = 0
+
+    def start(name, attrs):
+        nonlocal found, depth
+        depth += 1
+        if depth > MAX_DEPTH:
+            raise Refused
+        if not found and test(name.split(_SEP)[1] if _SEP in name else name, attrs):
+            found = True
+
+    def end(name):
+        nonlocal depth
+        depth -= 1
+
+    p.StartElementHandler = start
+    p.EndElementHandler = end
+    _run(p, data)
+    return found
+
+
+def parse(data: bytes) -> Element:
+    """The root element of XML ``data``; Refused for what lxml should judge (see the module docstring)."""
+    doc = Document(data)
+    p = _parser(data, doc)
+    p.buffer_text = True
+    add_node = doc.nodes.append
 
     cur = doc                           # the node whose children come next
     last = None                         # the child of cur that ended last (its tail comes next), or None
     texts: list = []
     depth = 0
-
-    def refuse(*args):
-        raise Refused
 
     def start(name, attrs):
         nonlocal cur, last, depth
@@ -286,38 +354,13 @@ def parse(data: bytes) -> Element:
         add_node(n)
         last = n
 
-    def xml_decl(version, encoding, standalone):
-        if encoding is not None:
-            if encoding.lower() not in _ENCODINGS:
-                raise Refused           # expat's single-byte tables need not be libxml2's
-            doc.encoding = encoding
-
     p.StartElementHandler = start
     p.EndElementHandler = end
     p.CharacterDataHandler = texts.append
     p.StartCdataSectionHandler = lambda: texts.append("")      # <![CDATA[]]>: lxml's text is ''
     p.CommentHandler = lambda data: other(Comment, data)
     p.ProcessingInstructionHandler = lambda target, data: other(ProcessingInstruction, data, target)
-    p.XmlDeclHandler = xml_decl
-    if b"xmlns:" in data:               # a prefix declared and never used is a name too
-        p.StartNamespaceDeclHandler = lambda prefix, uri: prefix is not None and len(prefix) > MAX_NAME and refuse()
-    p.StartDoctypeDeclHandler = refuse
-    p.EntityDeclHandler = refuse
-    p.UnparsedEntityDeclHandler = refuse
-    p.ExternalEntityRefHandler = refuse
-    p.SkippedEntityHandler = refuse
-    paused = gc.isenabled()
-    gc.disable()                        # a tree of long-lived nodes, no garbage: each collection would rescan them
-    try:
-        p.Parse(data, True)
-    except (expat.ExpatError, ValueError, RecursionError):
-        raise Refused from None
-    finally:
-        if paused:
-            gc.enable()
-    # every tag, attribute name and instruction target passed through expat's table of names
-    if any(len(part) > MAX_NAME for n in p.intern if n for part in n.split(_SEP)[1:] or (n,)):
-        raise Refused
+    _run(p, data)
     before = None
     for i, n in enumerate(doc):
         n.tail = None                   # lxml keeps no text beside the root

@@ -24,8 +24,9 @@ import os
 import struct
 from pathlib import Path
 
+from myrabot_desc import xmltree
 from myrabot_desc.errors import InputError
-from myrabot_desc.safety import limit, open_checked, parse_xml_bytes, read_checked, safe_parser
+from myrabot_desc.safety import check_xml_bytes, limit, open_checked, parse_xml_bytes, read_checked, safe_parser
 
 ENV_BYTES = "MYRABOT_DESC_MAX_MESH_BYTES"
 ENV_TRIANGLES = "MYRABOT_DESC_MAX_MESH_TRIANGLES"
@@ -99,14 +100,19 @@ def unreadable(path: Path) -> str | None:
     if ext == ".obj":
         return None if data.startswith(b"f ") or b"\nf " in data else f"{path.name} holds no faces"
     try:
-        root = parse_xml_bytes(data, path.name)
+        try:            # expat, already loaded, where it reads the file as lxml would (xmltree.py)
+            check_xml_bytes(data, path.name)
+            found = xmltree.any_element(data, lambda tag, attrs: tag in _DAE_PRIMITIVES and attrs.get("count", "0") != "0")
+        except xmltree.Refused:
+            root = parse_xml_bytes(data, path.name)
+            found = any((el.tag.rsplit("}", 1)[-1] if isinstance(el.tag, str) else "") in _DAE_PRIMITIVES
+                        and el.get("count", "0") != "0" for el in root.iter())
     except InputError as exc:
         return f"{path.name} is not readable COLLADA: {exc.message}"
-    for el in root.iter():
-        tag = el.tag.rsplit("}", 1)[-1] if isinstance(el.tag, str) else ""
-        if tag in ("triangles", "polylist", "polygons", "trifans", "tristrips") and el.get("count", "0") != "0":
-            return None
-    return f"{path.name} holds no triangles (no <triangles>, <polylist> or <polygons> with a count)"
+    return None if found else f"{path.name} holds no triangles (no <triangles>, <polylist> or <polygons> with a count)"
+
+
+_DAE_PRIMITIVES = {"triangles", "polylist", "polygons", "trifans", "tristrips"}
 
 
 ZIP_EXTS = {".zip", ".3mf", ".zae"}

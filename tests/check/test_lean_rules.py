@@ -63,6 +63,15 @@ def test_the_whole_check_imports_no_lxml(name):
     assert not {m for m in mods if m.split(".")[0] == "lxml"}, sorted(mods)
 
 
+def test_collada_collision_meshes_need_no_lxml():
+    # M005 looks for a COLLADA file's triangles with expat (xmltree.any_element), not lxml's tree
+    entry = corpus_robot("robotiq_2f_85")
+    mods, out, _ = imported(corpus_args(entry), corpus_env(entry), None)
+    assert ".dae" in (ROOT / "tests" / "corpus" / entry["top"]).parent.joinpath(
+        "robotiq_arg2f_85_model_macro.xacro").read_text()
+    assert "lxml" not in mods and "P004" in out, sorted(mods)
+
+
 def test_a_check_without_configuration_imports_no_typing():
     # typing (~3 ms) came with lxml and tomllib; the package itself uses records.Struct and collections.abc
     mods, out, _ = imported(["--isolated"], {}, None)

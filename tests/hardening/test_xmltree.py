@@ -112,3 +112,46 @@ def test_the_api_the_model_reads():
     assert list(link.iter()) == [link, *link]
     assert link[0] != link[2] and link[0] == link[0] and len({link[0], link[2]}) == 2   # equal only to itself
     assert xmltree.attribute_values(root, "name") == ["r", "a", "j", "k"]
+
+
+MESH_FILES = sorted((ROOT / "tests" / "corpus").rglob("*.dae")) + sorted((ROOT / "tests" / "bad").rglob("*.dae"))
+
+
+def _primitive(tag, attrs) -> bool:
+    return tag in ("triangles", "polylist", "polygons", "trifans", "tristrips") and attrs.get("count", "0") != "0"
+
+
+def test_any_element_answers_as_the_tree_and_refuses_alike():
+    """The scan without a tree (a COLLADA file's triangles for M005) reads what parse reads."""
+    seen = 0
+    for path in MODEL_FILES[::7] + MESH_FILES:
+        data = path.read_bytes()
+        try:
+            root = xmltree.parse(data)
+        except xmltree.Refused:
+            with pytest.raises(xmltree.Refused):
+                xmltree.any_element(data, _primitive)
+            continue
+        want = any(_primitive(n.tag.rsplit("}", 1)[-1], n.attrib) for n in root.iter() if isinstance(n.tag, str))
+        assert xmltree.any_element(data, _primitive) == want, path
+        seen += want
+    assert seen > 20
+
+
+def test_a_collada_files_verdict_is_lxmls():
+    """meshes.unreadable (M005) with the scan gives the verdict of the lxml walk it replaces."""
+    from myrabot_desc.errors import InputError
+    from myrabot_desc.model import meshes
+    from myrabot_desc.safety import parse_xml_bytes
+
+    for path in MESH_FILES:
+        got = meshes.unreadable(path)
+        if got is not None and "is not readable COLLADA" not in got and "holds no triangles (no <" not in got:
+            continue                      # refused before any XML is read (limits, compression, size)
+        try:
+            root = parse_xml_bytes(path.read_bytes(), path.name)
+        except InputError as exc:
+            assert got == f"{path.name} is not readable COLLADA: {exc.message}"
+            continue
+        found = any(_primitive(el.tag.rsplit("}", 1)[-1], el.attrib) for el in root.iter() if isinstance(el.tag, str))
+        assert (got is None) == found, path

@@ -102,7 +102,8 @@ def unreadable(path: Path) -> str | None:
     try:
         try:            # expat, already loaded, where it reads the file as lxml would (xmltree.py)
             check_xml_bytes(data, path.name)
-            found = xmltree.any_element(data, lambda tag, attrs: tag in _DAE_PRIMITIVES and attrs.get("count", "0") != "0")
+            found = xmltree.any_element(data, lambda tag, attrs: tag in _DAE_PRIMITIVES
+                                        and attrs.get("count", "0") != "0")
         except xmltree.Refused:
             root = parse_xml_bytes(data, path.name)
             found = any((el.tag.rsplit("}", 1)[-1] if isinstance(el.tag, str) else "") in _DAE_PRIMITIVES

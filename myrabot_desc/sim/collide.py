@@ -43,9 +43,9 @@ class CollisionReport:
 
 
 class ArmCollider:
-    def __init__(self, arm, scene=(), triangles=meshes.triangles):
-        """``triangles``: path -> (vertices, faces) of a mesh file (sim/prepared.py shares one read
-        of each file between the collider and the support)."""
+    def __init__(self, arm, scene=(), triangles=None):
+        """``triangles``: path -> (vertices, faces) of a mesh file, model/meshes.triangles when None
+        (sim/prepared.py shares one read of each file between the collider and the support)."""
         import coal
         import numpy as np
         import pinocchio as pin
@@ -241,7 +241,7 @@ def cold_gjk(gdata):
             r.enable_cached_gjk_guess = False
 
 
-def geometry_model(model, robot, notes: list, triangles=meshes.triangles):
+def geometry_model(model, robot, notes: list, triangles=None):
     """A Pinocchio GeometryModel of the robot's collision shapes, from our model (meshes read
     through model/meshes.py, with its roots and limits); named ``{link}_{index}`` as Pinocchio's
     URDF reader names them. A mesh that cannot be read is left out, with a note."""
@@ -270,9 +270,9 @@ def geometry_model(model, robot, notes: list, triangles=meshes.triangles):
     return gm
 
 
-def coal_shape(g, triangles=meshes.triangles):
+def coal_shape(g, triangles=None):
     """A coal collision shape of a URDF geometry (meshes as bounding-volume hierarchies, their
-    triangles read by ``triangles``), or None."""
+    triangles read by ``triangles``, model/meshes.triangles when None), or None."""
     import coal
 
     if g is None:
@@ -287,7 +287,7 @@ def coal_shape(g, triangles=meshes.triangles):
         import numpy as np
 
         try:            # the lean STL/COLLADA readers: trimesh (and scipy) only for other formats
-            v, f = triangles(g.path)
+            v, f = (triangles or meshes.triangles)(g.path)
         except meshes.MeshError:
             return None
         bvh = coal.BVHModelOBBRSS()

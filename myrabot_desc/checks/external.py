@@ -5,7 +5,6 @@ file that cannot be processed at all (X000). Each keeps its doc and example here
 the whole entry.
 """
 
-
 from myrabot_desc.checks.rule import Example
 from myrabot_desc.records import Struct
 

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 from pathlib import Path
 
-
 from myrabot_desc.errors import InputError
 from myrabot_desc.expand.packages import unresolved_reason
 from myrabot_desc.model import meshes as meshio

@@ -13,7 +13,6 @@ Where the value came from decides the edit (model/sources.py):
   value needed and where the expression is written.
 """
 
-
 from myrabot_desc.checks.rule import (
     InsertAfter,
     InsertInto,

@@ -45,13 +45,12 @@ dataclasses or NamedTuples, whose definition ``check`` would pay at every start.
 
 import math
 import re
-from pathlib import Path
 from collections.abc import Callable, Iterable
+from pathlib import Path
 
 from myrabot_desc.diagnostics import Loc
 from myrabot_desc.errors import InputError
-from myrabot_desc.records import Record
-from myrabot_desc.records import Struct
+from myrabot_desc.records import Record, Struct
 from myrabot_desc.safety import limit as table_limit
 from myrabot_desc.safety import read_checked
 

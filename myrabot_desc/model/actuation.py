@@ -10,7 +10,6 @@ simulator) and are not commanded themselves.
 
 from __future__ import annotations
 
-
 from myrabot_desc.model import drive as D
 from myrabot_desc.records import Struct
 

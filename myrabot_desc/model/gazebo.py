@@ -13,7 +13,6 @@ the SDF, where sdformat's Param reads them (model/values.SDF).
 that are text (``material``) or unknown; None for a number or vector that cannot be read.
 """
 
-
 from myrabot_desc.model import values as V
 from myrabot_desc.records import Struct
 

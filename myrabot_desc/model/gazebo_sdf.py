@@ -5,7 +5,6 @@ copies them; `convert --to mjcf` reports them dropped.
 
 from __future__ import annotations
 
-
 from myrabot_desc.records import Struct
 
 SDF_MODEL_CHILDREN = ("joint", "link", "frame", "model")

@@ -20,7 +20,6 @@ legged robot a free base, as a mobile one.
 
 from __future__ import annotations
 
-
 from myrabot_desc.model import drive as D
 from myrabot_desc.model.collisions import rigid_bodies
 from myrabot_desc.model.support import ground_support

@@ -6,7 +6,6 @@ and gigabytes), and recursive walks overflow the C stack (Pinocchio crashes past
 deep). Everything here is a dict lookup per joint or one iterative pass.
 """
 
-
 from myrabot_desc.model.transforms import IDENTITY, compose, pose_T
 from myrabot_desc.records import Struct
 

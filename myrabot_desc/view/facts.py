@@ -11,7 +11,6 @@ model's other derived facts; nothing here depends on viser or MuJoCo.
 
 from __future__ import annotations
 
-
 from myrabot_desc.model.kinematics import pose_matrix
 from myrabot_desc.model.support import stance as support  # noqa: F401  (the viewer's ground overlay)
 from myrabot_desc.records import Struct

@@ -9,14 +9,14 @@ from myrabot_desc.checks.inertia import principal
 from myrabot_desc.checks.rule import Finding, Fix, FixInfo, InsertAfter, SetValue, rule
 from myrabot_desc.errors import InputError
 from myrabot_desc.model import drive as D
-from myrabot_desc.model.inertia import principal_moments
+from myrabot_desc.model.inertia import combined, eigh3, principal_moments, tensor
 from myrabot_desc.model.kinematics import center_of_mass
 from myrabot_desc.model.parts import JOINT_TYPES
 from myrabot_desc.model.pin_model import MAX_DOF
 from myrabot_desc.model.shapes import surface_points
 from myrabot_desc.model.support import collision_shapes, lowest, signed_distance, stance
 from myrabot_desc.model.transforms import compose, place, pose_T
-from myrabot_desc.model.tree import MAX_TREE_DEPTH, depth
+from myrabot_desc.model.tree import MAX_TREE_DEPTH, depth, rigid_bodies
 
 _FINGER = """<link name="finger">{inertial}</link>
 <joint name="finger_joint" type="revolute">
@@ -324,7 +324,9 @@ def _dynamics_surely_finite(robot, moments=None) -> bool:
     reads (no bad values, known types, limits on revolute/prismatic) and every moving joint's
     child has a positive mass with a positive-definite inertia, every other link a non-negative
     mass and semi-definite inertia. Then each moving body's spatial inertia is positive
-    definite, so is the mass matrix at every configuration, and RNEA/ABA stay finite.
+    definite, so is the mass matrix at every configuration, and RNEA/ABA stay finite. A link
+    that fails its own test is judged with its rigid body (_bodies_definite): Pinocchio adds the
+    links on fixed joints to the body above them, and only the sum must be definite.
     ``moments``: link -> principal moments (ascending) already computed, for the links that have them."""
 
     if robot.load_issues:
@@ -336,19 +338,47 @@ def _dynamics_surely_finite(robot, moments=None) -> bool:
                                                     or j.limit.velocity is None):
             return False
     moving_children = {j.child for j in robot.joints.values() if j.type != "fixed"}
+    weak = []
     for link in robot.links.values():
         ine = link.inertial
         positive = link.name in moving_children
         if ine is None:
             if positive:
-                return False
+                weak.append(link.name)
             continue
+        if ine.mass < 0:
+            return False
         w = moments.get(link.name) if moments else None
         if w is None:
             w = principal_moments(ine)          # eigh3's eigenvalues
-        if positive and not (ine.mass > 0 and w[0] > 1e-12 * max(w[2], 1e-300)):
+        if not (_definite(ine.mass, w) if positive else w[0] >= 0):
+            weak.append(link.name)
+    return not weak or _bodies_definite(robot, weak)
+
+
+def _definite(mass: float, w) -> bool:
+    """A positive mass and principal moments ``w`` (ascending) of a positive-definite tensor."""
+    return mass > 0 and w[0] > 1e-12 * max(w[2], 1e-300)
+
+
+def _bodies_definite(robot, weak) -> bool:
+    """The rigid bodies (model/tree.rigid_bodies) of the links ``weak`` each have a positive
+    mass and a positive-definite inertia about their centre of mass: then their spatial inertia
+    is positive definite (it is congruent to that inertia beside the mass times the identity).
+    PAL's base antennas, for one, have a slightly indefinite inertia on a fixed joint under a
+    heavy base."""
+    bodies = rigid_bodies(robot)
+    heads = {bodies.host[n] for n in weak}
+    parts: dict = {h: [] for h in heads}
+    for name, head in bodies.host.items():
+        ine = robot.links[name].inertial
+        if head in parts and ine is not None and ine.mass > 0:
+            parts[head].append((ine.mass, compose(bodies.offset[name], pose_T(ine.origin)), tensor(ine)))
+    for head, these in parts.items():
+        if not these:
             return False
-        if not positive and (ine.mass < 0 or w[0] < 0):
+        mass, _, t = combined(these)
+        if not all(map(math.isfinite, (mass, *t[0], *t[1], *t[2]))) or not _definite(mass, eigh3(t)[0]):
             return False
     return True
 

@@ -35,17 +35,15 @@ from myrabot_desc.convert.uris import UriMapper
 from myrabot_desc.errors import InputError
 from myrabot_desc.model import plugins
 from myrabot_desc.model.gazebo import EMITTERS, emitters
-from myrabot_desc.model.inertia import describe, repaired
+from myrabot_desc.model.inertia import combined, describe, repaired
 from myrabot_desc.model.tree import rigid_bodies
 from myrabot_desc.model.transforms import (
     EYE3,
     IDENTITY,
     compose,
     is_identity,
-    matmul3,
     pose_T,
     transform,
-    transpose3,
 )
 
 SDF_VERSION = "1.9"
@@ -96,17 +94,7 @@ def _inertial_el(parent, members, host_T, repairs, repairs_by_link):
             _SE(el, "pose").text = pose_text(T)
         _SE(el, "mass").text = num(ine.mass)
     else:
-        # parallel axis theorem about the combined centre of mass, in the host link's axes
-        M = sum(i.mass for i, _, _ in parts)
-        com = tuple(sum(i.mass * T[1][k] for i, T, _ in parts) / M for k in range(3))
-        t = [[0.0] * 3 for _ in range(3)]
-        for i, (R, p), ti in parts:
-            d = [p[k] - com[k] for k in range(3)]
-            dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
-            rt = matmul3(matmul3(R, ti), transpose3(R))
-            for a in range(3):
-                for b in range(3):
-                    t[a][b] += rt[a][b] + i.mass * ((dd if a == b else 0.0) - d[a] * d[b])
+        M, com, t = combined([(i.mass, T, ti) for i, T, ti in parts])    # in the host link's axes
         T = (EYE3, com)
         if not is_identity(T):
             sub(el, "pose", pose_text(T))

@@ -30,6 +30,24 @@ def tensor(ine) -> Mat3:
     return ((ine.ixx, ine.ixy, ine.ixz), (ine.ixy, ine.iyy, ine.iyz), (ine.ixz, ine.iyz, ine.izz))
 
 
+def combined(parts) -> tuple[float, tuple, list[list[float]]]:
+    """(mass, centre of mass, tensor about it) of rigidly joined parts: ``parts`` is
+    [(mass, (R, p) of the part's inertial frame, its tensor in that frame)], all poses in one
+    frame, the total mass positive. The parallel axis theorem about the combined centre of mass,
+    in that frame's axes (what sdformat's lumping and Pinocchio's fixed joints make of them)."""
+    M = sum(m for m, _, _ in parts)
+    com = tuple(sum(m * T[1][k] for m, T, _ in parts) / M for k in range(3))
+    t = [[0.0] * 3 for _ in range(3)]
+    for m, (R, p), ti in parts:
+        d = [p[k] - com[k] for k in range(3)]
+        dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
+        rt = matmul3(matmul3(R, ti), transpose3(R))
+        for a in range(3):
+            for b in range(3):
+                t[a][b] += rt[a][b] + m * ((dd if a == b else 0.0) - d[a] * d[b])
+    return M, com, t
+
+
 def eigh3(A) -> tuple[list[float], list[list[float]]]:
     """Eigenvalues (ascending) and eigenvectors (columns of V) of a symmetric 3x3 matrix.
 

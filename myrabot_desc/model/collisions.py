@@ -281,6 +281,59 @@ def _lean_sphere_pairs(C, R, min_depth: float, most: int):
     return out
 
 
+def _segment_distance(p1, q1, p2, q2) -> float:
+    """The distance between the segments p1-q1 and p2-q2 (points: a segment of length zero), by
+    the closest points of the two lines clamped to the segments (Ericson, Real-Time Collision
+    Detection, 5.1.9)."""
+    d1 = (q1[0] - p1[0], q1[1] - p1[1], q1[2] - p1[2])
+    d2 = (q2[0] - p2[0], q2[1] - p2[1], q2[2] - p2[2])
+    r = (p1[0] - p2[0], p1[1] - p2[1], p1[2] - p2[2])
+    a = d1[0] * d1[0] + d1[1] * d1[1] + d1[2] * d1[2]
+    e = d2[0] * d2[0] + d2[1] * d2[1] + d2[2] * d2[2]
+    f = d2[0] * r[0] + d2[1] * r[1] + d2[2] * r[2]
+    if a <= 1e-30 and e <= 1e-30:
+        s = t = 0.0
+    elif a <= 1e-30:
+        s, t = 0.0, min(max(f / e, 0.0), 1.0)
+    else:
+        c = d1[0] * r[0] + d1[1] * r[1] + d1[2] * r[2]
+        if e <= 1e-30:
+            s, t = min(max(-c / a, 0.0), 1.0), 0.0
+        else:
+            b = d1[0] * d2[0] + d1[1] * d2[1] + d1[2] * d2[2]
+            den = a * e - b * b
+            s = min(max((b * f - c * e) / den, 0.0), 1.0) if den > 1e-30 * a * e else 0.0
+            t = (b * s + f) / e
+            if t < 0.0:
+                s, t = min(max(-c / a, 0.0), 1.0), 0.0
+            elif t > 1.0:
+                s, t = min(max((b - c) / a, 0.0), 1.0), 1.0
+    x = [p1[k] + d1[k] * s - p2[k] - d2[k] * t for k in range(3)]
+    return math.sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2])
+
+
+def _core(g, h):
+    """(radius, half length) of a sphere or cylinder with _half_extents ``h``: the segment along
+    its z axis that, swollen by the radius, holds it (a capsule); None for other shapes."""
+    kind = g.kind
+    return (h[0], 0.0) if kind == "sphere" else (h[0], h[2]) if kind == "cylinder" else None
+
+
+def _capsules_clear(ca, Ra, core_a, cb, Rb, core_b, min_depth: float) -> bool:
+    """Two spheres or cylinders that surely overlap by no more than ``min_depth``: the capsules
+    that hold them (their core segments swollen by the radii) are apart or overlap by less, with a
+    micrometre to spare for the rounding of coal's own depth. A shape inside another overlaps a
+    third by no more than the other does; two capsules whose segments are d > 0 apart are parted by
+    moving one r_a + r_b - d along the line of their closest points."""
+    (ra, la), (rb, lb) = core_a, core_b
+    ends = []
+    for c, R, half in ((ca, Ra, la), (cb, Rb, lb)):
+        u = (R[0][2] * half, R[1][2] * half, R[2][2] * half)          # the shape's z axis in the world
+        ends.append(((c[0] - u[0], c[1] - u[1], c[2] - u[2]), (c[0] + u[0], c[1] + u[1], c[2] + u[2])))
+    d = _segment_distance(*ends[0], *ends[1])
+    return d > 0 and ra + rb - d <= min_depth - 1e-6
+
+
 def _lean_apart(ca, Ra, ha, cb, Rb, hb, margin: float) -> bool:
     """_clearly_apart for one pair in pure Python (rotations as rows, model/transforms.py): apart by
     a clear margin on a face normal or on an edge cross product that is no near-parallel sliver
@@ -389,8 +442,9 @@ class Scene:
 
     def _lean_near(self, q, min_depth: float):
         """``_near``'s pairs at ``q`` in pure Python, for a scene without meshes and of at most
-        LEAN_MOST shapes: a superset of them (only pairs clearly apart are dropped), [] when no pair
-        comes near; None when the screen does not apply (the caller takes numpy's path).
+        LEAN_MOST shapes: a superset of those that overlap by more than ``min_depth`` (dropped: pairs
+        clearly apart, and spheres and cylinders that _capsules_clear), [] when no pair can; None
+        when the screen does not apply (the caller takes numpy's path).
 
         The poses are poses_at's (within rounding of world_transforms'), so every test keeps a
         rounding slack and drops a pair only where numpy's test drops it too: [] here means none
@@ -403,7 +457,7 @@ class Scene:
             return None
         halves = self._halves
         body_of = self.body_of
-        bodies, C, R, H, rot = [], [], [], [], []
+        bodies, C, R, H, rot, cores = [], [], [], [], [], []
         for link, it, _ in collision_shapes(robot, poses, None):
             key = id(it)
             h = halves.get(key, 0)
@@ -419,13 +473,16 @@ class Scene:
             R.append(math.sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]))
             H.append(h)
             rot.append(Rw)
+            cores.append(_core(it.geometry, h))
         pairs = _lean_sphere_pairs(C, R, min_depth, limit("max_collision_pairs"))
         if pairs is None:
             return None                  # numpy's sweep may refuse them (TooManyPairs)
         adjacent = self.adjacent
         return [(a, b) for a, b in pairs
                 if bodies[a] != bodies[b] and frozenset((bodies[a], bodies[b])) not in adjacent
-                and not _lean_apart(C[a], rot[a], H[a], C[b], rot[b], H[b], min_depth)]
+                and not _lean_apart(C[a], rot[a], H[a], C[b], rot[b], H[b], min_depth)
+                and not (cores[a] and cores[b]
+                         and _capsules_clear(C[a], rot[a], cores[a], C[b], rot[b], cores[b], min_depth))]
 
     def _shape(self, coal, np, item):
         key = id(item.collision)

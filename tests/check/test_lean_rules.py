@@ -113,3 +113,20 @@ def test_a_finding_on_a_rotated_part_needs_no_numpy(name):
     mods, out, _ = imported(corpus_args(entry), corpus_env(entry), None)
     assert "numpy" not in mods, out
     assert "I006" in out
+
+
+def test_rotors_that_come_near_but_do_not_touch_need_neither_numpy_nor_coal():
+    """The firefly hexacopter's rotor discs (r 0.1 m) sit 0.215 m apart: their bounding boxes meet,
+    the capsules that hold them do not (model/collisions._capsules_clear); P005 decides alone."""
+    entry = corpus_robot("firefly")
+    mods, out, _ = imported(corpus_args(entry), corpus_env(entry), None)
+    assert not {"numpy", "coal"} & mods, out
+    assert "I005" in out and "P005" not in out
+
+
+def test_an_indefinite_inertia_fixed_under_a_heavy_body_needs_no_pinocchio():
+    """PMB2's antennas have an indefinite inertia on a fixed joint: P003 proves the base's body
+    definite (checks/physics._bodies_definite) instead of running Pinocchio."""
+    entry = corpus_robot("pmb2")
+    mods, out, _ = imported(corpus_args(entry), corpus_env(entry), "P003")
+    assert "pinocchio" not in mods and "P003" not in out, out

@@ -1,7 +1,8 @@
 """Self-collision's pure-Python screen (model/collisions.Scene._lean_near: bounding spheres, then
-boxes, at the rest pose without meshes) against numpy's (Scene._near on world_transforms): the same
-pairs on the bundled robot, the corpus and example-robot-data, so that a robot the screen finds
-clean is one numpy's path finds clean (that P005 of the bundled robot then imports neither numpy nor
+boxes, then the capsules that hold spheres and cylinders, at the rest pose without meshes) against
+numpy's (Scene._near on world_transforms) and coal's: the same pairs on the bundled robot, the corpus
+and example-robot-data but for spheres and cylinders that cannot overlap, so that a robot the screen
+finds clean is one numpy's path and coal find clean (that P005 of the bundled robot then imports neither numpy nor
 coal: tests/check/test_lean_rules.py)."""
 
 from __future__ import annotations
@@ -30,7 +31,13 @@ def compare(robot, name) -> int:
         lean = scene._lean_near(q, md)
         assert lean is not None, name      # an ordinary robot: no meshes read, a few dozen shapes
         want = scene._near(np, items, md) if len(items) >= 2 else []
-        assert lean == sorted(set(lean)) and set(want) <= set(lean), (name, md)
+        assert lean == sorted(set(lean)), (name, md)
+        for a, b in set(want) - set(lean):      # dropped: only spheres and cylinders clear of each other
+            ia, ib = items[a], items[b]
+            ca, cb = (col._core(i.collision.geometry, tuple(i.half.tolist())) for i in (ia, ib))
+            assert ca and cb and col._capsules_clear(tuple(ia.centre.tolist()), ia.T[:3, :3].tolist(), ca,
+                                                     tuple(ib.centre.tolist()), ib.T[:3, :3].tolist(), cb, md)
+        want = [p for p in want if p in set(lean)]
         extra = [p for p in lean if p not in want]
         if extra:
             C = np.array([i.centre for i in items])
@@ -132,3 +139,57 @@ def test_screen_keeps_a_pair_numpy_keeps(tmp_path):
     assert col.Scene(near, False)._lean_near(near.rest_pose(), col.TOUCH) == [(0, 1)]
     (o,) = col.Scene(near, False).overlaps(near.rest_pose())
     assert (o.link_a, o.link_b) == ("a", "b") and abs(o.depth - 0.02) < 1e-9
+
+
+def _capsule_shape(rng):
+    if rng.random() < 0.4:
+        return "sphere", float(rng.uniform(0.005, 0.15)), 0.0
+    return "cylinder", float(rng.uniform(0.005, 0.15)), float(rng.uniform(0.001, 0.2))
+
+
+def test_capsule_screen_never_drops_what_coal_finds_overlapping():
+    """_capsules_clear says a sphere or cylinder pair overlaps by at most min_depth only where coal's
+    depth is at most that; random pairs around touching, a third of them dropped."""
+    coal = pytest.importorskip("coal")
+    rng = np.random.default_rng(5)
+    req = coal.CollisionRequest()
+    req.enable_contact = True
+    req.num_max_contacts = 1
+    cleared = 0
+    for trial in range(3000):
+        shapes = []
+        for _ in range(2):
+            Q, _r = np.linalg.qr(rng.normal(size=(3, 3)))
+            if trial % 5 == 0:
+                Q = np.eye(3)           # parallel axes: the rotors of a multicopter
+            Q = Q * np.sign(np.linalg.det(Q))
+            kind, r, half = _capsule_shape(rng)
+            shapes.append((kind, r, half, rng.normal(size=3) * 0.15, Q))
+        md = float(rng.choice([0.001, 0.0, -0.01]))
+        (ka, ra, la, ca, Ra), (kb, rb, lb, cb, Rb) = shapes
+        clear = col._capsules_clear(tuple(ca.tolist()), Ra.tolist(), (ra, la), tuple(cb.tolist()), Rb.tolist(),
+                                    (rb, lb), md)
+        if not clear:
+            continue
+        cleared += 1
+        made = [coal.Sphere(r) if k == "sphere" else coal.Cylinder(r, 2 * h) for k, r, h, _, _ in shapes]
+        res = coal.CollisionResult()
+        if coal.collide(made[0], coal.Transform3s(Ra, ca), made[1], coal.Transform3s(Rb, cb), req, res):
+            assert abs(float(res.getContact(0).penetration_depth)) <= max(md, 0.0) + 1e-9, trial
+    assert cleared > 500
+
+
+def test_segment_distance_against_sampled_points():
+    rng = np.random.default_rng(6)
+    t = np.linspace(0, 1, 201)
+    for trial in range(300):
+        p1, q1, p2, q2 = rng.normal(size=(4, 3))
+        if trial % 4 == 0:
+            q1 = p1.copy()                                  # a point
+        if trial % 7 == 0:
+            q2 = p2 + (q1 - p1) * 0.5                       # parallel segments
+        a = p1 + t[:, None] * (q1 - p1)
+        b = p2 + t[:, None] * (q2 - p2)
+        sampled = float(np.sqrt(((a[:, None, :] - b[None, :, :]) ** 2).sum(2)).min())
+        d = col._segment_distance(*(tuple(x.tolist()) for x in (p1, q1, p2, q2)))
+        assert d <= sampled + 1e-12 and d >= sampled - 0.02 * float(np.abs(q1 - p1).sum() + np.abs(q2 - p2).sum()), trial

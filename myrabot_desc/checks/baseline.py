@@ -13,7 +13,6 @@ committed and reviewed.
 
 from __future__ import annotations
 
-import json
 import os
 import re
 from pathlib import Path
@@ -57,6 +56,7 @@ def _model_name(file: str, base: Path) -> str:
 
 def record(results, path) -> int:
     """Write the findings of ``results`` (checks/report.FileResult) as the baseline ``path``; the count."""
+    import json
     base = Path(path).resolve().parent
     counts: dict = {}
     for r in results:
@@ -79,6 +79,7 @@ def record(results, path) -> int:
 
 def load(path) -> dict:
     """(model, code, subject..., message) -> count, from a baseline file (InputError when unreadable)."""
+    import json
     p = Path(path)
     try:
         doc = json.loads(p.read_text(encoding="utf-8"))

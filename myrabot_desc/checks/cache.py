@@ -33,13 +33,12 @@ Writing never follows a symlink: the cache folders are opened with O_NOFOLLOW, e
 written to a new temporary file in the folder (O_EXCL | O_NOFOLLOW) and renamed over the entry by
 folder descriptor, and ``.gitignore`` is only ever created, never written through.
 
-hashlib and hmac are imported in the functions that hash: a check without the cache (``--no-cache``,
-no configuration) does not load OpenSSL.
+hashlib, hmac and json are imported in the functions that use them: a check without the cache
+(``--no-cache``, no configuration) does not load OpenSSL or json.
 """
 
 from __future__ import annotations
 
-import json
 import os
 import re
 import sys
@@ -326,6 +325,7 @@ def task_key(task) -> str | None:
     """The hash of everything known before the check (see the module docstring); None when the
     input or the configuration cannot be hashed (then no cache)."""
     import hashlib
+    import json
     opts = task.options
     src = str(Path(task.path).resolve()) if task.path else str(bundled_path())
     try:
@@ -365,6 +365,7 @@ def _roots(task, robot) -> list[str]:
 
 def _mac(key: bytes, entry: dict) -> str:
     import hmac
+    import json
     body = json.dumps({k: v for k, v in entry.items() if k != "mac"}, sort_keys=True, ensure_ascii=True)
     return hmac.new(key, body.encode("ascii"), "sha256").hexdigest()
 
@@ -373,6 +374,7 @@ def _mac(key: bytes, entry: dict) -> str:
 def lookup(task):
     """The cached FileResult of ``task``, or None (no entry, foreign, corrupt or stale)."""
     import hmac
+    import json
     key = secret()
     name = task_key(task)
     if key is None or name is None or not task.cache_dir:
@@ -403,6 +405,7 @@ def lookup(task):
 def store(task, robot, res, read: set) -> None:
     """Write the entry for ``res`` (best effort: no secret, a folder that is a symlink or read-only,
     a dependency too big: no entry)."""
+    import json
     key = secret()
     name = task_key(task)
     if key is None or name is None or not task.cache_dir:

@@ -7,7 +7,6 @@ current folder when they lie under it (stable across machines in CI).
 from __future__ import annotations
 
 import functools
-import json
 import math
 import os
 from pathlib import Path
@@ -230,6 +229,7 @@ def _dumps_safe(doc) -> str:
     json's indenting encoder is pure Python (only the compact one is C) and took most of a
     40,000-finding report's time. A key that is not a string or that json_safe changes goes to
     json.dumps itself (two keys could become one there)."""
+    import json
     from json.encoder import encode_basestring as enc
 
     out: list[str] = []
@@ -502,6 +502,7 @@ def merge_sarif(docs: list[dict]) -> dict:
 
 
 def merge_sarif_files(files: list[str]) -> str:
+    import json
     if not files:
         raise InputError("--merge-sarif: give the SARIF files to merge")
     docs = []

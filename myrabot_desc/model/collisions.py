@@ -18,7 +18,8 @@ tessellated surface, rounding), not collisions.
 
 coal takes 0.4 s to import: it is imported inside the functions that use it. numpy too: an ordinary
 robot at its rest pose without meshes is first screened in pure Python (``Scene._lean_near``, the
-same bounding spheres and boxes), and a robot where no pair of shapes comes near needs neither.
+same bounding spheres and boxes, and the capsules that hold spheres and cylinders), and a robot where
+no pair of shapes comes near, or where only spheres do (``Scene._sphere_overlaps``), needs neither.
 """
 
 import math
@@ -379,6 +380,7 @@ class Scene:
         self._local: dict = {}           # id(collision) -> bounding box in its own frame
         self._by_geometry: dict = {}     # (kind, primitive geometry) -> (its bounding box,)
         self._halves: dict = {}          # id(collision) -> _half_extents (the pure screen's)
+        self._lean_shapes: list = []     # the pure screen's last places
 
     def _placed(self, world):
         """Every collision shape placed by ``world`` with its bounding box (no coal shape yet).
@@ -458,6 +460,7 @@ class Scene:
         halves = self._halves
         body_of = self.body_of
         bodies, C, R, H, rot, cores = [], [], [], [], [], []
+        self._lean_shapes = shapes = []      # (link, collision, centre, radius) by place: for _sphere_overlaps
         for link, it, _ in collision_shapes(robot, poses, None):
             key = id(it)
             h = halves.get(key, 0)
@@ -474,6 +477,7 @@ class Scene:
             H.append(h)
             rot.append(Rw)
             cores.append(_core(it.geometry, h))
+            shapes.append((link.name, it, p, h[0]))
         pairs = _lean_sphere_pairs(C, R, min_depth, limit("max_collision_pairs"))
         if pairs is None:
             return None                  # numpy's sweep may refuse them (TooManyPairs)
@@ -483,6 +487,43 @@ class Scene:
                 and not _lean_apart(C[a], rot[a], H[a], C[b], rot[b], H[b], min_depth)
                 and not (cores[a] and cores[b]
                          and _capsules_clear(C[a], rot[a], cores[a], C[b], rot[b], cores[b], min_depth))]
+
+    def _sphere_overlaps(self, pairs, min_depth: float):
+        """overlaps()'s result for ``pairs`` of _lean_near's places when every one is two spheres
+        (a collision model of spheres: Franka's, PAL's fingers), in pure Python: coal's own closed
+        form (depth r_a + r_b - d, the point on the line of centres halfway into the overlap), from
+        poses within rounding of its own; None when some pair is not two spheres, or two spheres
+        that touch to the last bits (coal's call)."""
+        shapes = self._lean_shapes
+        out = []
+        for a, b in pairs:
+            (la, ia, ca, ra), (lb, ib, cb, rb) = shapes[a], shapes[b]
+            if ia.geometry.kind != "sphere" or ib.geometry.kind != "sphere":
+                return None
+            n = (cb[0] - ca[0], cb[1] - ca[1], cb[2] - ca[2])
+            d = math.sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2])
+            if d < 1e-9 * (1.0 + ra + rb):
+                return None                  # concentric: no line of centres, coal picks a direction
+            depth = ra + rb - d
+            if abs(depth) <= 1e-12 * (ra + rb):
+                return None                  # touching to the last bits: coal's call
+            if depth <= min_depth or depth < 0:
+                continue                     # apart: coal reports no contact, whatever depth is asked
+            k = (ra - depth / 2) / d
+            out.append(self._overlap(la, lb, ia, ib, depth, (ca[0] + n[0] * k, ca[1] + n[1] * k, ca[2] + n[2] * k),
+                                     False))
+        out.sort(key=lambda o: (-round(o.depth, 7), o.link_a, o.link_b))
+        return out
+
+    def _overlap(self, la, lb, ia, ib, depth, point, hull_only) -> Overlap:
+        """The Overlap of collision ``ia`` of link ``la`` and ``ib`` of ``lb``, with the exclusion
+        that allows it (the links', else their bodies')."""
+        body_a, body_b = self.body_of.get(la, la), self.body_of.get(lb, lb)
+        allowed = self.exclusions.allows(la, lb) if self.exclusions is not None else None
+        if allowed is None and self.exclusions is not None and (body_a, body_b) != (la, lb):
+            allowed = self.exclusions.allows(body_a, body_b)
+        return Overlap(la, lb, body_a, body_b, depth, tuple(float(x) for x in point), ia.loc, ib.loc,
+                       describe(ia.geometry), describe(ib.geometry), hull_only, allowed)
 
     def _shape(self, coal, np, item):
         key = id(item.collision)
@@ -500,6 +541,10 @@ class Scene:
         screened = self._lean_near(q, min_depth) if world is None else None
         if screened == []:
             return []                    # no pair comes near: neither numpy nor coal is needed
+        if screened is not None:
+            spheres = self._sphere_overlaps(screened, min_depth)
+            if spheres is not None:
+                return spheres
         import numpy as np
 
         world = world if world is not None else world_transforms(self.robot, q)
@@ -530,12 +575,7 @@ class Scene:
             hull_only = False
             if ia.mesh is not None or ib.mesh is not None:
                 hull_only = not self._triangles_touch(coal, np, ia._replace(shape=sa), ib._replace(shape=sb))
-            allowed = self.exclusions.allows(ia.link, ib.link) if self.exclusions is not None else None
-            if allowed is None and self.exclusions is not None and (ia.body, ib.body) != (ia.link, ib.link):
-                allowed = self.exclusions.allows(ia.body, ib.body)
-            out.append(Overlap(ia.link, ib.link, ia.body, ib.body, depth, tuple(float(x) for x in c.pos),
-                               ia.collision.loc, ib.collision.loc, describe(ia.collision.geometry),
-                               describe(ib.collision.geometry), hull_only, allowed))
+            out.append(self._overlap(ia.link, ib.link, ia.collision, ib.collision, depth, c.pos, hull_only))
         out.sort(key=lambda o: (-round(o.depth, 7), o.link_a, o.link_b))
         return out
 

@@ -130,3 +130,12 @@ def test_an_indefinite_inertia_fixed_under_a_heavy_body_needs_no_pinocchio():
     entry = corpus_robot("pmb2")
     mods, out, _ = imported(corpus_args(entry), corpus_env(entry), "P003")
     assert "pinocchio" not in mods and "P003" not in out, out
+
+
+def test_a_collision_model_of_spheres_needs_neither_numpy_nor_coal():
+    """FR3's *_sc links are spheres and cylinders; the pairs that come near are spheres, and their
+    overlaps (34.0 and 3.1 mm) are coal's closed form, computed without it."""
+    entry = corpus_robot("fr3")
+    mods, out, _ = imported(corpus_args(entry), corpus_env(entry), "P005")
+    assert not {"numpy", "coal"} & mods, out
+    assert "overlaps fr3_link1_sc by 34.0 mm" in out and "overlaps fr3_link3_sc by 3.1 mm" in out

@@ -193,3 +193,42 @@ def test_segment_distance_against_sampled_points():
         sampled = float(np.sqrt(((a[:, None, :] - b[None, :, :]) ** 2).sum(2)).min())
         d = col._segment_distance(*(tuple(x.tolist()) for x in (p1, q1, p2, q2)))
         assert d <= sampled + 1e-12 and d >= sampled - 0.02 * float(np.abs(q1 - p1).sum() + np.abs(q2 - p2).sum()), trial
+
+
+def _close(a, b) -> bool:
+    return (a._replace(depth=0.0, point=()) == b._replace(depth=0.0, point=()) and abs(a.depth - b.depth) < 1e-12
+            and all(abs(x - y) < 1e-12 for x, y in zip(a.point, b.point)))
+
+
+def test_sphere_models_overlap_as_coal_says(tmp_path, monkeypatch):
+    """A collision model of spheres (Franka's *_sc links, random chains of balls): the pure overlaps
+    (Scene._sphere_overlaps) are coal's, pair for pair, depth and point within rounding."""
+    pytest.importorskip("coal")
+    from helpers import corpus_model, corpus_robot
+
+    robots = [corpus_model(corpus_robot("fr3"))]
+    rng = np.random.default_rng(7)
+    for n in range(40):
+        links, joints = [], []
+        for i in range(int(rng.integers(3, 9))):
+            balls = "".join(f'<collision><origin xyz="{x:.4f} {y:.4f} {z:.4f}"/><geometry><sphere radius="{r:.4f}"/>'
+                            '</geometry></collision>'
+                            for x, y, z, r in np.c_[rng.normal(size=(2, 3)) * 0.05, rng.uniform(0.01, 0.06, 2)])
+            links.append(f'<link name="l{i}">{balls}</link>')
+            if i:
+                joints.append(f'<joint name="j{i}" type="revolute"><parent link="l{i - 1}"/><child link="l{i}"/>'
+                              f'<origin xyz="0 0 {rng.uniform(0.02, 0.1):.3f}" rpy="{rng.uniform(-1, 1):.3f} 0 0"/>'
+                              '<axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>')
+        f = tmp_path / f"balls{n}.urdf"
+        f.write_text('<robot name="balls">' + "".join(links + joints) + "</robot>")
+        robots.append(load_robot(f))
+    found = 0
+    for r in robots:
+        for md in DEPTHS:
+            lean = col.Scene(r, False).overlaps(r.rest_pose(), min_depth=md)
+            monkeypatch.setattr(col, "LEAN_MOST", 0)
+            plain = col.Scene(r, False).overlaps(r.rest_pose(), min_depth=md)
+            monkeypatch.undo()
+            assert len(lean) == len(plain) and all(map(_close, lean, plain)), (r.name, md)
+            found += len(lean)
+    assert found > 50

@@ -113,3 +113,19 @@ def test_a_finding_on_a_rotated_part_needs_no_numpy(name):
     mods, out, _ = imported(corpus_args(entry), corpus_env(entry), None)
     assert "numpy" not in mods, out
     assert "I006" in out
+
+
+def test_the_whole_check_of_create_2_imports_no_numpy():
+    """I007 measures every link of primitives in pure Python, rotated shapes too (Create 2's wheels:
+    cylinders and a sphere turned by rpy 0 π/2 π/2)."""
+    entry = corpus_robot("create_2")
+    mods, out, _ = imported(corpus_args(entry), corpus_env(entry), None)
+    assert "I007" in out and "numpy" not in mods, out
+
+
+@pytest.mark.parametrize("name", ["pioneer3at", "pr2", "pmb2"])
+def test_radius_of_gyration_of_rotated_primitives_needs_no_numpy(name):
+    # non-diagonal tensors (PR2's caster wheels, PMB2's antennas), rotated shapes (Pioneer's wheels)
+    entry = corpus_robot(name)
+    mods, out, _ = imported(corpus_args(entry), corpus_env(entry), "I007")
+    assert "I007" in out and "numpy" not in mods, out

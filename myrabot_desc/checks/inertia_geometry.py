@@ -505,8 +505,8 @@ def pure_hull_points(ctx) -> dict:
 def hull_points(ctx) -> dict:
     """link -> points bounding its geometry (link frame; see _hull_items), None when unknown, for every
     link of solids(ctx); the callers take extremes (extents, farthest distances), which every vertex
-    gives as well as a hull would. Built once for I007 and I010, with one stacked product per shape
-    size (the same bits as one product per shape)."""
+    gives as well as a hull would. Built once for I010 and I007's links with meshes, with one stacked
+    product per shape size (the same bits as one product per shape)."""
     return ctx.fact("hull_points", lambda: _stack_hull_points(ctx), meshes=True)
 
 

@@ -360,28 +360,21 @@ def radius_of_gyration(ctx):
     Example: the Roomba base, izz 0.5 at 3.6 kg is √(0.5/3.6) = 0.37 m on a 0.17 m
     radius disc. Fix: the solid-body values (`--inertia --suggest`).
     """
-    wanted = None if ctx.opts.load_meshes else _gyration_suspects(ctx)      # (meshes: numpy is loaded)
-    if wanted is not None and not wanted:
-        return
     # links that repeat their points, inertial origin, tensor and mass (the loader's shared values)
     # are measured once: the key's objects stay alive with the links
     key_of: dict = {}
     found: dict = {}                        # key -> (the message after "link NAME: ", its data) or None
-    rest = None                             # the links numpy measures (None: all)
-    if wanted is not None:
-        rest = set()
-        pure = pure_hull_points(ctx)
-        every = solids(ctx)
-        for name, key in wanted.items():
-            hit = found.get(key)
-            if hit is None and key not in found:
-                hit = found[key] = _pure_gyration(every[name].link, pure[name])
-            if hit is NotImplemented:
-                rest.add(name)
-            else:
-                key_of[name] = key
-    if rest is None or rest:
-        _numpy_gyration(ctx, rest, found, key_of)
+    pure = pure_hull_points(ctx)
+    for name, s in solids(ctx).items():
+        pts = pure[name]
+        if pts is not None:
+            i = s.link.inertial
+            key = key_of[name] = _gyration_key(i, pts)
+            if key not in found:
+                found[key] = _pure_gyration(i, pts)
+    meshes = {name for name, pts in pure.items() if pts is None}
+    if meshes and ctx.opts.load_meshes:     # (numpy is loaded with the meshes)
+        _numpy_gyration(ctx, meshes, found, key_of)
     for name, s in solids(ctx).items():
         key = key_of.get(name)
         worst = found[key] if key is not None else None
@@ -393,23 +386,49 @@ def radius_of_gyration(ctx):
                           severity=s.severity)
 
 
+def _gyration_key(i, pts) -> tuple:
+    """The identities of what radius_of_gyration reads of a link: its points and inertial."""
+    return (id(pts), id(i.origin.xyz), id(i.origin.rpy), id(i.ixx), id(i.ixy), id(i.ixz), id(i.iyy),
+            id(i.iyz), id(i.izz), id(i.mass))
+
+
+def _pure_gyration(i, pts):
+    """radius_of_gyration's measure of one link of primitives (``pts``: its pure_hull_points) in
+    pure Python: eigh3's principal axes, the farthest point from each; _worst's result."""
+    t = tensor(i)
+    if not math.isfinite(sum(v for row in t for v in row) + i.mass + sum(v for q in pts for v in q)):
+        return None                     # (numpy's eigh has no moments for these either)
+    R, (px, py, pz) = pose_T(i.origin)
+    (a, b, c), (d, e, f), (g, h, k) = R
+    local = []                          # R^T (x - p): the points in the inertial frame
+    for x, y, z in pts:
+        x, y, z = x - px, y - py, z - pz
+        local.append((a * x + d * y + g * z, b * x + e * y + h * z, c * x + f * y + k * z))
+    sq = [x * x + y * y + z * z for x, y, z in local]
+    ev, V = eigh3(t)
+    axes = [V[r][n] for n in range(3) for r in range(3)]
+    reaches = []
+    for n in range(3):
+        ux, uy, uz = axes[3 * n:3 * n + 3]
+        far = max([q - (x * ux + y * uy + z * uz) ** 2 for q, (x, y, z) in zip(sq, local)])
+        reaches.append(math.sqrt(max(far, 0.0)))
+    return _worst(i, ev, axes, reaches)
+
+
 def _numpy_gyration(ctx, names, found: dict, key_of: dict) -> None:
-    """radius_of_gyration's measure of the links ``names`` (None: all) with numpy, into ``found``
-    and ``key_of``: one stacked product per point count."""
+    """radius_of_gyration's measure of the links ``names`` (those with meshes) with numpy, into
+    ``found`` and ``key_of``: one stacked product per point count."""
     import numpy as np
 
     pts_of = hull_points(ctx)
     by_size: dict[int, list] = {}          # one link per key, grouped by point count: one stacked product per group
     for name, s in solids(ctx).items():
         pts = pts_of[name]
-        if pts is not None and (names is None or name in names):
-            i = s.link.inertial
-            key = (id(pts), id(i.origin.xyz), id(i.origin.rpy), id(i.ixx), id(i.ixy), id(i.ixz), id(i.iyy),
-                   id(i.iyz), id(i.izz), id(i.mass))
+        if pts is not None and name in names:
+            key = key_of[name] = _gyration_key(s.link.inertial, pts)
             if key not in found:
                 found[key] = None
                 by_size.setdefault(len(pts), []).append((key, s))
-            key_of[name] = key
     for group in by_size.values():
         pts = np.array([pts_of[s.link.name] for _, s in group], dtype=float)
         T = pose_stack(s.link.inertial.origin for _, s in group)
@@ -444,98 +463,24 @@ def _worst(i, ev, axes, reaches):
     if worst is None:
         return None
     _, kg, reach, moment, u = worst
+    u = _canonical_axis(u)
     return (f"radius of gyration √({moment:.3g}/{i.mass:g}) = {kg:.3g} m about axis "
             f"({u[0]:.2g} {u[1]:.2g} {u[2]:.2g}), but no point of the geometry is farther than "
             f"{reach:.3g} m from that axis", kg, reach, float(moment))
 
 
-def _pure_gyration(link, pts):
-    """_numpy_gyration's result for one link in pure Python, to the bit, where its floats are
-    products by 1 and 0: no rotation in the inertial frame or the shapes' origins, a diagonal tensor
-    (LAPACK's eigenvectors are then the unit axes and its moments the diagonal, in the order of
-    dsteqr's selection sort). NotImplemented for any other link."""
-    i = link.inertial
-    if any(i.origin.rpy) or i.ixy or i.ixz or i.iyz or any(any(it.origin.rpy) for it in _hull_items(link)):
-        return NotImplemented
-    d = [float(i.ixx), float(i.iyy), float(i.izz)]
-    big = max(map(abs, d))
-    if not (big == 0 or 1e-140 < big < 1e140):      # dsyevd scales a matrix this small or large
-        return NotImplemented
-    px, py, pz = (float(v) for v in i.origin.xyz)
-    local = [(x - px, y - py, z - pz) for x, y, z in pts]
-    sq = [(x * x + y * y) + z * z for x, y, z in local]           # numpy's sum over the three, in its order
-    if not math.isfinite(sum(sq)):
-        return NotImplemented
-    reaches = [math.sqrt(max(max([q - c[k] * c[k] for q, c in zip(sq, local)]), 0.0)) for k in range(3)]
-    order = [0, 1, 2]
-    for a in range(2):                  # the smallest first, swapped into place (not a stable sort)
-        k = a
-        for j in range(a + 1, 3):
-            if d[order[j]] < d[order[k]]:
-                k = j
-        order[a], order[k] = order[k], order[a]
-    axes = [1.0 if c == k else 0.0 for k in order for c in range(3)]
-    return _worst(i, [d[k] for k in order], axes, [reaches[k] for k in order])
-
-
-def _gyration_suspects(ctx) -> dict:
-    """The links radius_of_gyration may report, each with the key of the objects its measure reads
-    (links that repeat them are measured once): pure Python on pure_hull_points, with margins for
-    the ulps by which eigh3 and these points differ from numpy's (a pair of moments too close for
-    their axes to be compared: the link is a suspect), so that only these are measured to the bit."""
-    pts_of = pure_hull_points(ctx)
-    seen: dict = {}
-    out = {}
-    for name, s in solids(ctx).items():
-        pts = pts_of[name]
-        if pts is None:
-            continue
-        i = s.link.inertial
-        key = (id(pts), id(i.origin.xyz), id(i.origin.rpy), id(i.ixx), id(i.ixy), id(i.ixz), id(i.iyy),
-               id(i.iyz), id(i.izz), id(i.mass))
-        hit = seen.get(key)
-        if hit is None:
-            hit = seen[key] = _may_gyrate(i, pts)
-        if hit:
-            out[name] = key
-    return out
-
-
-def _may_gyrate(i, pts) -> bool:
-    R, (px, py, pz) = pose_T(i.origin)
-    (a, b, c), (d, e, f), (g, h, k) = R
-    local = []                      # R^T (x - p): the points in the inertial frame
-    for x, y, z in pts:
-        x, y, z = x - px, y - py, z - pz
-        local.append((a * x + d * y + g * z, b * x + e * y + h * z, c * x + f * y + k * z))
-    t = tensor(i)
-    mass = i.mass
-    sq = [x * x + y * y + z * z for x, y, z in local]
-    # (a sum that overflows leaves the link to numpy too)
-    if not math.isfinite(sum(v for row in t for v in row) + mass + sum(sq)):
-        return True
-    ev, V = eigh3(t)
-    scale = max(abs(v) for v in ev)
-    diagonal = not (t[0][1] or t[0][2] or t[1][2])       # eigh3's and LAPACK's axes: the unit vectors
-    rmax = math.sqrt(max(sq, default=0.0))
-    for n in range(3):
-        hi = ev[n] + 1e-12 * scale
-        if hi <= 0:
-            continue
-        if not diagonal and any(abs(ev[n] - ev[m]) <= SCREEN * scale for m in range(3) if m != n):
-            return True
-        ux, uy, uz = V[0][n], V[1][n], V[2][n]
-        far = max([q - (x * ux + y * uy + z * uz) ** 2 for q, (x, y, z) in zip(sq, local)], default=0.0)
-        reach = math.sqrt(max(far, 0.0))
-        if math.sqrt(hi / mass) * (1 + SCREEN) > 1.1 * max(reach * (1 - SCREEN) - SCREEN * rmax, 0.0) + 1e-4:
-            return True
-    return False
+def _canonical_axis(u) -> list:
+    """``u`` or ``-u`` (one axis), whichever has its component of largest magnitude (the first of
+    equals) positive, and no -0.0: the same axis whichever solver's sign came out."""
+    big = max(range(3), key=lambda k: abs(u[k]))
+    s = -1.0 if u[big] < 0 else 1.0
+    return [s * v + 0.0 for v in u]
 
 
 def pure_hull_points(ctx) -> dict:
     """hull_points in pure Python, without meshes (a mesh's link: None, as hull_points without
     --inertia): link -> list of (x, y, z), within an ulp or so of hull_points' rows; links that
-    repeat a shape and its origin share the list. What the screens of I007 and I010 read."""
+    repeat a shape and its origin share the list. What I007 measures and I010's screen reads."""
     def build():
         placed_of: dict = {}
         out: dict = {}
@@ -560,8 +505,8 @@ def pure_hull_points(ctx) -> dict:
 def hull_points(ctx) -> dict:
     """link -> points bounding its geometry (link frame; see _hull_items), None when unknown, for every
     link of solids(ctx); the callers take extremes (extents, farthest distances), which every vertex
-    gives as well as a hull would. Built once for I007 and I010, with one stacked product per shape
-    size (the same bits as one product per shape)."""
+    gives as well as a hull would. Built once for I010 and I007's links with meshes, with one stacked
+    product per shape size (the same bits as one product per shape)."""
     return ctx.fact("hull_points", lambda: _stack_hull_points(ctx), meshes=True)
 
 

@@ -1,6 +1,8 @@
-"""The solid-body rules (I006, I007, I008, I010) judge an ordinary robot in pure Python: pure-Python
-screens clear the links that cannot be reported, numpy measures the others. The screens must never
-clear a finding: on real robots, the findings with them equal the findings of numpy on every link."""
+"""The solid-body rules (I006, I007, I008, I010) judge an ordinary robot in pure Python. I006 and I010:
+pure-Python screens clear the links that cannot be reported, numpy measures the others; the screens
+must never clear a finding: on real robots, the findings with them equal the findings of numpy on
+every link. I007 measures every link of primitives in pure Python (eigh3), numpy only the links with
+meshes: its findings equal numpy's measure of every link, within a few ulps and up to the axis' sign."""
 
 from __future__ import annotations
 
@@ -23,7 +25,6 @@ def _findings(robot, unscreened: bool, monkeypatch) -> list:
     with monkeypatch.context() as m:
         if unscreened:           # numpy's measure of every link: what the rules did before the screens
             m.setattr(IG, "_beyond_limit", lambda solid: solid)
-            m.setattr(IG, "_gyration_suspects", lambda ctx: None)
             m.setattr(IG, "_outside_suspects", lambda ctx: None)
         ctx = Context(robot, CheckOptions())
         out = []
@@ -36,28 +37,48 @@ def _findings(robot, unscreened: bool, monkeypatch) -> list:
 
 
 def _pure_on_every_link(robot, monkeypatch) -> list:
-    """I007's and I010's findings with every link a suspect: each measured in pure Python where
-    that gives numpy's floats to the bit, else with numpy."""
+    """I010's findings with every link a suspect: each measured in pure Python where that gives
+    numpy's floats to the bit, else with numpy."""
     with monkeypatch.context() as m:
-        m.setattr(IG, "_gyration_suspects", lambda ctx: {n: (n,) for n, p in IG.pure_hull_points(ctx).items()
-                                                        if p is not None})
         m.setattr(IG, "_outside_suspects", lambda ctx: {n for n, p in IG.pure_hull_points(ctx).items()
                                                        if p is not None})
         ctx = Context(robot, CheckOptions())
-        return [(f.message, f.data) for rule in (IG.radius_of_gyration, IG.origin_inside) for f in rule(ctx)]
+        return [(f.message, f.data) for f in IG.origin_inside(ctx)]
 
 
 def _numpy_on_every_link(robot, monkeypatch) -> list:
     with monkeypatch.context() as m:
-        m.setattr(IG, "_gyration_suspects", lambda ctx: None)
         m.setattr(IG, "_outside_suspects", lambda ctx: None)
         ctx = Context(robot, CheckOptions())
-        return [(f.message, f.data) for rule in (IG.radius_of_gyration, IG.origin_inside) for f in rule(ctx)]
+        return [(f.message, f.data) for f in IG.origin_inside(ctx)]
+
+
+def _axis(message: str) -> list:
+    return [float(v) for v in message.split("about axis (")[1].split(")")[0].split()]
+
+
+def _same_gyration(robot) -> int:
+    """Asserts I007's findings (pure Python on the links of primitives) are numpy's measure of every
+    link: the same links, numbers within a few ulps, the axis (sign canonical) within its rounding;
+    the number of findings."""
+    ctx = Context(robot, CheckOptions())
+    mine = {f.data["link"]: f for f in IG.radius_of_gyration(ctx)}
+    found, key_of = {}, {}
+    IG._numpy_gyration(ctx, set(IG.solids(ctx)), found, key_of)
+    ref = {name: found[key] for name, key in key_of.items() if found[key]}
+    assert set(mine) == set(ref)
+    for name, f in mine.items():
+        tail, kg, reach, moment = ref[name]
+        assert [f.data["radius_of_gyration"], f.data["reach"], f.data["moment"]] == \
+            pytest.approx([kg, reach, moment], rel=1e-12)
+        assert _axis(f.message) == pytest.approx(_axis(tail), abs=0.011)
+    return len(mine)
 
 
 def _check(robot, monkeypatch):
     assert _findings(robot, False, monkeypatch) == _findings(robot, True, monkeypatch)
     assert _pure_on_every_link(robot, monkeypatch) == _numpy_on_every_link(robot, monkeypatch)
+    _same_gyration(robot)
     # the pure-Python solids and points are within a few ulps of numpy's, and the volumes the same
     ctx = Context(robot, CheckOptions())
     hulls, pure = IG.hull_points(ctx), IG.pure_hull_points(ctx)
@@ -100,11 +121,12 @@ def test_screens_keep_the_findings_of_erd_robots(path, monkeypatch):
 
 
 def test_screens_clear_the_bundled_robot():
-    """No link of the bundled robot is a suspect of I006, I007 or I010 (they have no finding there)."""
+    """No link of the bundled robot is a suspect of I006 or I010, nor reported by I007."""
     ctx = Context(load_robot(None), CheckOptions())
     solid = [(n, s) for n, s in IG.solids(ctx).items() if s.props is not None]
     assert len(solid) > 40
-    assert IG._beyond_limit(solid) == [] and IG._gyration_suspects(ctx) == {} and IG._outside_suspects(ctx) == set()
+    assert IG._beyond_limit(solid) == [] and IG._outside_suspects(ctx) == set()
+    assert list(IG.radius_of_gyration(ctx)) == []
 
 
 def test_combine_pure_matches_combine():
@@ -131,8 +153,8 @@ def test_combine_pure_matches_combine():
 
 
 def test_pure_measures_equal_numpy_on_every_link(tmp_path, monkeypatch):
-    """Unrotated primitives and diagonal tensors (what I007 and I010 measure in pure Python), made
-    to be reported on every link: equal moments in every order (LAPACK's selection sort), shapes
+    """Unrotated primitives and diagonal tensors (what I010 measures in pure Python), made to be
+    reported by I007 and I010 on every link: equal moments in every order (LAPACK's selection sort), shapes
     that end on a plane through the origin, visuals that widen the box, several shapes a link."""
     import random
 
@@ -158,5 +180,49 @@ def test_pure_measures_equal_numpy_on_every_link(tmp_path, monkeypatch):
     path.write_text("\n".join(out + ["</robot>"]))
     robot = load_robot(path)
     pure, ref = _pure_on_every_link(robot, monkeypatch), _numpy_on_every_link(robot, monkeypatch)
-    assert len(ref) > 120 and pure == ref
+    assert len(ref) > 60 and pure == ref
+    assert _same_gyration(robot) > 40
     assert _findings(robot, False, monkeypatch) == _findings(robot, True, monkeypatch)
+
+
+def test_pure_gyration_equals_numpy_on_rotated_tensors_and_shapes(tmp_path):
+    """I007's pure measure (eigh3, the points of pure_hull_points) against numpy's eigh: seeded random
+    links with non-diagonal tensors, rotated inertial frames and rotated shapes, most of them reported."""
+    import random
+
+    import numpy as np
+
+    from myrabot_desc.model.kinematics import rpy_matrix
+
+    rnd = random.Random(11)
+    kinds = ['<box size="{a} {b} {c}"/>', '<cylinder radius="{a}" length="{b}"/>', '<sphere radius="{a}"/>']
+
+    def rpy():
+        return " ".join(repr(rnd.uniform(-3.2, 3.2)) for _ in range(3))
+
+    out = ['<robot name="r">', '<link name="base"/>']
+    for n in range(300):
+        shapes = []
+        for _ in range(rnd.choice((1, 1, 2, 3))):
+            a, b, c = (rnd.uniform(0.01, 0.3) for _ in range(3))
+            xyz = " ".join(repr(rnd.uniform(-0.2, 0.2)) for _ in range(3))
+            shapes.append(f'<origin xyz="{xyz}" rpy="{rpy()}"/>'
+                          f'<geometry>{rnd.choice(kinds).format(a=a, b=b, c=c)}</geometry>')
+        body = "".join(f"<collision>{g}</collision>" for g in shapes)
+        mass = rnd.uniform(0.1, 5)
+        # distinct principal moments (their axes well defined), radii of gyration 0.02 to 0.6 m
+        kg = sorted(rnd.uniform(0.02, 0.6) for _ in range(3))
+        if kg[1] - kg[0] < 0.01 or kg[2] - kg[1] < 0.01:
+            continue
+        R = rpy_matrix([rnd.uniform(-3.2, 3.2) for _ in range(3)])
+        t = (R @ np.diag([mass * k * k for k in kg]) @ R.T).tolist()
+        xyz = " ".join(repr(rnd.uniform(-0.1, 0.1)) for _ in range(3))
+        out.append(f'<link name="l{n}"><inertial><origin xyz="{xyz}" rpy="{rpy()}"/><mass value="{mass!r}"/>'
+                   f'<inertia ixx="{t[0][0]!r}" ixy="{t[0][1]!r}" ixz="{t[0][2]!r}" iyy="{t[1][1]!r}" '
+                   f'iyz="{t[1][2]!r}" izz="{t[2][2]!r}"/></inertial>{body}</link>')
+        out.append(f'<joint name="j{n}" type="fixed"><parent link="base"/><child link="l{n}"/></joint>')
+    path = tmp_path / "r.urdf"
+    path.write_text("\n".join(out + ["</robot>"]))
+    robot = load_robot(path)
+    assert len(robot.links) > 250
+    assert _same_gyration(robot) > 100

@@ -139,3 +139,19 @@ def test_a_collision_model_of_spheres_needs_neither_numpy_nor_coal():
     mods, out, _ = imported(corpus_args(entry), corpus_env(entry), "P005")
     assert not {"numpy", "coal"} & mods, out
     assert "overlaps fr3_link1_sc by 34.0 mm" in out and "overlaps fr3_link3_sc by 3.1 mm" in out
+
+
+def test_the_whole_check_of_create_2_imports_no_numpy():
+    """I007 measures every link of primitives in pure Python, rotated shapes too (Create 2's wheels:
+    cylinders and a sphere turned by rpy 0 π/2 π/2)."""
+    entry = corpus_robot("create_2")
+    mods, out, _ = imported(corpus_args(entry), corpus_env(entry), None)
+    assert "I007" in out and "numpy" not in mods, out
+
+
+@pytest.mark.parametrize("name", ["pioneer3at", "pr2", "pmb2"])
+def test_radius_of_gyration_of_rotated_primitives_needs_no_numpy(name):
+    # non-diagonal tensors (PR2's caster wheels, PMB2's antennas), rotated shapes (Pioneer's wheels)
+    entry = corpus_robot(name)
+    mods, out, _ = imported(corpus_args(entry), corpus_env(entry), "I007")
+    assert "I007" in out and "numpy" not in mods, out

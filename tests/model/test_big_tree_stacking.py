@@ -203,7 +203,8 @@ def test_inertia_rules_match_one_computation_per_link(robot):
         want[abs(want) < 1e-6 * abs(want).max()] = 0.0
         assert np.allclose(np.array(comp), want, rtol=1e-12, atol=1e-14 * abs(want).max())
         assert np.allclose(com, R.T @ (np.array(s.props.com) - p), rtol=1e-12, atol=1e-15)
-    # I007: radius of gyration against the farthest point, per link
+    # I007: radius of gyration against the farthest point, per link (pure Python: eigh3's moments
+    # and axes, within a few ulps of LAPACK's, and the axis up to its sign)
     i007 = {f.data["link"]: f for f in IG.radius_of_gyration(ctx)}
     expected = set()
     for name, s in solids.items():
@@ -222,11 +223,15 @@ def test_inertia_rules_match_one_computation_per_link(robot):
             reach = float(np.sqrt(np.maximum((local ** 2).sum(1) - (local @ u) ** 2, 0)).max())
             kg = math.sqrt(ev[k] / i.mass)
             if kg > 1.1 * reach + 1e-4 and (worst is None or kg / max(reach, 1e-9) > worst[0]):
-                worst = (kg / max(reach, 1e-9), kg, reach, ev[k])
+                worst = (kg / max(reach, 1e-9), kg, reach, ev[k], u)
         if worst:
             expected.add(name)
-            assert i007[name].data == {"link": name, "radius_of_gyration": worst[1], "reach": worst[2],
-                                       "moment": float(worst[3])}
+            data = i007[name].data
+            assert data["link"] == name
+            assert [data["radius_of_gyration"], data["reach"], data["moment"]] == \
+                pytest.approx([worst[1], worst[2], float(worst[3])], rel=1e-12)
+            axis = i007[name].message.split("about axis (")[1].split(")")[0].split()
+            assert [float(v) for v in axis] == pytest.approx(IG._canonical_axis(worst[4].tolist()), abs=0.011)
     assert set(i007) == expected
     # I010: the origin against the box of the points, per link
     i010 = {f.data["link"] for f in IG.origin_inside(ctx)}

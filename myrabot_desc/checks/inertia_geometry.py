@@ -480,7 +480,7 @@ def _canonical_axis(u) -> list:
 def pure_hull_points(ctx) -> dict:
     """hull_points in pure Python, without meshes (a mesh's link: None, as hull_points without
     --inertia): link -> list of (x, y, z), within an ulp or so of hull_points' rows; links that
-    repeat a shape and its origin share the list. What I007 measures and I010's screen reads."""
+    repeat a shape and its origin share the list. What I007 and I010 measure."""
     def build():
         placed_of: dict = {}
         out: dict = {}
@@ -505,8 +505,8 @@ def pure_hull_points(ctx) -> dict:
 def hull_points(ctx) -> dict:
     """link -> points bounding its geometry (link frame; see _hull_items), None when unknown, for every
     link of solids(ctx); the callers take extremes (extents, farthest distances), which every vertex
-    gives as well as a hull would. Built once for I010 and I007's links with meshes, with one stacked
-    product per shape size (the same bits as one product per shape)."""
+    gives as well as a hull would. Built once for the links with meshes that I007 and I010 measure
+    (with --inertia), with one stacked product per shape size (the same bits as one product per shape)."""
     return ctx.fact("hull_points", lambda: _stack_hull_points(ctx), meshes=True)
 
 
@@ -624,23 +624,21 @@ def origin_inside(ctx):
     is measured with its visuals too before it is reported. Fix: the geometry's
     centroid (given), or the CAD's centre of mass.
     """
-    wanted = None if ctx.opts.load_meshes else _outside_suspects(ctx)       # (meshes: numpy is loaded)
-    if wanted is not None and not wanted:
-        return
     every = solids(ctx)
+    pure = pure_hull_points(ctx)
     found: dict = {}                    # link -> (message, data) or None
-    rest = None                         # the links numpy measures (None: all)
-    if wanted is not None:
-        pure = pure_hull_points(ctx)
-        rest = set()
-        for name in wanted:
-            hit = _pure_outside(every[name], pure[name])
-            if hit is NotImplemented:
-                rest.add(name)
-            else:
-                found[name] = hit
-    if rest is None or rest:
-        found.update(_numpy_outside(ctx, rest))
+    first: dict = {}                    # links that repeat their points and origin (shared objects): tested once
+    for name, s in every.items():
+        pts = pure[name]
+        if pts is not None:
+            key = (id(pts), id(s.link.inertial.origin.xyz))
+            if key not in first:
+                first[key] = _beyond(pts, [float(v) for v in s.link.inertial.origin.xyz])
+            if first[key] is not None:
+                found[name] = _pure_outside(s, pts)
+    meshes = {name for name, pts in pure.items() if pts is None}
+    if meshes and ctx.opts.load_meshes:     # (numpy is loaded with the meshes)
+        found.update(_numpy_outside(ctx, meshes))
     for name, s in every.items():
         hit = found.get(name)
         if hit:
@@ -657,8 +655,8 @@ def _outside(lo, hi, p, out, centroid) -> tuple:
 
 
 def _numpy_outside(ctx, names) -> dict:
-    """origin_inside's verdict on the links ``names`` (None: all) with numpy: link -> _outside's
-    pair for the links outside."""
+    """origin_inside's verdict on the links ``names`` (those with meshes, or None: all) with numpy:
+    link -> _outside's pair for the links outside."""
     import numpy as np
 
     pts_of = hull_points(ctx)
@@ -698,40 +696,23 @@ def _numpy_outside(ctx, names) -> dict:
 
 
 def _pure_outside(s, pts):
-    """_numpy_outside's verdict on one link in pure Python, to the bit, where its floats are sums
-    and products by 1 and 0 (no shape's origin rotated) and the distance has one term (numpy's
-    norm of more is a BLAS dot); NotImplemented for any other link. (props.com is combine's to
-    the bit: combine_pure's centroid is.)"""
+    """origin_inside's verdict on one link of primitives (``pts``: its pure_hull_points, whose box
+    the origin already lies beyond) in pure Python, its visual shapes added as _with_visuals adds
+    them: _outside's pair, or None."""
     link = s.link
-    items = _hull_items(link)
-    vis = [v for v in link.visuals if v.geometry is not None]
-    if any(any(it.origin.rpy) for it in items) or any(any(v.origin.rpy) for v in vis):
-        return NotImplemented
     p = [float(v) for v in link.inertial.origin.xyz]
-    if not (math.isfinite(sum(p)) and math.isfinite(sum(v for q in pts for v in q))):
-        return NotImplemented
-    if not _beyond(pts, p):
-        return None
     extra = []
-    for v in vis:
+    for v in link.visuals:
         g = v.geometry
-        if g.kind == "mesh":            # (not loaded: hull_points would have none either)
-            continue
-        ox, oy, oz = (float(c) for c in v.origin.xyz)
-        extra.extend((x + ox, y + oy, z + oz) for x, y, z in G.surface_points(g, 32))
-    if extra:
-        if not math.isfinite(sum(v for q in extra for v in q)):
-            return NotImplemented
-        pts = [*pts, *extra]
-    lo, hi = _beyond(pts, p) or (None, None)
-    if lo is None:
+        if g is not None and g.kind != "mesh":      # (a mesh not loaded: hull_points would have none either)
+            extra.extend(place(pose_T(v.origin), G.surface_points(g, 32)))
+    box = _beyond([*pts, *extra], p)
+    if box is None:
         return None
-    d = [max(max(lo[k] - p[k], p[k] - hi[k]), 0.0) for k in range(3)]
-    if sum(1 for v in d if v) != 1:
-        return NotImplemented
-    g = max(d)
+    lo, hi = box
+    d = [max(lo[k] - p[k], p[k] - hi[k], 0.0) for k in range(3)]
     centroid = list(s.props.com) if s.props is not None else [(lo[k] + hi[k]) / 2 for k in range(3)]
-    return _outside(lo, hi, p, math.sqrt(g * g), centroid)
+    return _outside(lo, hi, p, math.sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]), centroid)
 
 
 def _beyond(pts, p):
@@ -742,38 +723,6 @@ def _beyond(pts, p):
     if any(max(lo[k] - margin - p[k], p[k] - hi[k] - margin) > 0 for k in range(3)):
         return lo, hi
     return None
-
-
-def _outside_suspects(ctx) -> set:
-    """The links whose inertial origin may lie outside the box of their points (origin_inside's
-    first test), on pure_hull_points with a margin for their ulps: numpy measures these only."""
-    pts_of = pure_hull_points(ctx)
-    seen: dict = {}
-    out = set()
-    for name, s in solids(ctx).items():
-        pts = pts_of[name]
-        if pts is None:
-            continue
-        xyz = s.link.inertial.origin.xyz
-        key = (id(pts), id(xyz))
-        hit = seen.get(key)
-        if hit is None:
-            hit = seen[key] = _may_be_outside(pts, xyz)
-        if hit:
-            out.add(name)
-    return out
-
-
-def _may_be_outside(pts, xyz) -> bool:
-    p = [float(v) for v in xyz]
-    if not all(map(math.isfinite, p)) or not all(math.isfinite(v) for q in pts for v in q):
-        return True
-    cols = list(zip(*pts))
-    lo, hi = [min(c) for c in cols], [max(c) for c in cols]
-    size = max(h - l for l, h in zip(lo, hi))
-    margin = 0.1 * size + 0.005
-    tol = SCREEN * (1 + size + max(map(abs, lo + hi + p)))
-    return any(lo[k] - margin - p[k] > -tol or p[k] - hi[k] - margin > -tol for k in range(3))
 
 
 def _with_visuals(ctx, link, pts):

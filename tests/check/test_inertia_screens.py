@@ -1,8 +1,9 @@
-"""The solid-body rules (I006, I007, I008, I010) judge an ordinary robot in pure Python. I006 and I010:
-pure-Python screens clear the links that cannot be reported, numpy measures the others; the screens
-must never clear a finding: on real robots, the findings with them equal the findings of numpy on
-every link. I007 measures every link of primitives in pure Python (eigh3), numpy only the links with
-meshes: its findings equal numpy's measure of every link, within a few ulps and up to the axis' sign."""
+"""The solid-body rules (I006, I007, I008, I010) judge an ordinary robot in pure Python. I006: a
+pure-Python screen clears the links that cannot be reported, numpy measures the others; the screen
+must never clear a finding: on real robots, the findings with it equal the findings of numpy on
+every link. I007 and I010 measure every link of primitives in pure Python, numpy only the links with
+meshes: their findings equal numpy's measure of every link, within a few ulps (I007: up to the axis'
+sign)."""
 
 from __future__ import annotations
 
@@ -25,7 +26,6 @@ def _findings(robot, unscreened: bool, monkeypatch) -> list:
     with monkeypatch.context() as m:
         if unscreened:           # numpy's measure of every link: what the rules did before the screens
             m.setattr(IG, "_beyond_limit", lambda solid: solid)
-            m.setattr(IG, "_outside_suspects", lambda ctx: None)
         ctx = Context(robot, CheckOptions())
         out = []
         for rule in RULES:
@@ -36,21 +36,18 @@ def _findings(robot, unscreened: bool, monkeypatch) -> list:
         return out
 
 
-def _pure_on_every_link(robot, monkeypatch) -> list:
-    """I010's findings with every link a suspect: each measured in pure Python where that gives
-    numpy's floats to the bit, else with numpy."""
-    with monkeypatch.context() as m:
-        m.setattr(IG, "_outside_suspects", lambda ctx: {n for n, p in IG.pure_hull_points(ctx).items()
-                                                       if p is not None})
-        ctx = Context(robot, CheckOptions())
-        return [(f.message, f.data) for f in IG.origin_inside(ctx)]
-
-
-def _numpy_on_every_link(robot, monkeypatch) -> list:
-    with monkeypatch.context() as m:
-        m.setattr(IG, "_outside_suspects", lambda ctx: None)
-        ctx = Context(robot, CheckOptions())
-        return [(f.message, f.data) for f in IG.origin_inside(ctx)]
+def _same_outside(robot) -> int:
+    """Asserts I010's findings (pure Python on the links of primitives) are numpy's verdict on every
+    link: the same links, origins and centroids, distances and boxes within a few ulps; how many."""
+    ctx = Context(robot, CheckOptions())
+    mine = {f.data["link"]: f for f in IG.origin_inside(ctx)}
+    ref = IG._numpy_outside(ctx, None)
+    assert set(mine) == set(ref)
+    for name, f in mine.items():
+        data = ref[name][1]
+        assert f.data["origin"] == data["origin"] and f.data["centroid"] == pytest.approx(data["centroid"], rel=1e-12)
+        assert f.data["distance"] == pytest.approx(data["distance"], rel=1e-12)
+    return len(mine)
 
 
 def _axis(message: str) -> list:
@@ -77,7 +74,7 @@ def _same_gyration(robot) -> int:
 
 def _check(robot, monkeypatch):
     assert _findings(robot, False, monkeypatch) == _findings(robot, True, monkeypatch)
-    assert _pure_on_every_link(robot, monkeypatch) == _numpy_on_every_link(robot, monkeypatch)
+    _same_outside(robot)
     _same_gyration(robot)
     # the pure-Python solids and points are within a few ulps of numpy's, and the volumes the same
     ctx = Context(robot, CheckOptions())
@@ -121,12 +118,12 @@ def test_screens_keep_the_findings_of_erd_robots(path, monkeypatch):
 
 
 def test_screens_clear_the_bundled_robot():
-    """No link of the bundled robot is a suspect of I006 or I010, nor reported by I007."""
+    """No link of the bundled robot is a suspect of I006, nor reported by I007 or I010."""
     ctx = Context(load_robot(None), CheckOptions())
     solid = [(n, s) for n, s in IG.solids(ctx).items() if s.props is not None]
     assert len(solid) > 40
-    assert IG._beyond_limit(solid) == [] and IG._outside_suspects(ctx) == set()
-    assert list(IG.radius_of_gyration(ctx)) == []
+    assert IG._beyond_limit(solid) == []
+    assert list(IG.radius_of_gyration(ctx)) == [] and list(IG.origin_inside(ctx)) == []
 
 
 def test_combine_pure_matches_combine():
@@ -153,9 +150,9 @@ def test_combine_pure_matches_combine():
 
 
 def test_pure_measures_equal_numpy_on_every_link(tmp_path, monkeypatch):
-    """Unrotated primitives and diagonal tensors (what I010 measures in pure Python), made to be
-    reported by I007 and I010 on every link: equal moments in every order (LAPACK's selection sort), shapes
-    that end on a plane through the origin, visuals that widen the box, several shapes a link."""
+    """Unrotated primitives and diagonal tensors, made to be reported by I007 and I010 on every link:
+    equal moments in every order (LAPACK's selection sort), shapes that end on a plane through the
+    origin, visuals that widen the box, several shapes a link."""
     import random
 
     rnd = random.Random(7)
@@ -179,8 +176,7 @@ def test_pure_measures_equal_numpy_on_every_link(tmp_path, monkeypatch):
     path = tmp_path / "r.urdf"
     path.write_text("\n".join(out + ["</robot>"]))
     robot = load_robot(path)
-    pure, ref = _pure_on_every_link(robot, monkeypatch), _numpy_on_every_link(robot, monkeypatch)
-    assert len(ref) > 60 and pure == ref
+    assert _same_outside(robot) > 60
     assert _same_gyration(robot) > 40
     assert _findings(robot, False, monkeypatch) == _findings(robot, True, monkeypatch)
 
@@ -226,3 +222,30 @@ def test_pure_gyration_equals_numpy_on_rotated_tensors_and_shapes(tmp_path):
     robot = load_robot(path)
     assert len(robot.links) > 250
     assert _same_gyration(robot) > 100
+
+
+def test_pure_origin_inside_equals_numpy_on_rotated_shapes(tmp_path):
+    """I010's pure verdict against numpy's on links of rotated collision and visual shapes, their
+    centres of mass scattered so that about half lie outside."""
+    import random
+
+    rnd = random.Random(13)
+    kinds = ['<box size="{a} {b} {c}"/>', '<cylinder radius="{a}" length="{b}"/>', '<sphere radius="{a}"/>']
+
+    def shape():
+        a, b, c = (rnd.uniform(0.01, 0.3) for _ in range(3))
+        xyz = " ".join(repr(rnd.uniform(-0.2, 0.2)) for _ in range(3))
+        rpy = " ".join(repr(rnd.uniform(-3.2, 3.2)) for _ in range(3))
+        return f'<origin xyz="{xyz}" rpy="{rpy}"/><geometry>{rnd.choice(kinds).format(a=a, b=b, c=c)}</geometry>'
+
+    out = ['<robot name="r">', '<link name="base"/>']
+    for n in range(200):
+        body = "".join(f"<collision>{shape()}</collision>" for _ in range(rnd.choice((1, 2))))
+        body += "".join(f"<visual>{shape()}</visual>" for _ in range(rnd.choice((0, 1, 2))))
+        xyz = " ".join(repr(rnd.uniform(-0.45, 0.45)) for _ in range(3))
+        out.append(f'<link name="l{n}"><inertial><origin xyz="{xyz}"/><mass value="1"/>'
+                   f'<inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>{body}</link>')
+        out.append(f'<joint name="j{n}" type="fixed"><parent link="base"/><child link="l{n}"/></joint>')
+    path = tmp_path / "r.urdf"
+    path.write_text("\n".join(out + ["</robot>"]))
+    assert 40 < _same_outside(load_robot(path)) < 190

@@ -155,3 +155,11 @@ def test_radius_of_gyration_of_rotated_primitives_needs_no_numpy(name):
     entry = corpus_robot(name)
     mods, out, _ = imported(corpus_args(entry), corpus_env(entry), "I007")
     assert "I007" in out and "numpy" not in mods, out
+
+
+def test_a_centre_of_mass_among_rotated_wheels_needs_no_numpy():
+    """I010 measures every link of primitives in pure Python, rotated ones too (Pioneer 3-AT's wheels:
+    cylinders turned by rpy π/2 0 0): the whole check imports no numpy."""
+    entry = corpus_robot("pioneer3at")
+    mods, out, _ = imported(corpus_args(entry), corpus_env(entry), None)
+    assert "numpy" not in mods, out

@@ -396,21 +396,31 @@ def _pure_gyration(i, pts):
     """radius_of_gyration's measure of one link of primitives (``pts``: its pure_hull_points) in
     pure Python: eigh3's principal axes, the farthest point from each; _worst's result."""
     t = tensor(i)
-    if not math.isfinite(sum(v for row in t for v in row) + i.mass + sum(v for q in pts for v in q)):
+    if not math.isfinite(sum(v for row in t for v in row) + i.mass):
         return None                     # (numpy's eigh has no moments for these either)
     R, (px, py, pz) = pose_T(i.origin)
-    (a, b, c), (d, e, f), (g, h, k) = R
-    local = []                          # R^T (x - p): the points in the inertial frame
-    for x, y, z in pts:
-        x, y, z = x - px, y - py, z - pz
-        local.append((a * x + d * y + g * z, b * x + e * y + h * z, c * x + f * y + k * z))
+    if any(i.origin.rpy):
+        (a, b, c), (d, e, f), (g, h, k) = R
+        local = []                      # R^T (x - p): the points in the inertial frame
+        for x, y, z in pts:
+            x, y, z = x - px, y - py, z - pz
+            local.append((a * x + d * y + g * z, b * x + e * y + h * z, c * x + f * y + k * z))
+    else:                               # (the products by 1 and 0 give these floats, up to zeros' signs)
+        local = [(x - px, y - py, z - pz) for x, y, z in pts]
     sq = [x * x + y * y + z * z for x, y, z in local]
+    if not math.isfinite(sum(sq)):
+        return None                     # a point not finite (nor is its square)
     ev, V = eigh3(t)
     axes = [V[r][n] for n in range(3) for r in range(3)]
     reaches = []
     for n in range(3):
-        ux, uy, uz = axes[3 * n:3 * n + 3]
-        far = max([q - (x * ux + y * uy + z * uz) ** 2 for q, (x, y, z) in zip(sq, local)])
+        u = axes[3 * n:3 * n + 3]
+        if u.count(0.0) == 2:           # a unit axis (a diagonal tensor): the coordinate is the product
+            col = u.index(1.0) if 1.0 in u else u.index(-1.0)
+            far = max([q - p[col] * p[col] for q, p in zip(sq, local)])
+        else:
+            ux, uy, uz = u
+            far = max([q - (x * ux + y * uy + z * uz) ** 2 for q, (x, y, z) in zip(sq, local)])
         reaches.append(math.sqrt(max(far, 0.0)))
     return _worst(i, ev, axes, reaches)
 

@@ -636,18 +636,22 @@ def origin_inside(ctx):
     """
     every = solids(ctx)
     pure = pure_hull_points(ctx)
+    loaded = ctx.opts.load_meshes           # (and numpy with them)
     found: dict = {}                    # link -> (message, data) or None
     first: dict = {}                    # links that repeat their points and origin (shared objects): tested once
+    meshes = set()                      # links whose measure reads a mesh: numpy's
     for name, s in every.items():
         pts = pure[name]
-        if pts is not None:
-            key = (id(pts), id(s.link.inertial.origin.xyz))
-            if key not in first:
-                first[key] = _beyond(pts, [float(v) for v in s.link.inertial.origin.xyz])
-            if first[key] is not None:
-                found[name] = _pure_outside(s, pts)
-    meshes = {name for name, pts in pure.items() if pts is None}
-    if meshes and ctx.opts.load_meshes:     # (numpy is loaded with the meshes)
+        if pts is None or loaded and any(v.geometry is not None and v.geometry.kind == "mesh"
+                                         for v in s.link.visuals):
+            meshes.add(name)            # (a visual mesh widens the box of a link that falls outside)
+            continue
+        key = (id(pts), id(s.link.inertial.origin.xyz))
+        if key not in first:
+            first[key] = _beyond(pts, [float(v) for v in s.link.inertial.origin.xyz])
+        if first[key] is not None:
+            found[name] = _pure_outside(s, pts)
+    if meshes and loaded:
         found.update(_numpy_outside(ctx, meshes))
     for name, s in every.items():
         hit = found.get(name)
@@ -714,7 +718,7 @@ def _pure_outside(s, pts):
     extra = []
     for v in link.visuals:
         g = v.geometry
-        if g is not None and g.kind != "mesh":      # (a mesh not loaded: hull_points would have none either)
+        if g is not None and g.kind != "mesh":      # (meshes not loaded: _with_visuals skips them too)
             extra.extend(place(pose_T(v.origin), G.surface_points(g, 32)))
     box = _beyond([*pts, *extra], p)
     if box is None:

@@ -44,18 +44,23 @@ def pose_stack(poses) -> np.ndarray:
     turns: dict = {}            # rpy -> (that rpy, its row in rotations)
     rotations: list = []
     which: list[int] = []
+    put = which.append
+    last, row = object(), 0     # the pose before's rpy object and its row (poses share one rpy object)
     for pose in poses:
         rpy = pose.rpy
-        if type(rpy) is not tuple:
-            rpy = tuple(rpy)
-        seen = turns.get(rpy)
-        # equal tuples hold the same floats unless one has a zero: 0.0 == -0.0, whose sines differ
-        if seen is not None and (seen[0] is rpy or 0.0 not in rpy):
-            which.append(seen[1])
-        else:
-            turns[rpy] = (rpy, len(rotations))
-            which.append(len(rotations))
-            rotations.append(_rotation(rpy))
+        if rpy is not last:
+            last = rpy
+            if type(rpy) is not tuple:
+                rpy = tuple(rpy)
+            seen = turns.get(rpy)
+            # equal tuples hold the same floats unless one has a zero: 0.0 == -0.0, whose sines differ
+            if seen is not None and (seen[0] is rpy or 0.0 not in rpy):
+                row = seen[1]
+            else:
+                row = len(rotations)
+                turns[rpy] = (rpy, row)
+                rotations.append(_rotation(rpy))
+        put(row)
         x, y, z = pose.xyz
         add((x, y, z))
     out = np.zeros((len(which), 4, 4))

@@ -16,7 +16,7 @@ import math
 
 from myrabot_desc.errors import InputError
 from myrabot_desc.model.parts import Joint, Pose, Robot
-from myrabot_desc.model.transforms import IDENTITY, Tf, compose, place, pose_T
+from myrabot_desc.model.transforms import IDENTITY, Tf, compose, pose_T
 
 TYPE_CHECKING = False      # typing's own costs a check ~3 ms to import; type checkers read this one too
 if TYPE_CHECKING:
@@ -390,7 +390,10 @@ def center_of_mass(robot: Robot, q: dict[str, float] | None = None) -> tuple[flo
         places = {}
         for name, link in robot.links.items():
             if link.inertial is not None and name in P and link.inertial.mass > 0:
-                places[name] = place(P[name], (link.inertial.origin.xyz,))[0]
+                # place()'s products and sums for the one point, without a list per link
+                ((a, b, c), (d, e, f), (g, h, i)), (px, py, pz) = P[name]
+                x, y, z = link.inertial.origin.xyz
+                places[name] = (a * x + b * y + c * z + px, d * x + e * y + f * z + py, g * x + h * y + i * z + pz)
     else:
         import numpy as np
 

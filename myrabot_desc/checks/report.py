@@ -108,7 +108,7 @@ def _plural(n, word):
 
 # ---------------------------------------------------------------- text
 def render(fmt: str, results, version: str, exit_code: int = 0, quiet: bool = False, help_url: str | None = None,
-           shard: str | None = None) -> str:
+           shard: str | None = None, color: bool | None = None) -> str:
     if fmt == "json":
         return render_json(results, version)
     if fmt == "github":
@@ -117,26 +117,34 @@ def render(fmt: str, results, version: str, exit_code: int = 0, quiet: bool = Fa
         return render_sarif(results, version, exit_code=exit_code, help_url=help_url, shard=shard)
     if fmt == "junit":
         return render_junit(results)
-    return render_text(results, quiet=quiet)
+    return render_text(results, color=color, quiet=quiet)
+
+
+def _unstyled(text: str, fg: str | None = None, bold: bool = False) -> str:
+    return text
 
 
 def render_text(results, color: bool | None = None, quiet: bool = False) -> str:
+    """The text report, styled unless ``color`` is False: the plain text is the styled one with the
+    styles stripped (no field holds an escape: clean() writes them out), without making them for a
+    file that would strip them again (a 20,000-link star's report is 9 MB)."""
+    paint = _unstyled if color is False else style
     lines: list[str] = []
     many = len(results) > 1 and not quiet
     for r in results:
         # every field below may quote the model or a file name: clean() makes each one printable line
         name = clean(rel(r.file) or "(bundled MYRAbot)")
         if r.failure:
-            lines.append(style(clean(r.failure), **STYLE["error"]))
+            lines.append(paint(clean(r.failure), **STYLE["error"]))
             continue
         if many or r.diagnostics:
-            lines.append(style(f"{name}", bold=True) + f": robot {clean(r.robot or '?')}, "
+            lines.append(paint(f"{name}", bold=True) + f": robot {clean(r.robot or '?')}, "
                          f"{_plural(r.links, 'link')}, {_plural(r.joints, 'joint')}")
         for sev in ("error", "warning", "info"):
             ds = [d for d in r.diagnostics if d.severity == sev]
             if not ds:
                 continue
-            lines.append(style(f"  {sev}s ({len(ds)})" if sev != "info" else f"  info ({len(ds)})", **STYLE[sev]))
+            lines.append(paint(f"  {sev}s ({len(ds)})" if sev != "info" else f"  info ({len(ds)})", **STYLE[sev]))
             # where() and the styled code once per file and code: a big robot has 40,000 findings
             # in a few files and codes
             places: dict = {}
@@ -153,10 +161,10 @@ def render_text(results, color: bool | None = None, quiet: bool = False) -> str:
                     w = f"{f}:{loc.line}" if loc.line else f
                 c = codes.get(d.code)
                 if c is None:
-                    c = codes[d.code] = style(clean(d.code), **STYLE[sev])
+                    c = codes[d.code] = paint(clean(d.code), **STYLE[sev])
                 add(f"    {w + ': ' if w else ''}{c} {clean(d.message)}")
         if r.suggestions:
-            lines.append(style("  suggested inertias (solid body of the collision geometry at the declared "
+            lines.append(paint("  suggested inertias (solid body of the collision geometry at the declared "
                                      "mass, in the inertial frame):", bold=True))
             for link, line in r.suggestions:
                 lines.append(f"    {clean(link)}: {clean(line)}")
@@ -169,7 +177,7 @@ def render_text(results, color: bool | None = None, quiet: bool = False) -> str:
         summary += f" ({t['failed']} could not be processed)"
     summary_style = STYLE["error"] if t["errors"] or t["failed"] else (
         STYLE["warning"] if t["warnings"] else dict(fg="green"))
-    lines.append(style(summary, **summary_style))
+    lines.append(paint(summary, **summary_style))
     return "\n".join(lines) + "\n"
 
 

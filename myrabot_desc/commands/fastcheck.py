@@ -51,6 +51,11 @@ def _progressbar(results, length):
                              item_show_func=lambda r: (Path(r.file).name if r and r.file else ""))
 
 
+def _color(output: str) -> bool | None:
+    """render's ``color``: False for a file, whose text _write strips of styles (so none are made)."""
+    return None if output == "-" else False
+
+
 def _write(text: str, output: str) -> None:
     """The report on stdout (styles stripped unless it is a terminal, as click.echo) or in a file."""
     if output == "-":
@@ -96,8 +101,8 @@ def run_check(inputs, inertia=False, suggest=False, meshes=False, srdf=None, fmt
         if baseline:
             _baseline(results, baseline, update_baseline, quiet or fmt != "text")
         code = exit_code(results)
-        _write(render(fmt, results, __version__, exit_code=code, quiet=quiet, help_url=help_url, shard=shard_spec),
-               output)
+        _write(render(fmt, results, __version__, exit_code=code, quiet=quiet, help_url=help_url, shard=shard_spec,
+                      color=_color(output)), output)
         for r in results:
             if r.failure and (fmt != "text" or output != "-"):
                 echo(clean(r.failure))
@@ -149,7 +154,8 @@ def _fix(tasks, fmt, output, quiet, help_url, shard_spec, unsafe, write: bool) -
     if not write and fmt == "text":
         text = unified_diff(run.files)
     else:
-        text = render(fmt, results, __version__, exit_code=code, quiet=quiet, help_url=help_url, shard=shard_spec)
+        text = render(fmt, results, __version__, exit_code=code, quiet=quiet, help_url=help_url, shard=shard_spec,
+                      color=_color(output))
     _write(text, output)
     if not quiet and fmt == "text":
         echo(line)

@@ -22,6 +22,7 @@ same bounding spheres and boxes, and the capsules that hold spheres and cylinder
 no pair of shapes comes near, or where only spheres do (``Scene._sphere_overlaps``), needs neither.
 """
 
+import functools
 import math
 
 from myrabot_desc.errors import InputError
@@ -51,8 +52,14 @@ def _sphere_pairs(np, items, min_depth: float) -> list:
     at a time (memory linear in the shape count) and judged by the same distance as before."""
     C = np.array([i.centre for i in items], dtype=float).reshape(-1, 3)
     R = np.array([i.radius for i in items], dtype=float)
+    return _sphere_pairs_of(np, C, R, min_depth)
+
+
+def _sphere_pairs_of(np, C, R, min_depth: float) -> list:
+    """_sphere_pairs of the shapes whose bounding spheres are centred at the rows of ``C`` (n x 3)
+    with radii ``R`` (n): the placed shapes' own arrays, before any of them is an _Item."""
     most = limit("max_collision_pairs")
-    n = len(items)
+    n = len(C)
     if n < 2:
         return []
     # widened a hair: |dx| <= distance holds in exact arithmetic, the margin keeps it after rounding
@@ -370,8 +377,6 @@ class Scene:
         loaded mesh (check's per-run cache). ``exclusions``: an object with ``allows(a, b)``
         (model/srdf.Srdf) or None."""
         self.robot = robot
-        self.body_of = rigid_bodies(robot)
-        self.adjacent = adjacent_bodies(robot, self.body_of)
         self.exclusions = exclusions
         self.read = _mesh_reader(meshes)
         self.loaded = meshes if callable(meshes) else None   # check's loaded meshes: their faces too
@@ -382,8 +387,33 @@ class Scene:
         self._halves: dict = {}          # id(collision) -> _half_extents (the pure screen's)
         self._lean_shapes: list = []     # the pure screen's last places
 
+    @functools.cached_property
+    def body_of(self) -> dict:
+        """link -> the link heading its rigid body: asked only once shapes come near (a scene whose
+        pairs are refused as too many, or that no pair reaches, never walks the tree for it)."""
+        return rigid_bodies(self.robot)
+
+    @functools.cached_property
+    def adjacent(self) -> set:
+        return adjacent_bodies(self.robot, self.body_of)
+
     def _placed(self, world):
-        """Every collision shape placed by ``world`` with its bounding box (no coal shape yet).
+        """Every collision shape placed by ``world`` with its bounding box (no coal shape yet)."""
+        placed = self._placing(world)
+        return self._items(*placed) if placed is not None else []
+
+    def _items(self, found, T, centres, radii):
+        """The _Item of each shape _placing placed."""
+        body_of = self.body_of
+        radii = radii.tolist()
+        return [_Item(name, body_of.get(name, name), it, None, T[k], centres[k], radii[k], mesh, box[1])
+                for k, (name, it, mesh, box) in enumerate(found)]
+
+    def _placing(self, world):
+        """(shapes, their world poses T, centres, radii) of every collision shape placed by ``world``
+        with its bounding box, the last three stacked (n x 4 x 4, n x 3, n), or None
+        when there is none: the sphere sweep reads the arrays, and _items makes the records only of a
+        scene whose pairs it took.
 
         support.collision_shapes' walk, with the poses, centres and radii as stacked products: the
         same kernels, so the same bits as one product per shape, without a dozen numpy calls per
@@ -413,22 +443,21 @@ class Scene:
             frames.append(world[link.name])
             origins.append(it.origin)
         if not found:
-            return []
+            return None
         T = np.array(frames, dtype=float).reshape(-1, 4, 4) @ pose_stack(origins)
         c = np.array([box[0] for *_, box in found], dtype=float).reshape(-1, 3)
         h = np.array([box[1] for *_, box in found], dtype=float).reshape(-1, 3)
         centres = (T[:, :3, :3] @ c[:, :, None])[:, :, 0] + T[:, :3, 3]
-        radii = np.sqrt((h[:, None, :] @ h[:, :, None])[:, 0, 0]).tolist()     # np.linalg.norm's dot
-        body_of = self.body_of
-        return [_Item(name, body_of.get(name, name), it, None, T[k], centres[k], radii[k], mesh, box[1])
-                for k, (name, it, mesh, box) in enumerate(found)]
+        radii = np.sqrt((h[:, None, :] @ h[:, :, None])[:, 0, 0])     # np.linalg.norm's dot
+        return found, T, centres, radii
 
-    def _near(self, np, items, min_depth: float, within=None) -> list:
+    def _near(self, np, items, min_depth: float, within=None, spheres=None) -> list:
         """(i, j) of the placed shapes on different, non-adjacent bodies whose bounding spheres and
         boxes meet by more than ``min_depth``, in order: the pairs coal tests. ``within``: a set of
-        pairs holding all of them (_lean_near's), the others need no box test."""
+        pairs holding all of them (_lean_near's), the others need no box test. ``spheres``: the
+        pairs whose bounding spheres meet, when the caller has them (_sphere_pairs of ``items``)."""
         adjacent = self.adjacent
-        pairs = [(a, b) for a, b in _sphere_pairs(np, items, min_depth)
+        pairs = [(a, b) for a, b in (_sphere_pairs(np, items, min_depth) if spheres is None else spheres)
                  if (within is None or (a, b) in within)
                  and items[a].body != items[b].body and frozenset((items[a].body, items[b].body)) not in adjacent]
         apart = ()
@@ -548,10 +577,16 @@ class Scene:
         import numpy as np
 
         world = world if world is not None else world_transforms(self.robot, q)
-        items = self._placed(world)
-        if len(items) < 2:
+        placed = self._placing(world)
+        if placed is None or len(placed[0]) < 2:
             return []
-        near = self._near(np, items, min_depth, None if screened is None else set(screened))
+        # the spheres' pairs from the stacked centres and radii (the values _Item holds), refused
+        # (TooManyPairs) before a record is made for each shape
+        spheres = _sphere_pairs_of(np, placed[2], placed[3], min_depth)
+        if not spheres:
+            return []
+        items = self._items(*placed)
+        near = self._near(np, items, min_depth, None if screened is None else set(screened), spheres)
         if not near:
             return []
         import coal                      # only when two bounding boxes overlap: a clean robot never pays for it

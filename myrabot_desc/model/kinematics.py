@@ -16,7 +16,7 @@ import math
 
 from myrabot_desc.errors import InputError
 from myrabot_desc.model.parts import Joint, Pose, Robot
-from myrabot_desc.model.transforms import IDENTITY, Tf, compose, place, pose_T
+from myrabot_desc.model.transforms import IDENTITY, Tf, compose, pose_T
 
 TYPE_CHECKING = False      # typing's own costs a check ~3 ms to import; type checkers read this one too
 if TYPE_CHECKING:
@@ -44,18 +44,23 @@ def pose_stack(poses) -> np.ndarray:
     turns: dict = {}            # rpy -> (that rpy, its row in rotations)
     rotations: list = []
     which: list[int] = []
+    put = which.append
+    last, row = object(), 0     # the pose before's rpy object and its row (poses share one rpy object)
     for pose in poses:
         rpy = pose.rpy
-        if type(rpy) is not tuple:
-            rpy = tuple(rpy)
-        seen = turns.get(rpy)
-        # equal tuples hold the same floats unless one has a zero: 0.0 == -0.0, whose sines differ
-        if seen is not None and (seen[0] is rpy or 0.0 not in rpy):
-            which.append(seen[1])
-        else:
-            turns[rpy] = (rpy, len(rotations))
-            which.append(len(rotations))
-            rotations.append(_rotation(rpy))
+        if rpy is not last:
+            last = rpy
+            if type(rpy) is not tuple:
+                rpy = tuple(rpy)
+            seen = turns.get(rpy)
+            # equal tuples hold the same floats unless one has a zero: 0.0 == -0.0, whose sines differ
+            if seen is not None and (seen[0] is rpy or 0.0 not in rpy):
+                row = seen[1]
+            else:
+                row = len(rotations)
+                turns[rpy] = (rpy, row)
+                rotations.append(_rotation(rpy))
+        put(row)
         x, y, z = pose.xyz
         add((x, y, z))
     out = np.zeros((len(which), 4, 4))
@@ -385,7 +390,10 @@ def center_of_mass(robot: Robot, q: dict[str, float] | None = None) -> tuple[flo
         places = {}
         for name, link in robot.links.items():
             if link.inertial is not None and name in P and link.inertial.mass > 0:
-                places[name] = place(P[name], (link.inertial.origin.xyz,))[0]
+                # place()'s products and sums for the one point, without a list per link
+                ((a, b, c), (d, e, f), (g, h, i)), (px, py, pz) = P[name]
+                x, y, z = link.inertial.origin.xyz
+                places[name] = (a * x + b * y + c * z + px, d * x + e * y + f * z + py, g * x + h * y + i * z + pz)
     else:
         import numpy as np
 

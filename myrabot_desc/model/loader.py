@@ -494,8 +494,10 @@ def _read_model(root, text, src: Path, locations, package_roots, build_warnings,
                   package_roots=roots, allow_roots=extra, build_warnings=build_warnings, from_xacro=from_xacro,
                   load_issues=r.issues, element_locs=r.loc_of, _elements=r._keep, ros2_control=ros2_control)
     # the elements, names and <child> links read above, rather than a second pass over 40,000 elements
+    # (for the few top-level materials too: lxml's iterchildren("material") tests every child)
     robot.declare("link", top["link"], link_names)
     robot.declare("joint", top["joint"], joint_names, joint_children)
+    robot.declare("material", top["material"], [m.get("name") for m in top["material"]])
     return robot
 
 

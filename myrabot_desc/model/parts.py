@@ -572,8 +572,15 @@ class Robot:
 
     @property
     def roots(self) -> list[str]:
-        children = {j.child for j in self.joints.values()}
-        return [n for n in self.links if n not in children]
+        """The links no joint hangs from, in file order: a fresh list each call, made once per robot
+        (a 20,000-link check asks seven times) and again only if its link or joint map is replaced
+        or resized, as world_transforms' zero configuration."""
+        key = (id(self.links), len(self.links), id(self.joints), len(self.joints))
+        got = self.derived.get("roots")
+        if got is None or got[0] != key:
+            children = {j.child for j in self.joints.values()}
+            got = self.derived["roots"] = (key, [n for n in self.links if n not in children])
+        return list(got[1])
 
     @property
     def root(self) -> str | None:

@@ -425,9 +425,10 @@ def _alone(robot, movers, names, pos, parent, end, turned) -> list[str]:
     for m in movers:
         mover_at.add(pos[m.child])
     above = [False] * len(parent)            # a moving joint somewhere above this place (preorder: parents first)
-    for place in range(len(parent)):
-        up = int(parent[place])
+    # the arrays as Python ints once: a numpy scalar per place and joint costs more than the test
+    for place, up in enumerate(parent.tolist()):
         above[place] = up >= 0 and (above[up] or up in mover_at)
+    end = end.tolist()
     out = []
     for j in movers:
         cj = pos[j.child]

@@ -122,3 +122,25 @@ def test_a_plain_check_imports_no_click(tmp_path):
                        text=True, timeout=120, stdin=subprocess.DEVNULL)
     assert p.returncode in (0, 1), p.stderr
     assert p.stderr.splitlines()[-1] == "[]"
+
+
+def test_a_report_for_a_file_is_the_terminal_report_unstyled(tmp_path):
+    """render's text without styles (color=False, what a check writes to a file) is the styled text
+    with its styles stripped, for findings of every severity, suggestions, a failure and a message
+    or name that holds an escape character (written out by clean(), never an escape itself)."""
+    from myrabot_desc.checks.report import FileResult, render
+    from myrabot_desc.checks.run import Task, check_one
+    from myrabot_desc.checks.context import CheckOptions
+    from myrabot_desc.commands.console import unstyle
+    from myrabot_desc.diagnostics import Diagnostic, Loc
+
+    robot = tmp_path / "bot.urdf"
+    robot.write_text(BOT)
+    res = check_one(Task(str(robot), {}, CheckOptions(inertia=True, suggest=True), (), (), (), False, None))
+    res.diagnostics.append(Diagnostic("T005", "error", "a message with \033[1m in it", Loc(str(robot), 3)))
+    failed = FileResult(str(tmp_path / "gone\033[0m.urdf"), failure="cannot read gone\033[0m.urdf")
+    assert res.diagnostics and res.suggestions
+    for quiet in (False, True):
+        styled = render("text", [res, failed], "0", quiet=quiet)
+        assert "\033" in styled
+        assert render("text", [res, failed], "0", quiet=quiet, color=False) == unstyle(styled)

@@ -4,7 +4,7 @@ a pass over the XML gives, duplicates, nameless and malformed elements included.
 from __future__ import annotations
 
 from helpers import FIXTURES
-from myrabot_desc.model.loader import load_robot
+from myrabot_desc.model.loader import LEAN_READ_BYTES, load_robot
 
 ODD = """<?xml version="1.0"?>
 <robot name="odd" xmlns:x="urn:x">
@@ -17,7 +17,7 @@ ODD = """<?xml version="1.0"?>
   <joint name="j4" type="fixed"><parent link="a"/><child/></joint>
   <joint name="" type="fixed"><child link="f"/></joint>
   <gazebo><joint name="inside"/></gazebo>
-  <material name="m"/><material name="m"/><material/>
+  <material name="m"/><material name="m"/><material/><x:material name="namespaced"/>
 </robot>
 """
 
@@ -34,8 +34,12 @@ def _as_written(robot, tag):
 def test_declared_from_the_reader_is_the_xml(tmp_path):
     odd = tmp_path / "odd.urdf"
     odd.write_text(ODD)
+    big = tmp_path / "big.urdf"          # past LEAN_READ_BYTES: read by lxml, not xmltree
+    pad = "".join(f'<link name="pad{k}"/><material name="pad{k}"/>\n' for k in range(LEAN_READ_BYTES // 40))
+    big.write_text(ODD.replace("</robot>", pad + "</robot>"))
+    assert big.stat().st_size > LEAN_READ_BYTES
     seed = FIXTURES / "seed_myrabot"
-    for src in (odd, None, seed / "myrabot_fer_modelo" / "urdf" / "myrabot.urdf.xacro"):
+    for src in (odd, big, None, seed / "myrabot_fer_modelo" / "urdf" / "myrabot.urdf.xacro"):
         robot = load_robot(src, package_paths=[seed])
         for tag in ("link", "joint", "material"):
             read = _as_read(robot, tag)
@@ -44,3 +48,4 @@ def test_declared_from_the_reader_is_the_xml(tmp_path):
     assert [d[1:3] for d in _as_read(robot, "joint")] == [("j1", "b"), ("j1", "d"), (None, "e"), ("j3", None),
                                                           ("j4", None), ("", "f")]
     assert [d[1] for d in _as_read(robot, "link")] == ["a", "a", None, ""]
+    assert [d[1] for d in _as_read(robot, "material")] == ["m", "m", None]

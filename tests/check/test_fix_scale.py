@@ -49,7 +49,7 @@ def test_diff_of_a_star_grows_linearly(tmp_path):
     """Every link's inertia is fixable (I006): three times the links cost about three times the CPU
     (quadratic would be nine)."""
     _fix_cpu(tmp_path, 50)                     # imports and first-use caches out of the timing
-    small, n_small = _fix_cpu(tmp_path, 600)
-    large, n_large = _fix_cpu(tmp_path, 1800)
+    # the better of two runs each: on two busy cores one run's CPU time can double (shared caches)
+    (small, n_small), (large, n_large) = (min(_fix_cpu(tmp_path, n) for _ in range(2)) for n in (600, 1800))
     assert n_small >= 599 and n_large >= 1799
     assert large / small < 5.5, (small, large)

@@ -112,11 +112,17 @@ def test_overlaps_equal_without_the_screen(monkeypatch):
     robots = [load_robot(None)] + [load_robot(f) for f in files if f.is_file()]
     for r in robots:
         for md in DEPTHS:
-            lean = col.Scene(r, False).overlaps(r.rest_pose(), min_depth=md)
-            monkeypatch.setattr(col, "LEAN_MOST", 0)
-            plain = col.Scene(r, False).overlaps(r.rest_pose(), min_depth=md)
-            monkeypatch.undo()
+            lean, plain = _with_and_without_screen(r, md, monkeypatch)
             assert lean == plain, (r.name, md)
+
+
+def _with_and_without_screen(robot, md, monkeypatch) -> tuple[list, list]:
+    """Scene.overlaps at the rest pose with the pure screen, and without it (LEAN_MOST 0)."""
+    lean = col.Scene(robot, False).overlaps(robot.rest_pose(), min_depth=md)
+    monkeypatch.setattr(col, "LEAN_MOST", 0)
+    plain = col.Scene(robot, False).overlaps(robot.rest_pose(), min_depth=md)
+    monkeypatch.undo()
+    return lean, plain
 
 
 def test_screen_keeps_a_pair_numpy_keeps(tmp_path):
@@ -226,10 +232,7 @@ def test_sphere_models_overlap_as_coal_says(tmp_path, monkeypatch):
     found = 0
     for r in robots:
         for md in DEPTHS:
-            lean = col.Scene(r, False).overlaps(r.rest_pose(), min_depth=md)
-            monkeypatch.setattr(col, "LEAN_MOST", 0)
-            plain = col.Scene(r, False).overlaps(r.rest_pose(), min_depth=md)
-            monkeypatch.undo()
+            lean, plain = _with_and_without_screen(r, md, monkeypatch)
             assert len(lean) == len(plain) and all(map(_close, lean, plain)), (r.name, md)
             found += len(lean)
     assert found > 50

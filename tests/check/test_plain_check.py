@@ -128,9 +128,9 @@ def test_a_report_for_a_file_is_the_terminal_report_unstyled(tmp_path):
     """render's text without styles (color=False, what a check writes to a file) is the styled text
     with its styles stripped, for findings of every severity, suggestions, a failure and a message
     or name that holds an escape character (written out by clean(), never an escape itself)."""
+    from myrabot_desc.checks.context import CheckOptions
     from myrabot_desc.checks.report import FileResult, render
     from myrabot_desc.checks.run import Task, check_one
-    from myrabot_desc.checks.context import CheckOptions
     from myrabot_desc.commands.console import unstyle
     from myrabot_desc.diagnostics import Diagnostic, Loc
 

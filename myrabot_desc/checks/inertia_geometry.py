@@ -415,8 +415,8 @@ def _pure_gyration(i, pts):
     reaches = []
     for n in range(3):
         u = axes[3 * n:3 * n + 3]
-        if u.count(0.0) == 2:           # a unit axis (a diagonal tensor): the coordinate is the product
-            col = u.index(1.0) if 1.0 in u else u.index(-1.0)
+        col = u.index(1.0) if 1.0 in u else u.index(-1.0) if -1.0 in u else None
+        if col is not None and u.count(0.0) == 2:   # a unit axis (a diagonal tensor): the coordinate is the product
             far = max([q - p[col] * p[col] for q, p in zip(sq, local)])
         else:
             ux, uy, uz = u

@@ -368,6 +368,11 @@ def _lean_apart(ca, Ra, ha, cb, Rb, hb, margin: float) -> bool:
     return False
 
 
+def _deepest_first(o: Overlap) -> tuple:
+    """overlaps()'s order: deepest first (to 0.1 µm: coal's last digits do not reorder), then by links."""
+    return (-round(o.depth, 7), o.link_a, o.link_b)
+
+
 class Scene:
     """The robot's collision shapes, made once (hulls are the costly part), placed at any
     configuration by :meth:`overlaps`."""
@@ -541,7 +546,7 @@ class Scene:
             k = (ra - depth / 2) / d
             out.append(self._overlap(la, lb, ia, ib, depth, (ca[0] + n[0] * k, ca[1] + n[1] * k, ca[2] + n[2] * k),
                                      False))
-        out.sort(key=lambda o: (-round(o.depth, 7), o.link_a, o.link_b))
+        out.sort(key=_deepest_first)
         return out
 
     def _overlap(self, la, lb, ia, ib, depth, point, hull_only) -> Overlap:
@@ -611,7 +616,7 @@ class Scene:
             if ia.mesh is not None or ib.mesh is not None:
                 hull_only = not self._triangles_touch(coal, np, ia._replace(shape=sa), ib._replace(shape=sb))
             out.append(self._overlap(ia.link, ib.link, ia.collision, ib.collision, depth, c.pos, hull_only))
-        out.sort(key=lambda o: (-round(o.depth, 7), o.link_a, o.link_b))
+        out.sort(key=_deepest_first)
         return out
 
     def _triangles_touch(self, coal, np, ia, ib) -> bool:

@@ -102,18 +102,22 @@ def unreadable(path: Path) -> str | None:
     try:
         try:            # expat, already loaded, where it reads the file as lxml would (xmltree.py)
             check_xml_bytes(data, path.name)
-            found = xmltree.any_element(data, lambda tag, attrs: tag in _DAE_PRIMITIVES
-                                        and attrs.get("count", "0") != "0")
+            found = xmltree.any_element(data, _counted_primitive)
         except xmltree.Refused:
             root = parse_xml_bytes(data, path.name)
-            found = any((el.tag.rsplit("}", 1)[-1] if isinstance(el.tag, str) else "") in _DAE_PRIMITIVES
-                        and el.get("count", "0") != "0" for el in root.iter())
+            found = any(_counted_primitive(el.tag.rsplit("}", 1)[-1] if isinstance(el.tag, str) else "", el.attrib)
+                        for el in root.iter())
     except InputError as exc:
         return f"{path.name} is not readable COLLADA: {exc.message}"
     return None if found else f"{path.name} holds no triangles (no <triangles>, <polylist> or <polygons> with a count)"
 
 
 _DAE_PRIMITIVES = {"triangles", "polylist", "polygons", "trifans", "tristrips"}
+
+
+def _counted_primitive(tag: str, attrs) -> bool:
+    """A COLLADA element (local name, attributes) that lists faces: a primitive with a count."""
+    return tag in _DAE_PRIMITIVES and attrs.get("count", "0") != "0"
 
 
 ZIP_EXTS = {".zip", ".3mf", ".zae"}

@@ -249,3 +249,18 @@ def test_pure_origin_inside_equals_numpy_on_rotated_shapes(tmp_path):
     path = tmp_path / "r.urdf"
     path.write_text("\n".join(out + ["</robot>"]))
     assert 40 < _same_outside(load_robot(path)) < 190
+
+
+def test_pure_gyration_takes_a_nearly_unit_axis_by_its_products(monkeypatch):
+    """An axis with two zero components and the third a rounding short of 1 (a Jacobi rotation can
+    leave one) is measured with the products, not taken for a unit axis."""
+    from types import SimpleNamespace as NS
+
+    from myrabot_desc.model.parts import Pose
+
+    one = 1.0 - 2.0 ** -53
+    i = NS(ixx=0.5, ixy=0.0, ixz=0.0, iyy=0.4, iyz=0.0, izz=0.3, mass=1.0, origin=Pose((0.0, 0.0, 0.0), (0.0, 0.0, 0.0)))
+    monkeypatch.setattr(IG, "eigh3", lambda t: ([0.3, 0.4, 0.5], [[0.0, 0.0, one], [0.0, one, 0.0], [one, 0.0, 0.0]]))
+    pts = [(0.1, 0.2, 0.3), (-0.2, 0.1, 0.0)]
+    got = IG._pure_gyration(i, pts)
+    assert got is not None and got[2] == pytest.approx(0.2236, abs=1e-4)     # the farthest point from the x axis

@@ -1,4 +1,4 @@
-"""P005: self-collision at the rest pose (coal, model/collisions.py), the SRDF's exclusions respected."""
+"""P005: self-collision at the rest pose (model/collisions.py), the SRDF's exclusions respected."""
 
 from __future__ import annotations
 

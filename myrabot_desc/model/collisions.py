@@ -6,20 +6,22 @@ bodies joined by one moving joint are parent and child, whose shapes meet at the
 (MuJoCo, PyBullet and MoveIt skip those pairs too). Every other pair of bodies may not overlap,
 unless the model's own exclusions allow it (an SRDF's ``<disable_collisions>``: model/srdf.py).
 
-How they are tested. Boxes, spheres and cylinders are exact (coal, the collision library Pinocchio
-ships). A mesh is its convex hull, as MuJoCo and PyBullet collide it; coal gives the penetration
-depth of the two convex shapes. A hull overlap that involves a mesh is then confirmed on the
-triangles themselves (coal's BVH of the mesh against the other shape): when they do not touch the
-overlap is ``hull_only``, the hull of a concave part reaching into another (PR2's shoulder sitting in
-its concave base: 256 mm of hull, no triangle). A mesh wholly inside another mesh touches no
-triangle of it and reads as hull-only as well; a mesh inside a primitive does not (the primitive is
-solid). Overlaps of ``TOUCH`` or less are parts resting against each other (CAD assemblies, a
-tessellated surface, rounding), not collisions.
+How they are tested. Boxes, spheres and cylinders are exact: their depth in closed form
+(model/penetration.py), in pure Python. Two cylinders at an angle, or a cylinder at an angle to a
+box, have none and go to coal (the collision library Pinocchio ships), as do meshes. A mesh is its
+convex hull, as MuJoCo and PyBullet collide it; coal gives the penetration depth of the two convex
+shapes. A hull overlap that involves a mesh is then confirmed on the triangles themselves (coal's
+BVH of the mesh against the other shape): when they do not touch the overlap is ``hull_only``, the
+hull of a concave part reaching into another (PR2's shoulder sitting in its concave base: 256 mm of
+hull, no triangle). A mesh wholly inside another mesh touches no triangle of it and reads as
+hull-only as well; a mesh inside a primitive does not (the primitive is solid). Overlaps of
+``TOUCH`` or less are parts resting against each other (CAD assemblies, a tessellated surface,
+rounding), not collisions.
 
 coal takes 0.4 s to import: it is imported inside the functions that use it. numpy too: an ordinary
 robot at its rest pose without meshes is first screened in pure Python (``Scene._lean_near``, the
-same bounding spheres and boxes, and the capsules that hold spheres and cylinders), and a robot where
-no pair of shapes comes near, or where only spheres do (``Scene._sphere_overlaps``), needs neither.
+same bounding spheres and boxes, and the capsules that hold spheres and cylinders), and the pairs
+that come near are settled in closed form (``Scene._pure_overlaps``): such a robot needs neither.
 """
 
 import functools
@@ -28,6 +30,7 @@ import math
 from myrabot_desc.errors import InputError
 from myrabot_desc.model import meshes as meshio
 from myrabot_desc.model.kinematics import pose_stack, poses_at, world_transforms
+from myrabot_desc.model.penetration import Solid, penetration
 from myrabot_desc.model.shapes import describe
 from myrabot_desc.model.support import _mesh_reader, collision_shapes
 from myrabot_desc.model.transforms import compose, pose_T, transpose3
@@ -458,7 +461,7 @@ class Scene:
 
     def _near(self, np, items, min_depth: float, within=None, spheres=None) -> list:
         """(i, j) of the placed shapes on different, non-adjacent bodies whose bounding spheres and
-        boxes meet by more than ``min_depth``, in order: the pairs coal tests. ``within``: a set of
+        boxes meet by more than ``min_depth``, in order: the pairs overlaps() tests. ``within``: a set of
         pairs holding all of them (_lean_near's), the others need no box test. ``spheres``: the
         pairs whose bounding spheres meet, when the caller has them (_sphere_pairs of ``items``)."""
         adjacent = self.adjacent
@@ -494,7 +497,7 @@ class Scene:
         halves = self._halves
         body_of = self.body_of
         bodies, C, R, H, rot, cores = [], [], [], [], [], []
-        self._lean_shapes = shapes = []      # (link, collision, centre, radius) by place: for _sphere_overlaps
+        self._lean_shapes = shapes = []      # (link, collision, Solid) by place: for _pure_overlaps
         for link, it, _ in collision_shapes(robot, poses, None):
             key = id(it)
             h = halves.get(key, 0)
@@ -511,7 +514,7 @@ class Scene:
             H.append(h)
             rot.append(Rw)
             cores.append(_core(it.geometry, h))
-            shapes.append((link.name, it, p, h[0]))
+            shapes.append((link.name, it, Solid(it.geometry.kind, h, Rw, p)))
         pairs = _lean_sphere_pairs(C, R, min_depth, limit("max_collision_pairs"))
         if pairs is None:
             return None                  # numpy's sweep may refuse them (TooManyPairs)
@@ -522,30 +525,18 @@ class Scene:
                 and not (cores[a] and cores[b]
                          and _capsules_clear(C[a], rot[a], cores[a], C[b], rot[b], cores[b], min_depth))]
 
-    def _sphere_overlaps(self, pairs, min_depth: float):
-        """overlaps()'s result for ``pairs`` of _lean_near's places when every one is two spheres
-        (a collision model of spheres: Franka's, PAL's fingers), in pure Python: coal's own closed
-        form (depth r_a + r_b - d, the point on the line of centres halfway into the overlap), from
-        poses within rounding of its own; None when some pair is not two spheres, or two spheres
-        that touch to the last bits (coal's call)."""
+    def _pure_overlaps(self, pairs, min_depth: float):
+        """overlaps()'s result for ``pairs`` of _lean_near's places, every one settled in closed form
+        (model/penetration.py); None when some pair has none (two cylinders at an angle): then coal."""
         shapes = self._lean_shapes
         out = []
         for a, b in pairs:
-            (la, ia, ca, ra), (lb, ib, cb, rb) = shapes[a], shapes[b]
-            if ia.geometry.kind != "sphere" or ib.geometry.kind != "sphere":
+            (la, ia, sa), (lb, ib, sb) = shapes[a], shapes[b]
+            got = penetration(sa, sb)
+            if got is NotImplemented:
                 return None
-            n = (cb[0] - ca[0], cb[1] - ca[1], cb[2] - ca[2])
-            d = math.sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2])
-            if d < 1e-9 * (1.0 + ra + rb):
-                return None                  # concentric: no line of centres, coal picks a direction
-            depth = ra + rb - d
-            if abs(depth) <= 1e-12 * (ra + rb):
-                return None                  # touching to the last bits: coal's call
-            if depth <= min_depth or depth < 0:
-                continue                     # apart: coal reports no contact, whatever depth is asked
-            k = (ra - depth / 2) / d
-            out.append(self._overlap(la, lb, ia, ib, depth, (ca[0] + n[0] * k, ca[1] + n[1] * k, ca[2] + n[2] * k),
-                                     False))
+            if got is not None and got.depth > min_depth:
+                out.append(self._overlap(la, lb, ia, ib, got.depth, got.point, False))
         out.sort(key=_deepest_first)
         return out
 
@@ -571,14 +562,15 @@ class Scene:
     def overlaps(self, q: dict | None = None, world=None, min_depth: float = TOUCH) -> list[Overlap]:
         """Every overlap deeper than ``min_depth`` at configuration ``q`` (joints not named at 0;
         or the link poses ``world``), deepest first; one per pair of shapes. Only shapes whose
-        bounding spheres meet are given to coal (a hull is made the first time a shape is)."""
+        bounding spheres and boxes meet are tested: primitives in closed form, the rest by coal (a
+        hull is made the first time a shape is)."""
         screened = self._lean_near(q, min_depth) if world is None else None
         if screened == []:
             return []                    # no pair comes near: neither numpy nor coal is needed
         if screened is not None:
-            spheres = self._sphere_overlaps(screened, min_depth)
-            if spheres is not None:
-                return spheres
+            pure = self._pure_overlaps(screened, min_depth)
+            if pure is not None:
+                return pure
         import numpy as np
 
         world = world if world is not None else world_transforms(self.robot, q)
@@ -594,30 +586,65 @@ class Scene:
         near = self._near(np, items, min_depth, None if screened is None else set(screened), spheres)
         if not near:
             return []
-        import coal                      # only when two bounding boxes overlap: a clean robot never pays for it
-
-        req = coal.CollisionRequest()
-        req.enable_contact = True
-        req.num_max_contacts = 1
+        coal = req = None
         out = []
         for a, b in near:
             ia, ib = items[a], items[b]
-            sa, sb = self._shape(coal, np, ia), self._shape(coal, np, ib)
-            if sa is None or sb is None:
+            got = self._solid_contact(ia, ib)
+            if got is NotImplemented:
+                if coal is None:
+                    import coal          # only for a pair no closed form settles: most robots never pay for it
+
+                    req = coal.CollisionRequest()
+                    req.enable_contact = True
+                    req.num_max_contacts = 1
+                got = self._coal_contact(coal, np, req, ia, ib)
+            if got is None or got[0] <= min_depth:
                 continue
-            res = coal.CollisionResult()
-            if not coal.collide(sa, _tf(coal, ia.T), sb, _tf(coal, ib.T), req, res):
-                continue
-            c = res.getContact(0)
-            depth = abs(float(c.penetration_depth))
-            if depth <= min_depth:
-                continue
-            hull_only = False
-            if ia.mesh is not None or ib.mesh is not None:
-                hull_only = not self._triangles_touch(coal, np, ia._replace(shape=sa), ib._replace(shape=sb))
-            out.append(self._overlap(ia.link, ib.link, ia.collision, ib.collision, depth, c.pos, hull_only))
+            depth, point, hull_only = got
+            out.append(self._overlap(ia.link, ib.link, ia.collision, ib.collision, depth, point, hull_only))
         out.sort(key=_deepest_first)
         return out
+
+    def _solid_contact(self, ia, ib):
+        """(depth, point, False) of two placed primitives in closed form, None when they do not
+        overlap, NotImplemented when a mesh is one of them or the pair has no closed form."""
+        sa, sb = self._solid(ia), self._solid(ib)
+        if sa is None or sb is None:
+            return NotImplemented
+        got = penetration(sa, sb)
+        if got is NotImplemented or got is None:
+            return got
+        return got.depth, got.point, False
+
+    def _solid(self, item):
+        """The penetration.Solid of a placed primitive, None for a mesh or a size that is not three numbers."""
+        if item.mesh is not None:
+            return None
+        g = item.collision.geometry
+        key = id(item.collision)
+        h = self._halves.get(key, 0)
+        if h == 0:
+            h = self._halves[key] = _half_extents(g)
+        if not h:
+            return None
+        T = item.T.tolist()
+        return Solid(g.kind, h, tuple(tuple(row[:3]) for row in T[:3]), (T[0][3], T[1][3], T[2][3]))
+
+    def _coal_contact(self, coal, np, req, ia, ib):
+        """(depth, point, hull_only) of two placed shapes by coal (hull against hull for meshes,
+        then their triangles), None when they do not overlap."""
+        sa, sb = self._shape(coal, np, ia), self._shape(coal, np, ib)
+        if sa is None or sb is None:
+            return None
+        res = coal.CollisionResult()
+        if not coal.collide(sa, _tf(coal, ia.T), sb, _tf(coal, ib.T), req, res):
+            return None
+        c = res.getContact(0)
+        hull_only = False
+        if ia.mesh is not None or ib.mesh is not None:
+            hull_only = not self._triangles_touch(coal, np, ia._replace(shape=sa), ib._replace(shape=sb))
+        return abs(float(c.penetration_depth)), c.pos, hull_only
 
     def _triangles_touch(self, coal, np, ia, ib) -> bool:
         """Do the shapes themselves touch: a mesh's triangles against the other (a primitive is

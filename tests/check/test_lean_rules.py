@@ -141,6 +141,22 @@ def test_a_collision_model_of_spheres_needs_neither_numpy_nor_coal():
     assert "overlaps fr3_link1_sc by 34.0 mm" in out and "overlaps fr3_link3_sc by 3.1 mm" in out
 
 
+@pytest.mark.parametrize("name, overlap", [
+    # a sphere into a cylinder, and two parallel cylinders, of Franka's *_sc links
+    ("panda", "panda_link7_sc overlaps panda_link5_sc by 6.1 mm"),
+    # the caster wheel (rpy 1.5707: within SNAP of parallel) into the base box
+    ("pioneer3dx", "center_wheel overlaps base_link by 13.5 mm"),
+    # finger boxes inside the hand's safety box
+    ("tiago", "hand_safety_box overlaps hand_thumb_virtual_1_link by 58.9 mm"),
+])
+def test_primitives_that_overlap_need_neither_numpy_nor_coal(name, overlap):
+    """Real overlaps of boxes, spheres and cylinders are measured in closed form (model/penetration.py)."""
+    entry = corpus_robot(name)
+    mods, out, _ = imported(corpus_args(entry), corpus_env(entry), None)
+    assert not {"numpy", "coal"} & mods, out
+    assert overlap in out, out
+
+
 def test_the_whole_check_of_create_2_imports_no_numpy():
     """I007 measures every link of primitives in pure Python, rotated shapes too (Create 2's wheels:
     cylinders and a sphere turned by rpy 0 π/2 π/2)."""

@@ -207,9 +207,19 @@ def _close(a, b) -> bool:
             and all(abs(x - y) < 1e-12 for x, y in zip(a.point, b.point)))
 
 
+def _by_coal(robot, md, monkeypatch) -> list:
+    """Scene.overlaps at the rest pose with every pair given to coal (no screen, no closed form)."""
+    monkeypatch.setattr(col, "LEAN_MOST", 0)
+    monkeypatch.setattr(col, "penetration", lambda a, b: NotImplemented)
+    got = col.Scene(robot, False).overlaps(robot.rest_pose(), min_depth=md)
+    monkeypatch.undo()
+    return got
+
+
 def test_sphere_models_overlap_as_coal_says(tmp_path, monkeypatch):
     """A collision model of spheres (Franka's *_sc links, random chains of balls): the pure overlaps
-    (Scene._sphere_overlaps) are coal's, pair for pair, depth and point within rounding."""
+    (Scene._pure_overlaps, sphere against sphere in closed form) are coal's, pair for pair, depth and
+    point within rounding."""
     pytest.importorskip("coal")
     from helpers import corpus_model, corpus_robot
 
@@ -233,6 +243,8 @@ def test_sphere_models_overlap_as_coal_says(tmp_path, monkeypatch):
     for r in robots:
         for md in DEPTHS:
             lean, plain = _with_and_without_screen(r, md, monkeypatch)
-            assert len(lean) == len(plain) and all(map(_close, lean, plain)), (r.name, md)
+            coal_says = _by_coal(r, md, monkeypatch)
+            assert len(lean) == len(plain) == len(coal_says), (r.name, md)
+            assert all(map(_close, lean, plain)) and all(map(_close, lean, coal_says)), (r.name, md)
             found += len(lean)
     assert found > 50

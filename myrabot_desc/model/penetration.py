@@ -22,8 +22,9 @@ An axis counts as parallel when snapping it moves no point of the shape by more 
 The point: each shape's deepest feature along the direction (a vertex, an edge, a face, a disc, a
 rim line), then the closest points of the two, by alternating projections from the centre of the
 smaller feature; the point is halfway between them. A vertex against a face or two crossing edges
-give the one contact point; faces against faces give a point of the patch near the smaller face's
-centre.
+give the one contact point; a small face inside a large one its centre; features that overlap in
+part (a disc over a box's edge, parallel lines) the middle of the overlap along the way from the
+smaller one's centre.
 """
 
 from __future__ import annotations
@@ -90,14 +91,17 @@ def _axis(R, j):
 
 
 def _to_local(s: Solid, x):
-    d = _sub(x, s.c)
+    return _to_local_dir(s, _sub(x, s.c))
+
+
+def _to_local_dir(s: Solid, v):
     R = s.R
-    return tuple(R[0][j] * d[0] + R[1][j] * d[1] + R[2][j] * d[2] for j in range(3))
+    return tuple(R[0][j] * v[0] + R[1][j] * v[1] + R[2][j] * v[2] for j in range(3))
 
 
 def _to_world(s: Solid, p):
-    R, c = s.R, s.c
-    return tuple(R[i][0] * p[0] + R[i][1] * p[1] + R[i][2] * p[2] + c[i] for i in range(3))
+    v, c = _to_world_dir(s, p), s.c
+    return (v[0] + c[0], v[1] + c[1], v[2] + c[2])
 
 
 def _to_world_dir(s: Solid, v):
@@ -266,7 +270,7 @@ class _Feature:
 
     def __init__(self, s: Solid, n):
         self.s = s
-        m = _to_local(s, _add_c(s, n))          # n in s's frame
+        m = _to_local_dir(s, n)
         h = s.half
         if s.kind == "box":
             self.fixed = [_sign(m[j]) * h[j] if abs(m[j]) * h[j] > SNAP else None for j in range(3)]
@@ -302,23 +306,47 @@ class _Feature:
             p = [f[j] if f[j] is not None else min(max(p[j], -h[j]), h[j]) for j in range(3)]
         return _to_world(s, p)
 
-
-def _add_c(s: Solid, v):
-    """The point s.c + v: _to_local of it is v in s's frame."""
-    return (s.c[0] + v[0], s.c[1] + v[1], s.c[2] + v[2])
+    def farthest(self, d):
+        """The feature's point furthest along the direction d."""
+        s, f = self.s, self.fixed
+        m = _to_local_dir(s, d)
+        h = s.half
+        if s.kind == "cylinder":
+            rim = self.rim
+            if rim is None:
+                rho = math.hypot(m[0], m[1])
+                rim = (m[0] / rho * h[0], m[1] / rho * h[0]) if rho > 0 else (0.0, 0.0)
+            return _to_world(s, (rim[0], rim[1], f[2] if f[2] is not None else _sign(m[2]) * h[2]))
+        return _to_world(s, [f[j] if f[j] is not None else _sign(m[j]) * h[j] if m[j] else 0.0 for j in range(3)])
 
 
 def _contact_point(a: Solid, b: Solid, n):
-    """Halfway between the closest points of a's deepest feature along n and b's along -n."""
+    """Halfway between the closest points of a's deepest feature along n and b's along -n: from the
+    smaller feature's centre, and where the two meet over a patch (faces, parallel lines), moved to
+    the middle of the patch along the way the centre had to go."""
     fa, fb = _Feature(a, n), _Feature(b, _neg(n))
     small, other = (fa, fb) if fa.size < fb.size else (fb, fa)
-    x = small.centre()
     scale = 1e-12 * (1.0 + max(map(abs, a.c)) + max(map(abs, b.c)) + max(a.half) + max(b.half))
+    c = small.centre()
+    x, y = _closest(small, other, c, scale)
+    d = _sub(x, c)
+    if _norm(d) > scale:
+        # the centre lies off the other feature: the far side of the patch along d is the small
+        # feature's furthest point that way, as far as the other reaches; halfway between is a
+        # closest pair too unless the two meet at a point only (crossing edges)
+        x2, y2 = _closest(small, other, _mid(x, other.project(small.farthest(d))), scale)
+        if _norm(_sub(x2, y2)) <= _norm(_sub(x, y)) + 1e3 * scale:
+            x, y = x2, y2
+    return _mid(x, y)
+
+
+def _closest(small: _Feature, other: _Feature, x, scale):
+    """A closest pair of points of the two features, by alternating projections from x."""
+    x = small.project(x)
     for _ in range(_ROUNDS):
-        y = other.project(x)
-        x2 = small.project(y)
+        x2 = small.project(other.project(x))
         moved = _norm(_sub(x2, x))
         x = x2
         if moved <= scale:
             break
-    return _mid(x, other.project(x))
+    return x, other.project(x)

@@ -201,3 +201,30 @@ def test_apart_and_touching_give_none():
             assert penetration(a, Solid(other, (0.1, 0.1, 0.1), eye, (0.0, 0.0, 0.25))) is None      # apart
             got = penetration(a, Solid(other, (0.1, 0.1, 0.1), eye, (0.19, 0.0, 0.0)))
             assert got.depth == pytest.approx(0.01) and got.normal == pytest.approx((1.0, 0.0, 0.0))
+
+
+def test_the_point_is_the_middle_of_a_partial_patch():
+    eye = ((1.0, 0, 0), (0, 1.0, 0), (0, 0, 1.0))
+    # a rotor disc (axis y) pushed 13 mm into a trunk's side, its centre 22 mm beyond the trunk's end:
+    # the patch runs from the disc's near edge to the end of the trunk, x 0.2955 .. 0.3235
+    trunk = Solid("box", (0.3235, 0.15, 0.075), eye, (0.0, 0.0, 0.0))
+    rotor = Solid("cylinder", (0.05, 0.05, 0.01), ((1.0, 0, 0), (0, 0, -1.0), (0, 1.0, 0)), (0.3455, 0.147, 0.0))
+    got = penetration(trunk, rotor)
+    assert got.depth == pytest.approx(0.013) and got.normal == pytest.approx((0.0, 1.0, 0.0))
+    assert got.point == pytest.approx(((0.2955 + 0.3235) / 2, 0.15 - 0.013 / 2, 0.0))
+    # two parallel rods side by side, overlapping along z from 0.1 to 0.3: the middle, 0.2
+    rod = Solid("cylinder", (0.02, 0.02, 0.2), eye, (0.0, 0.0, 0.0))
+    other = Solid("cylinder", (0.03, 0.03, 0.1), eye, (0.045, 0.0, 0.2))
+    got = penetration(rod, other)
+    assert got.depth == pytest.approx(0.005)
+    assert got.point == pytest.approx((0.02 - 0.0025, 0.0, 0.2))
+    # two boxes' edges crossing: the one point where they meet
+    c, s = math.cos(math.pi / 4), math.sin(math.pi / 4)
+    turned = ((1.0, 0, 0), (0, c, -s), (0, s, c))          # about x: an edge along x faces -y and -z
+    tilt = ((c, 0, s), (0, 1.0, 0), (-s, 0, c))            # about y: an edge along y faces +x and +z
+    a = Solid("box", (0.1, 0.1, 0.1), tilt, (0.0, 0.0, 0.0))
+    b = Solid("box", (0.1, 0.1, 0.1), turned, (0.0, 0.0, 0.1 * math.sqrt(2) * 2 - 0.01))
+    got = penetration(a, b)
+    assert got.depth == pytest.approx(0.01) and got.normal == pytest.approx((0.0, 0.0, 1.0))
+    top = 0.1 * math.sqrt(2)
+    assert got.point == pytest.approx((0.0, 0.0, top - 0.005))

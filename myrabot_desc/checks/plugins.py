@@ -754,7 +754,7 @@ def material_resolves(ctx):
 
     missing: dict[str, list] = {}
     for g, name in names:
-        if res.lookup(name) is None:
+        if name in missing or not res.defines(name):
             missing.setdefault(name, []).append(g)
     for name, blocks in missing.items():
         links = sorted({g.reference or "the model" for g in blocks})

@@ -26,7 +26,7 @@ from pathlib import Path
 from myrabot_desc.errors import InputError
 from myrabot_desc.materials import ogre
 from myrabot_desc.materials.stock import names as stock_names
-from myrabot_desc.materials.stock import stock_material
+from myrabot_desc.materials.stock import is_stock, stock_material
 from myrabot_desc.records import Struct
 
 RGBA = tuple[float, float, float, float]
@@ -138,6 +138,11 @@ class MaterialResolver:
     def material(self, name: str) -> ogre.Material | None:
         """The parsed material ``name`` from the scripts, else from the stock table, else None."""
         return self._load().get(name) or stock_material(name)
+
+    def defines(self, name: str) -> bool:
+        """Whether a script or the stock table has ``name``: lookup's test without its values and
+        texture files."""
+        return name in self._load() or is_stock(name)
 
     def lookup(self, name: str) -> ResolvedMaterial | None:
         """Explicit values for ``name``, or None when no script nor the stock table has it."""

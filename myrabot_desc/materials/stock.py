@@ -199,6 +199,10 @@ def names() -> list[str]:
 
 
 @lru_cache(maxsize=None)
+def is_stock(name: str) -> bool:
+    return name in STOCK_SOURCE
+
+
 def stock_material(name: str) -> Material | None:
     """The stock material ``name`` (parents applied), or None when it is not a stock name."""
 

@@ -198,11 +198,11 @@ def names() -> list[str]:
     return list(STOCK_SOURCE)
 
 
-@lru_cache(maxsize=None)
 def is_stock(name: str) -> bool:
     return name in STOCK_SOURCE
 
 
+@lru_cache(maxsize=None)
 def stock_material(name: str) -> Material | None:
     """The stock material ``name`` (parents applied), or None when it is not a stock name."""
 

@@ -16,8 +16,9 @@ here where a GJK/EPA solver (coal) approximates it with polytopes to a tolerance
 - Other pairs (two cylinders at an angle, a cylinder at an angle to a box) curve in two directions
   at once and have no closed form: ``penetration`` says NotImplemented and the caller asks coal.
 
-An axis counts as parallel when snapping it moves no point of the shape by more than SNAP
-(rpy of 1.5707 instead of pi/2 leaves 3e-5 rad; the depth moves by at most the points' move).
+An axis counts as parallel when snapping it moves no point of the shape by more than SNAP (the
+depth moves by at most that): the Pioneer 3-DX's caster, turned by rpy -3.1415927/2, is 2.7e-8 rad
+off, 1e-9 m on its 4 cm wheel; rpy 1.5707 (1e-4 rad) is not parallel and goes to coal.
 
 The point: each shape's deepest feature along the direction (a vertex, an edge, a face, a disc, a
 rim line), then the closest points of the two, by alternating projections from the centre of the
@@ -53,6 +54,8 @@ class Contact(Struct):
 def penetration(a: Solid, b: Solid):
     """The Contact of two solids that overlap, None when they are apart or only touch, NotImplemented
     for a pair with no closed form here (the caller asks coal)."""
+    if not (_finite(a) and _finite(b)):
+        return NotImplemented                # no closed form of a pose or size that is not a number
     order = _ORDER.get(a.kind, 9), _ORDER.get(b.kind, 9)
     if order[0] > order[1]:
         got = penetration(b, a)
@@ -64,6 +67,10 @@ def penetration(a: Solid, b: Solid):
 
 
 # -- small vector helpers (3-tuples, rotations as rows) --------------------------------------
+
+def _finite(s: Solid) -> bool:
+    return math.isfinite(sum(s.c) + sum(s.half) + sum(map(sum, s.R)))
+
 
 def _sub(p, q):
     return (p[0] - q[0], p[1] - q[1], p[2] - q[2])

@@ -228,3 +228,11 @@ def test_the_point_is_the_middle_of_a_partial_patch():
     assert got.depth == pytest.approx(0.01) and got.normal == pytest.approx((0.0, 0.0, 1.0))
     top = 0.1 * math.sqrt(2)
     assert got.point == pytest.approx((0.0, 0.0, top - 0.005))
+
+
+def test_a_pose_that_is_not_a_number_is_left_to_coal():
+    eye = ((1.0, 0, 0), (0, 1.0, 0), (0, 0, 1.0))
+    for kind in KINDS:
+        a = Solid(kind, (0.1, 0.1, 0.1), eye, (0.0, 0.0, 0.0))
+        assert penetration(a, Solid("box", (0.1, 0.1, 0.1), eye, (math.nan, 0.0, 0.0))) is NotImplemented
+        assert penetration(Solid(kind, (math.inf, 0.1, 0.1), eye, (0.0, 0.0, 0.0)), a) is NotImplemented

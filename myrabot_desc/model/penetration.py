@@ -329,8 +329,8 @@ class _Feature:
 
 def _contact_point(a: Solid, b: Solid, n):
     """Halfway between the closest points of a's deepest feature along n and b's along -n: from the
-    smaller feature's centre, and where the two meet over a patch (faces, parallel lines), moved to
-    the middle of the patch along the way the centre had to go."""
+    smaller feature's centre, and where the two meet over a patch (faces, parallel lines) that the
+    centre lies off, the middle of the patch along the way the centre had to go."""
     fa, fb = _Feature(a, n), _Feature(b, _neg(n))
     small, other = (fa, fb) if fa.size < fb.size else (fb, fa)
     scale = 1e-12 * (1.0 + max(map(abs, a.c)) + max(map(abs, b.c)) + max(a.half) + max(b.half))
@@ -339,11 +339,10 @@ def _contact_point(a: Solid, b: Solid, n):
     d = _sub(x, c)
     if _norm(d) > scale:
         # the centre lies off the other feature: the far side of the patch along d is the small
-        # feature's furthest point that way, as far as the other reaches; halfway between is a
-        # closest pair too unless the two meet at a point only (crossing edges)
-        x2, y2 = _closest(small, other, _mid(x, other.project(small.farthest(d))), scale)
-        if _norm(_sub(x2, y2)) <= _norm(_sub(x, y)) + 1e3 * scale:
-            x, y = x2, y2
+        # feature's furthest point that way, as far as the other reaches, and alternating from
+        # halfway between finds the closest pair there (features that meet at one point only,
+        # crossing edges, give that point from any start)
+        x, y = _closest(small, other, _mid(x, other.project(small.farthest(d))), scale)
     return _mid(x, y)
 
 

@@ -218,12 +218,13 @@ def test_the_point_is_the_middle_of_a_partial_patch():
     got = penetration(rod, other)
     assert got.depth == pytest.approx(0.005)
     assert got.point == pytest.approx((0.02 - 0.0025, 0.0, 0.2))
-    # two boxes' edges crossing: the one point where they meet
+    # two boxes' edges crossing, neither at its middle: the one point where they meet
     c, s = math.cos(math.pi / 4), math.sin(math.pi / 4)
     turned = ((1.0, 0, 0), (0, c, -s), (0, s, c))          # about x: an edge along x faces -y and -z
     tilt = ((c, 0, s), (0, 1.0, 0), (-s, 0, c))            # about y: an edge along y faces +x and +z
     a = Solid("box", (0.1, 0.1, 0.1), tilt, (0.0, 0.0, 0.0))
-    b = Solid("box", (0.1, 0.1, 0.1), turned, (0.0, 0.0, 0.1 * math.sqrt(2) * 2 - 0.01))
+    b = Solid("box", (0.1, 0.1, 0.1), turned, (0.03, 0.0, 0.1 * math.sqrt(2) * 2 - 0.01))
+    a = a._replace(c=(0.0, -0.04, 0.0))
     got = penetration(a, b)
     assert got.depth == pytest.approx(0.01) and got.normal == pytest.approx((0.0, 0.0, 1.0))
     top = 0.1 * math.sqrt(2)

@@ -392,7 +392,7 @@ class Scene:
         self._shapes: dict = {}          # id(collision) -> coal shape
         self._local: dict = {}           # id(collision) -> bounding box in its own frame
         self._by_geometry: dict = {}     # (kind, primitive geometry) -> (its bounding box,)
-        self._halves: dict = {}          # id(collision) -> _half_extents (the pure screen's)
+        self._halves: dict = {}          # id(collision) -> _half_extents (_half)
         self._lean_shapes: list = []     # the pure screen's last places
 
     @functools.cached_property
@@ -494,15 +494,11 @@ class Scene:
         poses = poses_at(robot, q or {})[0]
         if poses is None:
             return None
-        halves = self._halves
         body_of = self.body_of
         bodies, C, R, H, rot, cores = [], [], [], [], [], []
         self._lean_shapes = shapes = []      # (link, collision, Solid) by place: for _pure_overlaps
         for link, it, _ in collision_shapes(robot, poses, None):
-            key = id(it)
-            h = halves.get(key, 0)
-            if h == 0:
-                h = halves[key] = _half_extents(it.geometry)
+            h = self._half(it)
             if h is None:
                 continue
             if h is False:
@@ -621,15 +617,20 @@ class Scene:
         """The penetration.Solid of a placed primitive, None for a mesh or a size that is not three numbers."""
         if item.mesh is not None:
             return None
-        g = item.collision.geometry
-        key = id(item.collision)
-        h = self._halves.get(key, 0)
-        if h == 0:
-            h = self._halves[key] = _half_extents(g)
+        h = self._half(item.collision)
         if not h:
             return None
         T = item.T.tolist()
-        return Solid(g.kind, h, tuple(tuple(row[:3]) for row in T[:3]), (T[0][3], T[1][3], T[2][3]))
+        R = tuple(tuple(row[:3]) for row in T[:3])
+        return Solid(item.collision.geometry.kind, h, R, (T[0][3], T[1][3], T[2][3]))
+
+    def _half(self, collision):
+        """_half_extents of a collision's geometry, made once per collision."""
+        key = id(collision)
+        h = self._halves.get(key, 0)
+        if h == 0:
+            h = self._halves[key] = _half_extents(collision.geometry)
+        return h
 
     def _coal_contact(self, coal, np, req, ia, ib):
         """(depth, point, hull_only) of two placed shapes by coal (hull against hull for meshes,

@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import math
 
+from myrabot_desc.model.transforms import rotate
 from myrabot_desc.records import Struct
 
 SNAP = 1e-8          # m: an axis that snapping moves no point of the shape by more than this is parallel
@@ -107,13 +108,8 @@ def _to_local_dir(s: Solid, v):
 
 
 def _to_world(s: Solid, p):
-    v, c = _to_world_dir(s, p), s.c
+    v, c = rotate(s.R, p), s.c
     return (v[0] + c[0], v[1] + c[1], v[2] + c[2])
-
-
-def _to_world_dir(s: Solid, v):
-    R = s.R
-    return tuple(R[i][0] * v[0] + R[i][1] * v[1] + R[i][2] * v[2] for i in range(3))
 
 
 def _sign(x: float) -> float:
@@ -180,7 +176,7 @@ def _sphere_shape(a: Solid, b: Solid):
     depth = r + v
     if depth <= 0:
         return None
-    u = _to_world_dir(b, u)                  # from the shape towards the sphere's centre
+    u = rotate(b.R, u)                  # from the shape towards the sphere's centre
     on_b = _to_world(b, q)
     on_a = (a.c[0] - u[0] * r, a.c[1] - u[1] * r, a.c[2] - u[2] * r)
     return Contact(depth, _mid(on_a, on_b), _neg(u))
@@ -210,10 +206,10 @@ def _box_box(a: Solid, b: Solid):
     return Contact(best, _contact_point(a, b, best_n), best_n)
 
 
-def _snapped(axis, to, size):
-    """+1 or -1 when ``axis`` is parallel to ``to`` within SNAP for a shape of that size, else 0."""
+def _parallel(axis, to, size) -> bool:
+    """``axis`` is parallel to ``to`` (either way) within SNAP for a shape of that size."""
     s = _sign(_dot(axis, to))
-    return s if _norm((axis[0] - s * to[0], axis[1] - s * to[1], axis[2] - s * to[2])) * size <= SNAP else 0
+    return _norm((axis[0] - s * to[0], axis[1] - s * to[1], axis[2] - s * to[2])) * size <= SNAP
 
 
 def _box_cylinder(a: Solid, b: Solid):
@@ -222,7 +218,7 @@ def _box_cylinder(a: Solid, b: Solid):
     r, L = b.half[0], b.half[2]
     axis = _axis(b.R, 2)
     size = math.hypot(r, L)
-    k = next((j for j in range(3) if _snapped(axis, _axis(a.R, j), size)), None)
+    k = next((j for j in range(3) if _parallel(axis, _axis(a.R, j), size)), None)
     if k is None:
         return NotImplemented
     i, j = [x for x in range(3) if x != k]
@@ -232,21 +228,19 @@ def _box_cylinder(a: Solid, b: Solid):
     across, along = r + v, L + h[k] - abs(p[k])
     if min(across, along) <= 0:
         return None
-    if across <= along:
-        n = [0.0, 0.0, 0.0]
-        n[i], n[j] = u                       # the box's outward direction towards the cylinder's axis
-        n = _to_world_dir(a, n)
-        return Contact(across, _contact_point(a, b, n), n)
     n = [0.0, 0.0, 0.0]
-    n[k] = _sign(p[k])
-    n = _to_world_dir(a, n)
-    return Contact(along, _contact_point(a, b, n), n)
+    if across <= along:
+        n[i], n[j] = u                       # the box's outward direction towards the cylinder's axis
+    else:
+        n[k] = _sign(p[k])
+    n = rotate(a.R, n)
+    return Contact(min(across, along), _contact_point(a, b, n), n)
 
 
 def _cylinder_cylinder(a: Solid, b: Solid):
     """Two parallel cylinders: in a's frame, the two discs across and the two intervals along."""
     ra, La, rb, Lb = a.half[0], a.half[2], b.half[0], b.half[2]
-    if not _snapped(_axis(b.R, 2), _axis(a.R, 2), math.hypot(rb, Lb)):
+    if not _parallel(_axis(b.R, 2), _axis(a.R, 2), math.hypot(rb, Lb)):
         return NotImplemented
     p = _to_local(a, b.c)
     rho = math.hypot(p[0], p[1])
@@ -255,12 +249,10 @@ def _cylinder_cylinder(a: Solid, b: Solid):
         return None
     if across <= along:
         n = (p[0] / rho, p[1] / rho, 0.0) if rho > 0 else (1.0, 0.0, 0.0)
-        depth = across
     else:
         n = (0.0, 0.0, _sign(p[2]))
-        depth = along
-    n = _to_world_dir(a, n)
-    return Contact(depth, _contact_point(a, b, n), n)
+    n = rotate(a.R, n)
+    return Contact(min(across, along), _contact_point(a, b, n), n)
 
 
 _ORDER = {"sphere": 0, "box": 1, "cylinder": 2}

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 from myrabot_desc.checks.rule import Finding, FixInfo, rule
 from myrabot_desc.model.collisions import Scene, TooManyPairs
-from myrabot_desc.model.srdf import load_srdf
 
 _ARM = """<link name="body">
   <collision><geometry><box size="0.2 0.2 0.4"/></geometry></collision>
@@ -50,7 +49,12 @@ def srdf_of(ctx):
     """The SRDF given with --srdf (read once per check), or None."""
     got = ctx.__dict__.get("_srdf", False)
     if got is False:
-        got = ctx.__dict__["_srdf"] = load_srdf(ctx.opts.srdf) if getattr(ctx.opts, "srdf", None) else None
+        got = None
+        if getattr(ctx.opts, "srdf", None):
+            from myrabot_desc.model.srdf import load_srdf     # (its reader only for --srdf)
+
+            got = load_srdf(ctx.opts.srdf)
+        ctx.__dict__["_srdf"] = got
     return got
 
 

@@ -55,7 +55,13 @@ def support(ctx):
     use), or None without collision geometry or mass."""
 
     return ctx.fact("support", lambda: stance(ctx.robot, meshes=ctx.mesh if ctx.opts.load_meshes else False,
-                                              world=ctx.poses), meshes=True)
+                                              world=ctx.poses, low=_lowest(ctx)), meshes=True)
+
+
+def _lowest(ctx):
+    """model/support.lowest at q = 0: each collision shape's lowest points (P001's support, P002)."""
+    return ctx.fact("lowest", lambda: lowest(ctx.robot, ctx.poses, ctx.mesh if ctx.opts.load_meshes else False),
+                    meshes=True)
 
 
 @rule("P001", "static-support", "error",
@@ -224,8 +230,7 @@ def spawn_penetration(ctx):
     if not ctx.tree_ok or not D.is_mobile(ctx.robot):
         return
 
-    below = [(z, name) for z, _, name in lowest(ctx.robot, ctx.poses, ctx.mesh if ctx.opts.load_meshes else False)
-             if z < -SPAWN_TOL]
+    below = [(z, name) for z, _, name in _lowest(ctx) if z < -SPAWN_TOL]
     if below:
         below.sort()
         depth = -below[0][0]

@@ -15,7 +15,6 @@ from pathlib import Path
 from myrabot_desc.checks import CheckOptions, cache, check_robot
 from myrabot_desc.checks.codes import known_codes, split_codes, unknown_code_message
 from myrabot_desc.checks.config import Finder
-from myrabot_desc.checks.gitignore import not_ignored
 from myrabot_desc.checks.registry import load_all
 from myrabot_desc.checks.report import FileResult
 from myrabot_desc.diagnostics import Loc
@@ -25,7 +24,6 @@ from myrabot_desc.expand.packages import resolve_resource_uri
 from myrabot_desc.model.loader import is_xacro, load_robot
 from myrabot_desc.records import Struct
 from myrabot_desc.safety import LIMIT_ENV, SKIP_DIRS, included_names, walk_models
-from myrabot_desc.vcs import changed_files, repo_top
 
 MODEL_SUFFIXES = (".urdf", ".xacro")
 
@@ -47,6 +45,8 @@ def expand_inputs(files: list[str], recursive: bool = False) -> list[str]:
         # the walk checks every file against the folder (no symlink out, no FIFO or device) and is
         # bounded; the include scan is linear (model files are untrusted)
         found = sorted(walk_models(p, recursive, MODEL_SUFFIXES, SKIP_DIRS))
+        from myrabot_desc.checks.gitignore import not_ignored     # a folder's walk only (it loads git's helpers)
+
         models = not_ignored(found, p)
         included = set()
         for c in models:
@@ -314,6 +314,8 @@ def changed_since(tasks: list, rev: str) -> tuple[list, int]:
     """(the tasks whose model reads a file that changed since git revision ``rev``, how many were left
     out). Files changed: committed since ``rev``, staged, unstaged or untracked (not ignored); a
     model outside any repository is kept."""
+    from myrabot_desc.vcs import changed_files, repo_top     # --changed-since only
+
     changed: dict = {}
     kept = []
     for t in tasks:

@@ -15,7 +15,6 @@ import sys
 from pathlib import Path
 
 from myrabot_desc import __version__
-from myrabot_desc.checks import baseline as baselines
 from myrabot_desc.checks.report import merge_sarif_files, render, rule_table
 from myrabot_desc.checks.run import changed_since, default_jobs, exit_code, plan, run_tasks
 from myrabot_desc.checks.suppress import unused_findings
@@ -114,6 +113,8 @@ def run_check(inputs, inertia=False, suggest=False, meshes=False, srdf=None, fmt
 def _baseline(results, path, update: bool, quiet: bool) -> None:
     """Record the findings in the baseline ``path`` (missing, or --update-baseline), else drop the
     ones it holds from ``results``."""
+    import myrabot_desc.checks.baseline as baselines     # --baseline only
+
     if update or not Path(path).exists():
         n = baselines.record(results, path)
         if not quiet:

@@ -28,7 +28,6 @@ from myrabot_desc.model import values as V
 from myrabot_desc.model.nodes import Node
 from myrabot_desc.model.nodes import node as node_of
 from myrabot_desc.model.pin_model import build_model
-from myrabot_desc.model.sources import Sources
 from myrabot_desc.model.tree import maps
 from myrabot_desc.records import Struct
 from myrabot_desc.safety import parse_xml_bytes
@@ -524,6 +523,8 @@ class Robot:
     @property
     def sources(self):
         """Where each value was written (model/sources.Sources): ``robot.sources.origin(part.ref, attr)``."""
+        from myrabot_desc.model.sources import Sources     # spans are read for a fix or a diff only
+
         def build():
             plain = None
             if self.source_map is None and self.source_bytes is not None:

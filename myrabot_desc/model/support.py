@@ -127,14 +127,16 @@ def lowest(robot, world, meshes=True):
     return out
 
 
-def ground_support(robot, q: dict | None = None, meshes=True, world=None) -> Support | None:
+def ground_support(robot, q: dict | None = None, meshes=True, world=None, low=None) -> Support | None:
     """The ground contacts and support polygon at configuration ``q`` (joints not named at 0) with
     the robot resting on its lowest collision point; None when no collision shape can be placed.
 
     ``meshes``: read mesh collisions (True), skip them (False), or a callable geometry -> loaded
-    mesh (check passes its per-run cache). ``world``: the link poses when the caller has them."""
+    mesh (check passes its per-run cache). ``world``: the link poses when the caller has them;
+    ``low``: ``lowest`` of those poses, when the caller has that too."""
 
-    low = lowest(robot, world if world is not None else world_transforms(robot, q), meshes)
+    if low is None:
+        low = lowest(robot, world if world is not None else world_transforms(robot, q), meshes)
     if not low:
         return None
     zmin, _, lowest_link = min(low, key=lambda t: t[0])
@@ -147,11 +149,11 @@ def ground_support(robot, q: dict | None = None, meshes=True, world=None) -> Sup
     return Support(ground_z=float(zmin), contacts=contacts, polygon=hull, lowest=lowest_link)
 
 
-def stance(robot, q: dict | None = None, meshes=True, world=None) -> Support | None:
+def stance(robot, q: dict | None = None, meshes=True, world=None, low=None) -> Support | None:
     """``ground_support`` with the centre of mass (model/kinematics) at the same configuration and
     its margin (``signed_distance`` of its ground projection): what check's P001/P004, sim's
     stance and the viewer's ground overlay show. None without collision geometry or mass."""
-    s = ground_support(robot, q, meshes=meshes, world=world)
+    s = ground_support(robot, q, meshes=meshes, world=world, low=low)
     if s is None:
         return None
     mass, com = center_of_mass(robot, q)

@@ -36,8 +36,14 @@ LAZY_OWN = {
     "myrabot_desc.commands.build": {"myrabot_desc.commands.fastbuild"},
     # `diff` loads the renderer and the scene for --picture only (~10 ms of a small robot's ~300 ms diff)
     "myrabot_desc.commands.fastdiff": {"myrabot_desc.render", "myrabot_desc.view.scene"},
-    # `check` loads the fixer for --fix and --diff only (~5 ms of every lint run)
-    "myrabot_desc.commands.fastcheck": {"myrabot_desc.fix.report", "myrabot_desc.fix.run", "myrabot_desc.fix.write"},
+    # `check` loads the fixer for --fix and --diff only (~5 ms of every lint run), the baseline for --baseline
+    "myrabot_desc.commands.fastcheck": {"myrabot_desc.fix.report", "myrabot_desc.fix.run", "myrabot_desc.fix.write",
+                                        "myrabot_desc.checks.baseline"},
+    # a lint run of one file reads no .gitignore, git state or SRDF unless asked (a folder, --changed-since,
+    # --srdf), nor the source spans only a fix or a diff reads (~2 ms together)
+    "myrabot_desc.checks.run": {"myrabot_desc.checks.gitignore", "myrabot_desc.vcs"},
+    "myrabot_desc.checks.collisions": {"myrabot_desc.model.srdf"},
+    "myrabot_desc.model.parts": {"myrabot_desc.model.sources"},
 }
 HEAVY = {"numpy", "scipy", "trimesh", "pinocchio", "mujoco", "yourdfpy", "viser", "matplotlib", "PIL", "coal",
          "collada", "networkx", "yaml", "xacro", "lxml", "click"}

@@ -235,8 +235,10 @@ def apply(diags: list, robot, enabled, dropped: list | None = None) -> tuple[lis
     given, receives (finding, key) for each finding dropped (SARIF lists them as suppressed)."""
 
     by_file: dict[str, list[Suppression]] = {}
+    built = robot.source_data()
     for f in source_files(robot):
-        s = suppressions_in(f)
+        data = built.get(f)
+        s = suppressions_in(f) if data is None else (_parse(data, f) if MARKER in data else [])
         if s:
             by_file[f] = s
     if not by_file:

@@ -543,6 +543,15 @@ class Robot:
             return list(dict.fromkeys(loc.file for loc in self.element_locs.values() if loc is not None))
         return [self.element_locs.file]
 
+    def source_data(self) -> dict[str, bytes]:
+        """Shown file name -> the bytes the model was built or read from, as far as they are kept (the
+        build's source map, or a URDF file's bytes): what its comments say, without reading again."""
+        if self.source_map is not None:
+            return {name: data for name, (_path, data) in self.source_map.files.items()}
+        if self.source_bytes is not None and type(self.element_locs) is not dict:
+            return {self.element_locs.file: self.source_bytes}
+        return {}
+
     def rest_pose(self) -> dict[str, float]:
         """Every moving, non-mimic joint at 0, or at its nearer limit when its finite range leaves
         0 out (a quadruped's knee): the pose render, the viewer and the MJCF ``home`` start from.

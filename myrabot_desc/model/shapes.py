@@ -256,11 +256,16 @@ def lowest_points(g, R, p, mesh=None, tol: float = 1e-3):
         if n > 1e-9:                                                  # tilted or horizontal: one rim point per cap
             rim = [tuple(v / n * g.radius for v in down)]
         else:                                                         # upright: sample the bottom circle
-            u, v = (R[0][0], R[1][0], R[2][0]), (R[0][1], R[1][1], R[2][1])
+            (ux, vx, _), (uy, vy, _), (uz, vz, _) = R
             step = 2 * math.pi / 16
-            rim = [tuple(g.radius * (math.cos(t) * u[k] + math.sin(t) * v[k]) for k in range(3))
-                   for t in (k * step for k in range(16))]
-        pts = [tuple(p[k] + s * axis[k] * g.length / 2 + r[k] for k in range(3)) for s in (-1, 1) for r in rim]
+            rad = g.radius
+            rim = []
+            for t in (k * step for k in range(16)):
+                c, s = math.cos(t), math.sin(t)
+                rim.append((rad * (c * ux + s * vx), rad * (c * uy + s * vy), rad * (c * uz + s * vz)))
+        (ax, ay, az), (px, py, pz), length = axis, p, g.length
+        pts = [(px + s * ax * length / 2 + rx, py + s * ay * length / 2 + ry, pz + s * az * length / 2 + rz)
+               for s in (-1, 1) for rx, ry, rz in rim]
     elif mesh is not None and not isinstance(mesh, str):
         import numpy as np
 

@@ -364,15 +364,17 @@ def radius_of_gyration(ctx):
     # are measured once: the key's objects stay alive with the links
     key_of: dict = {}
     found: dict = {}                        # key -> (the message after "link NAME: ", its data) or None
-    pure = pure_hull_points(ctx)
+    some, whole = pure_hull_points(ctx, 8), pure_hull_points(ctx)
+    meshes = set()
     for name, s in solids(ctx).items():
-        pts = pure[name]
-        if pts is not None:
-            i = s.link.inertial
-            key = key_of[name] = _gyration_key(i, pts)
-            if key not in found:
-                found[key] = _pure_gyration(i, pts)
-    meshes = {name for name, pts in pure.items() if pts is None}
+        pts = some[name]
+        if pts is None:
+            meshes.add(name)
+            continue
+        i = s.link.inertial
+        key = key_of[name] = _gyration_key(i, pts)
+        if key not in found:
+            found[key] = _pure_gyration(i, pts, whole, name)
     if meshes and ctx.opts.load_meshes:     # (numpy is loaded with the meshes)
         _numpy_gyration(ctx, meshes, found, key_of)
     for name, s in solids(ctx).items():
@@ -392,22 +394,20 @@ def _gyration_key(i, pts) -> tuple:
             id(i.iyz), id(i.izz), id(i.mass))
 
 
-def _pure_gyration(i, pts):
-    """radius_of_gyration's measure of one link of primitives (``pts``: its pure_hull_points) in
-    pure Python: eigh3's principal axes, the farthest point from each; _worst's result."""
+def _pure_gyration(i, some, whole, name):
+    """radius_of_gyration's measure of link ``name`` of primitives in pure Python: eigh3's principal
+    axes, the farthest point from each; _worst's result. ``some``: some of its points (a subset of
+    ``whole[name]``, pure_hull_points): most links are clear, and a subset's farthest point is at most
+    the whole set's, each measured alike, so a link they clear is clear; the rest are measured whole."""
     t = tensor(i)
     if not math.isfinite(sum(v for row in t for v in row) + i.mass):
         return None                     # (numpy's eigh has no moments for these either)
     ev, V = eigh3(t)
     axes = [V[r][n] for n in range(3) for r in range(3)]
-    if len(pts) > 16:                   # (a box's 8 corners are measured whole)
-        # Most links are clear, and every fourth point of a ring already shows it: a subset's
-        # farthest point is at most the whole set's, each measured alike, so a link the subset
-        # clears is clear.
-        reaches = _reaches(i, pts[::4], axes)
-        if reaches is not None and _worst(i, ev, axes, reaches) is None:
-            return None
-    reaches = _reaches(i, pts, axes)
+    reaches = _reaches(i, some, axes)
+    if reaches is not None and _worst(i, ev, axes, reaches) is None:
+        return None
+    reaches = _reaches(i, whole[name], axes)
     return None if reaches is None else _worst(i, ev, axes, reaches)
 
 
@@ -501,29 +501,38 @@ def _canonical_axis(u) -> list:
     return [s * v + 0.0 for v in u]
 
 
-def pure_hull_points(ctx) -> dict:
+def pure_hull_points(ctx, samples: int = 32) -> dict:
     """hull_points in pure Python, without meshes (a mesh's link: None, as hull_points without
-    --inertia): link -> list of (x, y, z), within an ulp or so of hull_points' rows; links that
-    repeat a shape and its origin share the list. What I007 and I010 measure."""
-    def build():
-        placed_of: dict = {}
-        out: dict = {}
-        for name, s in solids(ctx).items():
-            items = _hull_items(s.link)
-            lists = []
-            for it in items or ():
-                g, o = it.geometry, it.origin
-                if g.kind == "mesh":
-                    items = None
-                    break
-                key = (g.__class__, *map(id, g), id(o.xyz), id(o.rpy))
-                pts = placed_of.get(key)
-                if pts is None:
-                    pts = placed_of[key] = place(pose_T(o), G.surface_points(g, 32))
-                lists.append(pts)
-            out[name] = None if not items else lists[0] if len(lists) == 1 else [q for x in lists for q in x]
-        return out
-    return ctx.fact("pure_hull_points", build)
+    --inertia): link -> list of (x, y, z), within an ulp or so of hull_points' rows, built for a link
+    when first asked; links that repeat a shape and its origin share the list. What I007 and I010
+    measure. ``samples`` 8 gives some of the 32's points, bit for bit (every fourth of a ring: the
+    angles 2πk/8 are 2π(4k)/32, and a box has its corners either way): the rules ask those first."""
+    return ctx.fact(f"pure_hull_points/{samples}", lambda: _PurePoints(solids(ctx), samples))
+
+
+class _PurePoints(dict):
+    """pure_hull_points' map: a link's points are placed when first asked."""
+
+    def __init__(self, solids_of: dict, samples: int):
+        super().__init__()
+        self.solids, self.samples = solids_of, samples
+        self.placed_of: dict = {}       # a shape and origin's objects -> their placed points
+
+    def __missing__(self, name: str):
+        lists = []
+        items = _hull_items(self.solids[name].link)
+        for it in items or ():
+            g, o = it.geometry, it.origin
+            if g.kind == "mesh":
+                items = None
+                break
+            key = (g.__class__, *map(id, g), id(o.xyz), id(o.rpy))
+            pts = self.placed_of.get(key)
+            if pts is None:
+                pts = self.placed_of[key] = place(pose_T(o), G.surface_points(g, self.samples))
+            lists.append(pts)
+        got = self[name] = None if not items else lists[0] if len(lists) == 1 else [q for x in lists for q in x]
+        return got
 
 
 def hull_points(ctx) -> dict:
@@ -649,22 +658,25 @@ def origin_inside(ctx):
     centroid (given), or the CAD's centre of mass.
     """
     every = solids(ctx)
-    pure = pure_hull_points(ctx)
+    some, whole = pure_hull_points(ctx, 8), pure_hull_points(ctx)
     loaded = ctx.opts.load_meshes           # (and numpy with them)
     found: dict = {}                    # link -> (message, data) or None
     first: dict = {}                    # links that repeat their points and origin (shared objects): tested once
     meshes = set()                      # links whose measure reads a mesh: numpy's
     for name, s in every.items():
-        pts = pure[name]
+        pts = some[name]
         if pts is None or loaded and any(v.geometry is not None and v.geometry.kind == "mesh"
                                          for v in s.link.visuals):
             meshes.add(name)            # (a visual mesh widens the box of a link that falls outside)
             continue
         key = (id(pts), id(s.link.inertial.origin.xyz))
         if key not in first:
-            first[key] = _beyond(pts, [float(v) for v in s.link.inertial.origin.xyz])
-        if first[key] is not None:
-            found[name] = _pure_outside(s, pts)
+            # inside some points' box grown by their margin is inside the whole set's (a larger box,
+            # a larger margin): those clear most links
+            p = [float(v) for v in s.link.inertial.origin.xyz]
+            first[key] = _beyond(pts, p) is not None and _beyond(whole[name], p) is not None
+        if first[key]:
+            found[name] = _pure_outside(s, whole[name])
     if meshes and loaded:
         found.update(_numpy_outside(ctx, meshes))
     for name, s in every.items():

@@ -316,13 +316,38 @@ def open_checked(path, roots=None, what: str = "file"):
     return os.fdopen(fd, "rb")
 
 
+def read_bounded(f, max_bytes: int) -> bytes:
+    """Up to ``max_bytes`` + 1 bytes of the binary file ``f``, as ``f.read(max_bytes + 1)`` gives
+    them, without allocating that much first (a 684-byte mesh read against the 50 MB limit took 3x
+    as long): pieces the size the file says it has, then doubling, since its size is only a hint
+    (/proc files say 0 and a file may grow)."""
+    import os
+
+    want = max_bytes + 1
+    try:
+        step = os.fstat(f.fileno()).st_size + 1
+    except (OSError, ValueError):
+        step = 0
+    step = min(want, max(step, 1 << 16))
+    parts, got = [], 0
+    while got < want:
+        n = min(step, want - got)
+        piece = f.read(n)
+        parts.append(piece)
+        got += len(piece)
+        if len(piece) < n:          # the end (a regular file or a closed pipe)
+            break
+        step *= 2
+    return parts[0] if len(parts) == 1 else b"".join(parts)
+
+
 def read_checked(path, roots=None, max_bytes: int | None = None, what: str = "file") -> bytes:
     """Read a whole checked file, refusing it past ``max_bytes`` (read as it grows, not trusted
     from stat: /proc files report 0 bytes)."""
     with open_checked(path, roots, what) as f:
         if max_bytes is None:
             return f.read()
-        data = f.read(max_bytes + 1)
+        data = read_bounded(f, max_bytes)
     if len(data) > max_bytes:
         raise InputError(f"{display(path)} is over the {max_bytes}-byte limit "
                          "(see MYRABOT_DESC_MAX_INPUT_BYTES)")
@@ -345,7 +370,7 @@ def read_input(path, max_bytes: int) -> bytes:
     p = Path(path)
     try:
         with open(p, "rb") as f:
-            data = f.read(max_bytes + 1)
+            data = read_bounded(f, max_bytes)
     except OSError as exc:
         raise InputError(f"cannot read {p}: {exc.strerror}") from None
     if len(data) > max_bytes:

@@ -332,3 +332,29 @@ def test_every_limit_is_in_the_table_and_the_help(tmp_path):
             "max_render_pixels", "max_render_frames"} <= fields
     for lim in LIMITS:
         assert lim.env in r.stdout
+
+
+@pytest.mark.parametrize("size", [0, 1, 100, 65_536, 65_537, 300_000])
+def test_a_bounded_read_gives_what_a_read_of_the_limit_gives(tmp_path, size):
+    """Every file, model or mesh, is read up to its limit + 1 bytes: the same bytes as
+    ``f.read(limit + 1)`` at every size around the limit, without allocating the limit first; a
+    file larger than its stat says (a /proc file says 0) and an endless one stop at the limit."""
+    import os
+
+    from myrabot_desc.safety import read_bounded, read_checked
+
+    path = tmp_path / "f.bin"
+    path.write_bytes(os.urandom(size))
+    for limit in {0, 1, max(size - 1, 0), size, size + 1, 70_000, 1 << 21}:
+        with open(path, "rb") as a, open(path, "rb") as b:
+            assert read_bounded(a, limit) == b.read(limit + 1), limit
+    assert read_checked(path, None, size) == path.read_bytes()
+    with open("/dev/zero", "rb") as f:
+        assert len(read_bounded(f, 200_000)) == 200_001
+    with open("/proc/self/status", "rb") as f:      # st_size 0, content several hundred bytes
+        assert b"Name:" in read_bounded(f, 1_000_000)
+    r, w = os.pipe()
+    os.write(w, b"x" * 5000)
+    os.close(w)
+    with os.fdopen(r, "rb") as f:
+        assert read_bounded(f, 1_000_000) == b"x" * 5000

@@ -531,8 +531,11 @@ class _PurePoints(dict):
             if pts is None:
                 pts = self.placed_of[key] = place(pose_T(o), G.surface_points(g, self.samples))
             lists.append(pts)
-        got = self[name] = None if not items else lists[0] if len(lists) == 1 else [q for x in lists for q in x]
-        return got
+        if items:
+            self[name] = lists[0] if len(lists) == 1 else [q for x in lists for q in x]
+        else:
+            self[name] = None
+        return self[name]
 
 
 def hull_points(ctx) -> dict:

@@ -261,8 +261,8 @@ def lowest_points(g, R, p, mesh=None, tol: float = 1e-3):
             rad = g.radius
             rim = []
             for t in (k * step for k in range(16)):
-                c, s = math.cos(t), math.sin(t)
-                rim.append((rad * (c * ux + s * vx), rad * (c * uy + s * vy), rad * (c * uz + s * vz)))
+                co, si = math.cos(t), math.sin(t)
+                rim.append((rad * (co * ux + si * vx), rad * (co * uy + si * vy), rad * (co * uz + si * vz)))
         (ax, ay, az), (px, py, pz), length = axis, p, g.length
         pts = [(px + s * ax * length / 2 + rx, py + s * ay * length / 2 + ry, pz + s * az * length / 2 + rz)
                for s in (-1, 1) for rx, ry, rz in rim]

@@ -11,9 +11,8 @@ The machine's `python -c pass` and `python -c "import numpy"` are timed in the s
     .venv/bin/python bench/bench_check_vs_build.py [--repeat N] [--only ID,ID] [--no-corpus] [--before DIR]
 
 The bundled robot's pair runs at least 21 times (a pair is a quarter of a second): on a shared
-2-core machine one command's CPU time spreads over 5-10 % between runs, and the ratio of two bests
-of 5 or 9 moved between 1.39 and 1.53 from one run to the next, where over 30 runs the ratio of the
-bests and the ratio of the medians agreed (1.43).
+2-core machine one command's CPU time spreads over 5-10 % between runs, so the ratio of two bests of
+a few runs moves by several hundredths, where the bests of a few tens agree with their medians.
 
 --before DIR: also time check with the package of DIR first on PYTHONPATH (a checkout or `git archive`
 of earlier code, with its xacro/ and meshes/), interleaved with the pair.

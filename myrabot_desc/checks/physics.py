@@ -54,8 +54,7 @@ def support(ctx):
     """What the robot stands on at q = 0 (model/support.stance: the same function sim and the viewer
     use), or None without collision geometry or mass."""
 
-    return ctx.fact("support", lambda: stance(ctx.robot, meshes=ctx.mesh if ctx.opts.load_meshes else False,
-                                              world=ctx.poses, low=_lowest(ctx)), meshes=True)
+    return ctx.fact("support", lambda: stance(ctx.robot, world=ctx.poses, low=_lowest(ctx)), meshes=True)
 
 
 def _lowest(ctx):

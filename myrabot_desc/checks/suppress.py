@@ -73,6 +73,7 @@ class Suppression(Struct):
 
 
 _cache: dict = {}        # (device, inode, mtime_ns, ctime_ns, size) -> [Suppression] (one read per file per process)
+_by_content: dict = {}   # (file, bytes with a marker) -> [Suppression]
 
 
 def suppressions_in(file: str) -> list[Suppression]:
@@ -98,6 +99,18 @@ def suppressions_in(file: str) -> list[Suppression]:
         pass
     _cache[key] = out
     return out
+
+
+def suppressions_of(file: str, data: bytes) -> list[Suppression]:
+    """Every suppression comment of ``data``, the bytes of ``file`` a model was built from; cached by
+    content, as ``suppressions_in`` caches a file by version (a ``check -r`` of one robot's variants,
+    the two revisions of a ``diff``, build the same includes)."""
+    if MARKER not in data:
+        return []
+    key = (file, data)
+    if key not in _by_content:
+        _by_content[key] = _parse(data, file)
+    return _by_content[key]
 
 
 def _parse(data: bytes, file: str) -> list[Suppression]:
@@ -238,7 +251,7 @@ def apply(diags: list, robot, enabled, dropped: list | None = None) -> tuple[lis
     built = robot.source_data()
     for f in source_files(robot):
         data = built.get(f)
-        s = suppressions_in(f) if data is None else (_parse(data, f) if MARKER in data else [])
+        s = suppressions_in(f) if data is None else suppressions_of(f, data)
         if s:
             by_file[f] = s
     if not by_file:

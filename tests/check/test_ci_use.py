@@ -224,12 +224,11 @@ def test_unused_suppression_is_reported(tmp_path):
     assert "X009" in codes(res) and "unknown rule code 'Q123'" in res.stdout
 
 
-
 @pytest.mark.parametrize("name", ["robot.urdf.xacro", "r.urdf"])
 def test_suppressions_are_read_from_the_bytes_the_model_was_built_from(tmp_path, name):
     """The comments are looked for in what the findings come from (the build's bytes, a URDF's own),
     not read from disk again: an edit after the load changes neither the findings nor what silences
-    them, and a robot built in memory needs no file at all."""
+    them."""
     from myrabot_desc.checks import check_robot
     from myrabot_desc.model.loader import load_robot
 
@@ -245,6 +244,7 @@ def test_suppressions_are_read_from_the_bytes_the_model_was_built_from(tmp_path,
     edited.write_text("not even XML")
     diags, ctx = check_robot(robot)
     assert "I008" not in [d.code for d in diags] and ctx.suppressions_used
+
 
 # ---------------------------------------------------------------- annotations and SARIF
 def _bad_and_good(tmp_path) -> list[Path]:

@@ -51,6 +51,9 @@ def test_the_whole_check_of_the_bundled_robot_imports_no_numpy_coal_or_pinocchio
     # difflib (a near miss only)
     assert not {"dataclasses", "difflib"} & mods, sorted(mods)
     assert not [m for m in mods if m.startswith("myrabot_desc.fix")], sorted(mods)
+    # nor the baseline, .gitignore, git, SRDF and source-span readers (asked for by options or a fix)
+    assert not {"myrabot_desc.checks.baseline", "myrabot_desc.checks.gitignore", "myrabot_desc.vcs",
+                "myrabot_desc.model.srdf", "myrabot_desc.model.sources"} & mods, sorted(mods)
 
 
 @pytest.mark.parametrize("name", list(CASES))

@@ -130,29 +130,47 @@ _FREE = (None, None)
 
 
 def _problems(root) -> list:
+    """(element, parent tag, problem) of the tree under ``root``, by the SCHEMA's known paths.
+
+    Recursive by element, with a leaf (an element SCHEMA gives no children) judged in its parent's
+    loop: most elements are leaves, and each call or stack entry is a good part of the cost of
+    one (a 20,000-link tree has 260,000 elements)."""
     out = []
     add = out.append
     schema = SCHEMA.get
-    stack = [(root, local(root.tag))]
-    pop, push = stack.pop, stack.append
-    while stack:
-        el, tag = pop()
-        attrs, children = schema(tag, _FREE)
-        if children is None:                   # unknown, or a free-form body (keeps its own attributes)
-            continue
+
+    def attributes(el, tag, attrs):
+        for a in el.keys():
+            if a not in attrs and not a.startswith("{"):     # namespaced attributes are extensions
+                add((el, tag, ("attribute", a)))
+
+    def walk(el, tag, attrs, children):
         keys = el.keys()
         if keys and not attrs.issuperset(keys):    # the usual case is all known: one set test
-            for a in keys:
-                if a not in attrs and not a.startswith("{"):     # namespaced attributes are extensions
-                    add((el, tag, ("attribute", a)))
-        if not len(el):                        # most elements are leaves: no child iterator
-            continue
+            attributes(el, tag, attrs)
         for c in el:
             ct = c.tag
             if ct in children:                 # a comment's tag is a function: never in the set
-                push((c, ct))
+                c_attrs, c_children = schema(ct, _FREE)
+                if c_children:
+                    walk(c, ct, c_attrs, c_children)
+                elif c_children is not None:   # a leaf: its attributes, and any child is unknown
+                    keys = c.keys()
+                    if keys and not c_attrs.issuperset(keys):
+                        attributes(c, ct, c_attrs)
+                    if len(c):
+                        for g in c:
+                            gt = g.tag
+                            if isinstance(gt, str) and not gt.startswith("{"):
+                                add((g, ct, ("element", gt)))
+                # None: a free-form body (keeps its own attributes and children)
             elif isinstance(ct, str) and not ct.startswith("{"):   # comments; namespaced elements: extensions
                 add((c, tag, ("element", ct)))
+
+    tag = local(root.tag)
+    attrs, children = schema(tag, _FREE)
+    if children is not None:
+        walk(root, tag, attrs, children)
     return out
 
 

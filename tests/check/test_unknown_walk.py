@@ -9,6 +9,7 @@ from helpers import cpu_time
 from myrabot_desc.checks.urdf_syntax import _problems
 from myrabot_desc.model.loader import load_robot
 from myrabot_desc.safety import parse_xml_bytes
+from myrabot_desc.xmltree import parse_safely
 
 XSI = 'xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance"'
 CLEAN_LINK = ('<link name="a"><inertial><origin xyz="0 0 0"/><mass value="1"/>'
@@ -51,6 +52,26 @@ HOSTILE = [
 @pytest.mark.parametrize("name,doc,dirty", HOSTILE, ids=[h[0] for h in HOSTILE])
 def test_hostile_trees(name, doc, dirty):
     assert bool(_problems(parse_xml_bytes(doc.encode(), name))) == dirty
+
+
+def test_every_problem_at_every_depth_once():
+    # leaves (origin, box, limit...) are judged in their parent's loop: their attributes, any child
+    doc = ('<robot name="r" bad0="1" xmlns:f="urn:f"><link name="a" bad1="1"><visual bad2="1"><origin xyz="0 0 0" '
+           'bad3="1" f:ok="1"><!-- c --><f:ok/><sub1/></origin><geometry><box size="1 1 1" bad4="1"><sub2><x/></sub2>'
+           '</box></geometry><material name="m"><color rgba="1 0 0 1" bad5="1"/></material><bogus1/></visual></link>'
+           '<joint name="j" type="fixed"><limit effort="1" bad6="1"/><bogus2><y/></bogus2><gazebo/></joint>'
+           '<gazebo bad="1"><origin bad="1"/></gazebo></robot>')
+    for root in (parse_xml_bytes(doc.encode(), "doc"), parse_safely(doc.encode(), "doc")):
+        found = sorted((parent, problem) for _el, parent, problem in _problems(root))
+        assert found == [("box", ("attribute", "bad4")), ("box", ("element", "sub2")),
+                         ("color", ("attribute", "bad5")), ("joint", ("element", "bogus2")),
+                         ("joint", ("element", "gazebo")), ("limit", ("attribute", "bad6")),
+                         ("link", ("attribute", "bad1")),
+                         ("origin", ("attribute", "bad3")), ("origin", ("element", "sub1")),
+                         ("robot", ("attribute", "bad0")), ("visual", ("attribute", "bad2")),
+                         ("visual", ("element", "bogus1"))]
+        assert {el.tag for el, _p, (kind, _n) in _problems(root) if kind == "element"} == {
+            "sub1", "sub2", "bogus1", "bogus2", "gazebo"}
 
 
 def test_a_typo_in_every_link_of_a_star_stays_fast():

@@ -9,7 +9,7 @@ from myrabot_desc.checks.examples import ELECTRIC_IMU, MODERN_IMU, ackermann_exa
 from myrabot_desc.checks.examples import drive_example as _drive
 from myrabot_desc.checks.rule import Finding, Fix, FixInfo, InsertInto, RemoveElement, RenameTag, SetValue, rule
 from myrabot_desc.checks.urdf_syntax import local, suggest
-from myrabot_desc.materials.resolve import resolver_for
+from myrabot_desc.materials.stock import is_stock
 from myrabot_desc.model import drive as D
 from myrabot_desc.model.drive import GZ, ROS1, ROS2
 from myrabot_desc.model.plugins import published_topics, publishes_ranges
@@ -748,8 +748,10 @@ def material_resolves(ctx):
     """
 
     names = [(g, g.properties.get("material")) for g in ctx.robot.gazebo if g.properties.get("material")]
-    if not names:
-        return
+    if all(is_stock(name) for _g, name in names):
+        return                          # (a stock name resolves whatever the scripts hold)
+    from myrabot_desc.materials.resolve import resolver_for     # the scripts' reader: a name not in stock
+
     res = resolver_for(ctx.robot)
 
     missing: dict[str, list] = {}

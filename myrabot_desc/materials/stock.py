@@ -24,16 +24,6 @@ from __future__ import annotations
 
 from functools import lru_cache
 
-from myrabot_desc.materials.ogre import (
-    Material,
-    Pass,
-    Technique,
-    TextureUnit,
-    _merge_list,
-    _merge_technique,
-    summarize,
-)
-
 # name -> (parent, passes); a pass is a dict of the script's values as written.
 # Keys: name, ambient, diffuse, specular (raw: r g b [a] shininess), emissive, lighting,
 # scene_blend, depth_write, texture, scale, manual (colour_op_ex src_manual r g b),
@@ -169,7 +159,10 @@ def _rgba(v) -> tuple[float, float, float, float]:
     return v if len(v) == 4 else (*v, 1.0)
 
 
-def _pass(d: dict) -> Pass:
+def _pass(d: dict):
+    """The ogre.Pass of a pass as written in STOCK_SOURCE."""
+    from myrabot_desc.materials.ogre import Pass, TextureUnit    # (the reader only for values: see stock_material)
+
     props: dict = {}
     for k in ("ambient", "diffuse", "emissive"):
         if k in d:
@@ -203,14 +196,17 @@ def is_stock(name: str) -> bool:
 
 
 @lru_cache(maxsize=None)
-def stock_material(name: str) -> Material | None:
-    """The stock material ``name`` (parents applied), or None when it is not a stock name."""
+def stock_material(name: str):
+    """The stock material ``name`` as an ogre.Material (parents applied), or None when it is not a
+    stock name."""
+    # the OGRE reader's records only here: `check` asks is_stock of a model's names, not their values
+    from myrabot_desc.materials.ogre import Technique, _merge_list, _merge_technique, summarize
 
     if name not in STOCK_SOURCE:
         return None
     parent, passes = STOCK_SOURCE[name]
     techs = [Technique(passes=tuple(_pass(p) for p in passes))] if passes else []
-    base: list[Technique] = list(stock_material(parent).techniques) if parent else []
+    base: list = list(stock_material(parent).techniques) if parent else []
     return summarize(name, parent, tuple(_merge_list(base, techs, _merge_technique)), None)
 
 

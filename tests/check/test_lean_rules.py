@@ -81,6 +81,17 @@ def test_a_check_without_configuration_imports_no_typing():
     assert "links" in out and "typing" not in mods and "tomllib" not in mods, sorted(mods)
 
 
+def test_stock_material_names_need_no_script_reader():
+    # pioneer3dx names only Gazebo's stock materials: G009 answers from the stock table, without the
+    # OGRE script reader (materials.resolve, materials.ogre); the bundled robot names its own scripts'
+    entry = corpus_robot("pioneer3dx")
+    mods, out, _ = imported(corpus_args(entry), corpus_env(entry), None)
+    assert "myrabot_desc.materials.stock" in mods and "G007" in out, sorted(mods)
+    assert not {"myrabot_desc.materials.resolve", "myrabot_desc.materials.ogre"} & mods, sorted(mods)
+    mods, out, _ = imported(["--select", "G009"], {}, None)
+    assert "myrabot_desc.materials.ogre" in mods and "G009" not in out, out
+
+
 # each family alone on the bundled robot (none has a finding there): what it may not import
 FAMILIES = {
     "I001,I002,I003,I004,I005,I009": {"numpy"},          # mass and tensor: principal moments by eigh3

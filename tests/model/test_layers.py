@@ -44,6 +44,11 @@ LAZY_OWN = {
     "myrabot_desc.checks.run": {"myrabot_desc.checks.gitignore", "myrabot_desc.vcs"},
     "myrabot_desc.checks.collisions": {"myrabot_desc.model.srdf"},
     "myrabot_desc.model.parts": {"myrabot_desc.model.sources"},
+    # the OGRE script reader (~3 ms) for a material name that is not a stock one: a model whose names are
+    # all stock (or that has none) is checked with the stock table alone
+    "myrabot_desc.checks.plugins": {"myrabot_desc.materials.resolve"},
+    "myrabot_desc.materials": {"myrabot_desc.materials.resolve"},
+    "myrabot_desc.materials.stock": {"myrabot_desc.materials.ogre"},
 }
 HEAVY = {"numpy", "scipy", "trimesh", "pinocchio", "mujoco", "yourdfpy", "viser", "matplotlib", "PIL", "coal",
          "collada", "networkx", "yaml", "xacro", "lxml", "click"}

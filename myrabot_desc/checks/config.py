@@ -356,9 +356,9 @@ def read_config(path: Path, known_codes) -> Config | None:
         # a table name spelled with \\u escapes is the one spelling missed)
         return None
     try:
+        import tomli as tomllib          # compiled (mypyc): no typing import, a faster parse; the same errors
+    except ModuleNotFoundError:          # a source install without it
         import tomllib
-    except ModuleNotFoundError:          # Python 3.10
-        import tomli as tomllib
 
     deep = _nesting_line(text)
     if deep is not None:

@@ -144,7 +144,7 @@ def test_a_pyproject_that_does_not_name_us_is_not_parsed(tmp_path):
     res = run("r.urdf", cwd=tmp_path)
     assert (res.exit_code, res.output) == (alone.exit_code, alone.output) and "I008" in res.output
     code = ("import sys; from myrabot_desc.commands.entry import main; code = main(); "
-            "print('tomllib' in sys.modules, file=sys.stderr); sys.exit(code)")
+            "print('tomllib' in sys.modules or 'tomli' in sys.modules, file=sys.stderr); sys.exit(code)")
     p = subprocess.run([sys.executable, "-c", code, "check", "--no-cache", "r.urdf"], cwd=tmp_path,
                        capture_output=True, text=True, timeout=120, stdin=subprocess.DEVNULL)
     assert p.returncode == alone.exit_code and p.stderr.splitlines()[-1] == "False", p.stderr[-2000:]

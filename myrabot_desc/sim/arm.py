@@ -46,7 +46,7 @@ class Arm:
                 raise InputError(f"{robot.name}: no arm joint {j!r} (the programs drive the MYRAbot arm: "
                                  f"{', '.join(joints)})", robot.loc)
             self.names.append(name)
-        self.model = build_model(robot)
+        self.model = build_model(robot, lean=True)
         self.data = self.model.createData()
         self.q0 = pin.neutral(self.model)
         self.idx_q = []

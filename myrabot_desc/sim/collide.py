@@ -97,10 +97,11 @@ class ArmCollider:
             if float(np.linalg.norm(c - centre)) - r <= reach + 0.01:
                 self.other_objs.append(i)
         self.skipped_far = len(others) - len(self.other_objs)
-        for a in self.arm_objs:
-            for b in self.other_objs:
-                gm.addCollisionPair(pin.CollisionPair(a, b))
-        self.pairs = [(cp.first, cp.second) for cp in gm.collisionPairs]    # read once: slow through Pinocchio
+        # the pairs as added (arm and other objects are disjoint: Pinocchio drops none as a duplicate);
+        # read back through Pinocchio they cost ~0.5 us each
+        self.pairs = [(a, b) for a in self.arm_objs for b in self.other_objs]
+        for a, b in self.pairs:
+            gm.addCollisionPair(pin.CollisionPair(a, b))
         self.gdata = pin.GeometryData(gm)
         cold_gjk(self.gdata)
         # Broadphase: Pinocchio's manager runs the exact test only on the active pairs whose
@@ -232,13 +233,29 @@ def unique_configs(t, q, resolution: float = 0.005, limit: int = 1500):
 def cold_gjk(gdata):
     """No GJK warm start from a pair's previous query: Pinocchio turns it on, and then a result
     depends on the poses checked before (a 0.3 mm penetration of the gripper into the webcam
-    optics went unseen after about one pose in 50)."""
+    optics went unseen after about one pose in 50).
+
+    ``gdata`` must be fresh from ``pin.GeometryData(gm)``: its constructor gives every pair the
+    same request, so one request with the flag off is copied over all of them in C++ (setting the
+    flag on each, through a deprecation warning apiece, cost ~2 us a request)."""
     import warnings
 
+    import coal
+
+    n = len(gdata.collisionRequests)
+    if n == 0:
+        return
+    creq, dreq = gdata.collisionRequests[0], gdata.distanceRequests[0]
     with warnings.catch_warnings():         # coal deprecates the flag, but it is what turns the cache on
         warnings.simplefilter("ignore", DeprecationWarning)
-        for r in (*gdata.collisionRequests, *gdata.distanceRequests):
-            r.enable_cached_gjk_guess = False
+        creq.enable_cached_gjk_guess = False
+        dreq.enable_cached_gjk_guess = False
+    requests = coal.StdVec_CollisionRequest()
+    requests.extend([creq] * n)
+    gdata.collisionRequests = requests
+    requests = coal.StdVec_DistanceRequest()
+    requests.extend([dreq] * n)
+    gdata.distanceRequests = requests
 
 
 def geometry_model(model, robot, notes: list, triangles=None):

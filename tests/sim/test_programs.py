@@ -356,6 +356,39 @@ def test_broadphase_and_pruned_distances_match_every_pair(arm_and_colliders):
     assert hit_any and clear_any
 
 
+def test_cold_gjk_gives_every_pair_the_request_set_one_by_one(arm_and_colliders):
+    """cold_gjk copies one request with the warm start off over a fresh GeometryData's: every pair
+    ends with what switching the flag off pair by pair gives (the serialized request, every field)."""
+    import warnings
+
+    import pinocchio as pin
+
+    from myrabot_desc.sim.collide import cold_gjk
+
+    _arm, cols = arm_and_colliders
+    for col in cols:
+        fast, slow = pin.GeometryData(col.gmodel), pin.GeometryData(col.gmodel)
+        cold_gjk(fast)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", DeprecationWarning)
+            for r in (*slow.collisionRequests, *slow.distanceRequests):
+                assert r.enable_cached_gjk_guess      # what Pinocchio sets, and cold_gjk undoes
+                r.enable_cached_gjk_guess = False
+            assert not any(r.enable_cached_gjk_guess for r in (*fast.collisionRequests, *fast.distanceRequests))
+        for kind in ("collisionRequests", "distanceRequests"):
+            a, b = getattr(fast, kind), getattr(slow, kind)
+            assert len(a) == len(b) == len(col.pairs) > 300
+            assert [r.saveToString() for r in a] == [r.saveToString() for r in b]
+
+
+def test_collider_pairs_are_pinocchios(arm_and_colliders):
+    """The collider's pair list, written as the pairs are added, is Pinocchio's list read back."""
+    _arm, cols = arm_and_colliders
+    for col in cols:
+        assert col.pairs == [(cp.first, cp.second) for cp in col.gmodel.collisionPairs]
+        assert len(col.pairs) == len(col.arm_objs) * len(col.other_objs) > 300
+
+
 def test_prepared_robot_gives_the_same_run():
     """The robot-derived parts (Pinocchio model, collision geometry, support polygon) are built
     once per Robot; a second run on it and a run on a freshly loaded one agree exactly."""

@@ -56,6 +56,7 @@ def matches(code: str, patterns: Iterable[str]) -> bool:
 
 
 def to_diagnostic(r: Rule, f: Finding) -> Diagnostic:
-    data = dict(f.data)
-    data.setdefault("rule", r.name)
-    return Diagnostic(r.code, f.severity or r.severity, f.message, f.loc, data)
+    """``f`` as rule ``r``'s Diagnostic, with the finding's own data: nothing changes a diagnostic's
+    data, and the reports name the rule from its code (a copy per finding was 40,000 dicts on a big
+    robot)."""
+    return Diagnostic(r.code, f.severity or r.severity, f.message, f.loc, f.data)

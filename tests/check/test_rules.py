@@ -229,7 +229,7 @@ CAMERA = """
 def test_camera_optical_frame_fov_and_clip(tmp_path):
     good = robot(tmp_path, CAMERA.format(rpy="-1.5708 0 -1.5708", fov="1.047"))
     assert "S003" not in codes(good)
-    assert diag(good, "S005").data == {"sensor": "c", "min": 0.5, "max": 0.1, "rule": "sensor-range"}
+    assert diag(good, "S005").data == {"sensor": "c", "min": 0.5, "max": 0.1}
     bad = robot(tmp_path, CAMERA.format(rpy="0 0 0", fov="60"))
     assert diag(bad, "S003").data["frame"] == "cam_optical"
     d = diag(bad, "S006")

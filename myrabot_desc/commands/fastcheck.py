@@ -51,8 +51,14 @@ def _progressbar(results, length):
 
 
 def _color(output: str) -> bool | None:
-    """render's ``color``: False for a file, whose text _write strips of styles (so none are made)."""
-    return None if output == "-" else False
+    """render's ``color``: styled for a terminal only; a file or a pipe gets the plain text _write would
+    strip the styles to (render makes none: a 20,000-link star's report is 9 MB to strip)."""
+    if output != "-":
+        return False
+    try:
+        return None if sys.stdout.isatty() else False
+    except Exception:                       # a closed or replaced stream: plain, as _write decides
+        return False
 
 
 def _write(text: str, output: str) -> None:

@@ -31,6 +31,35 @@ def test_text_grouped_by_severity_with_summary():
     assert "\x1b[" not in out                                     # no colour when not on a terminal
 
 
+def test_a_terminal_gets_the_styled_report_and_a_pipe_the_same_text_plain():
+    """The report is styled for a terminal only; through a pipe it is made plain (not styled and
+    stripped) and is the terminal's text without its styles."""
+    import os
+
+    from myrabot_desc.commands.console import unstyle
+
+    cmd = [sys.executable, "-m", "myrabot_desc", "check", "--no-cache", str(WANDER)]
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    master, slave = os.openpty()
+    p = subprocess.Popen(cmd, stdout=slave, stderr=subprocess.DEVNULL, stdin=subprocess.DEVNULL, cwd=ROOT, env=env)
+    os.close(slave)
+    chunks = []
+    while True:
+        try:
+            chunk = os.read(master, 65536)
+        except OSError:                 # EIO: the child closed the terminal
+            break
+        if not chunk:
+            break
+        chunks.append(chunk)
+    os.close(master)
+    assert p.wait(timeout=120) == 1
+    styled = b"".join(chunks).decode().replace("\r\n", "\n")
+    piped = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT, env=env, timeout=120)
+    assert "\x1b[1m" in styled and "\x1b[" not in piped.stdout
+    assert unstyle(styled) == piped.stdout and "4 errors, " in piped.stdout
+
+
 def test_json_schema_is_stable():
     res = invoke(WANDER, "--format", "json")
     doc = json.loads(res.stdout)

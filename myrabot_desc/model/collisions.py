@@ -430,6 +430,7 @@ class Scene:
 
         local, by_geometry = self._local, self._by_geometry
         found, frames, origins = [], [], []
+        boxes, box_row, which = [], {}, []     # the distinct boxes (equal sizes share one), each shape's row
         for link, it, mesh in collision_shapes(self.robot, world, self.read):
             g = it.geometry
             key = id(it)
@@ -450,11 +451,17 @@ class Scene:
             found.append((link.name, it, mesh, box))
             frames.append(world[link.name])
             origins.append(it.origin)
+            row = box_row.get(id(box))          # (the boxes stay alive in local: their ids are theirs)
+            if row is None:
+                row = box_row[id(box)] = len(boxes)
+                boxes.append(box)
+            which.append(row)
         if not found:
             return None
         T = np.array(frames, dtype=float).reshape(-1, 4, 4) @ pose_stack(origins)
-        c = np.array([box[0] for *_, box in found], dtype=float).reshape(-1, 3)
-        h = np.array([box[1] for *_, box in found], dtype=float).reshape(-1, 3)
+        rows = np.array(which, dtype=np.intp)
+        c = np.array([box[0] for box in boxes], dtype=float).reshape(-1, 3)[rows]
+        h = np.array([box[1] for box in boxes], dtype=float).reshape(-1, 3)[rows]
         centres = (T[:, :3, :3] @ c[:, :, None])[:, :, 0] + T[:, :3, 3]
         radii = np.sqrt((h[:, None, :] @ h[:, :, None])[:, 0, 0])     # np.linalg.norm's dot
         return found, T, centres, radii

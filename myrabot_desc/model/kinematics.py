@@ -285,9 +285,13 @@ def _world_transforms(robot: Robot, q, root_pose, frozen: bool = False) -> dict[
     # every joint's origin and motion at once (they do not depend on the parents): a 5,000-link
     # chain has 5,000 levels, and a few numpy calls per level instead of a dozen
     every = [j for joints in levels for j in joints]
-    moving = [j for j in every if j.type in _MOVING]
-    norm = dict(zip(map(id, moving), _norms([j.axis for j in moving])))
-    flat: list[float] = []
+    # each axis object's norm once (joints share the loader's axis tuples; the norm of one axis does
+    # not depend on the others computed with it)
+    axes = {id(j.axis): j.axis for j in every if j.type in _MOVING}
+    norm = dict(zip(axes, _norms(list(axes.values()))))
+    motions: list = []      # the distinct motions (16 floats each), and each joint's row among them
+    rows: dict = {}
+    which: list[int] = []
     same: dict = {}     # (type, axis, q) -> its motion, for the same axis and position objects
     for j in every:
         qv, axis = q.get(j.name, 0.0), j.axis
@@ -297,12 +301,16 @@ def _world_transforms(robot: Robot, q, root_pose, frozen: bool = False) -> dict[
         if seen is not None and seen[0] is axis and seen[1] is qv:
             m = seen[2]
         else:
-            m = _motion_flat(j, norm.get(id(j), 0.0), qv)
+            m = _motion_flat(j, norm.get(id(axis), 0.0), qv)
             if key is not None:
                 same[key] = (axis, qv, m)
-        flat.extend(m)
+        row = rows.get(id(m))
+        if row is None:
+            row = rows[id(m)] = len(motions)
+            motions.append(m)           # (kept: its id stays its own)
+        which.append(row)
     P_all = pose_stack(j.origin for j in every)
-    M_all = np.array(flat, dtype=float).reshape(-1, 4, 4)
+    M_all = np.array(motions, dtype=float).reshape(-1, 4, 4)[np.array(which, dtype=np.intp)]
     k = 0
     for joints in levels:
         n = len(joints)

@@ -860,7 +860,8 @@ def _joint_frames(np, robot, W, names) -> dict | _Frames:
     joints = [robot.joints[n] for n in names]
     F = np.array([W[j.parent] for j in joints]) @ pose_stack(j.origin for j in joints)
     axes = (F[:, :3, :3] @ np.array([j.axis for j in joints], dtype=float).reshape(-1, 3, 1))[:, :, 0]
-    norms = np.array(_norms(axes.tolist()))[:, None]
+    a = np.ascontiguousarray(axes)          # _norms' array and products, without a round trip through lists
+    norms = np.sqrt((a[:, None, :] @ a[:, :, None])[:, 0, 0])[:, None]
     unit = np.where(norms > 0, axes / np.where(norms > 0, norms, 1.0), axes)
     return _Frames(names, F[:, :3, 3], unit)
 

@@ -227,7 +227,9 @@ def poses_at(robot: Robot, q: dict, W: dict | None = None, q0: dict | None = Non
 def _at_zero(robot: Robot, q: dict) -> bool:
     """Does ``q`` place every joint as no ``q`` does: each position, mimic joints' included, a
     Python 0 or +0.0 (``Robot.rest_pose`` of most robots; -0.0 would turn frames by a signed zero)."""
-    for v in _with_mimic(robot, q).values():
+    values = _with_mimic(robot, q).values()
+    # each distinct value object once (a rest pose repeats a few: 0.0, some limits; 20,000 in a star)
+    for v in dict(zip(map(id, values), values)).values():
         if type(v) not in (float, int) or v != 0 or math.copysign(1.0, v) < 0:
             return False
     return True

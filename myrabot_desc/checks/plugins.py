@@ -8,7 +8,7 @@ from myrabot_desc.checks.examples import ELECTRIC_IMU, MODERN_IMU, ackermann_exa
     mecanum_example, ros2_control_example
 from myrabot_desc.checks.examples import drive_example as _drive
 from myrabot_desc.checks.rule import Finding, Fix, FixInfo, InsertInto, RemoveElement, RenameTag, SetValue, rule
-from myrabot_desc.checks.urdf_syntax import local, suggest
+from myrabot_desc.checks.urdf_syntax import suggest
 from myrabot_desc.materials.stock import is_stock
 from myrabot_desc.model import drive as D
 from myrabot_desc.model.drive import GZ, ROS1, ROS2

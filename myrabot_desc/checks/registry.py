@@ -57,6 +57,5 @@ def matches(code: str, patterns: Iterable[str]) -> bool:
 
 def to_diagnostic(r: Rule, f: Finding) -> Diagnostic:
     """``f`` as rule ``r``'s Diagnostic, with the finding's own data: nothing changes a diagnostic's
-    data, and the reports name the rule from its code (a copy per finding was 40,000 dicts on a big
-    robot)."""
+    data, and the reports name the rule from its code (no copy per finding: a big robot has 40,000)."""
     return Diagnostic(r.code, f.severity or r.severity, f.message, f.loc, f.data)

@@ -59,8 +59,8 @@ def build_model(robot, floating: bool = False, lean: bool = False):
     """pinocchio.Model of ``robot`` (free-flyer root when ``floating``).
 
     ``lean``: urdfdom is given only what the Model is built from (``lean_urdf``), not the whole
-    document: the same Model, without parsing the visuals, collisions and Gazebo blocks (the bundled
-    robot's 86 kB: 2.2 -> 1.3 ms). A flaw urdfdom finds only in what is left out (a visual's
+    document: the same Model, without parsing the visuals, collisions and Gazebo blocks (most of the
+    bundled robot's text). A flaw urdfdom finds only in what is left out (a visual's
     geometry, a material) then goes unreported here."""
     import pinocchio as pin
 
@@ -82,7 +82,6 @@ def build_model(robot, floating: bool = False, lean: bool = False):
         detail = _clean(w.text) or str(w.error)
         raise InputError(f"Pinocchio (urdfdom) rejects the URDF: {detail}", robot.loc) from None
     return model
-
 
 
 def lean_urdf(robot) -> str | None:

@@ -28,7 +28,7 @@ where the turns above a joint tie with its own, still keeps most turns: O(joints
 
 import math
 
-from myrabot_desc.model.kinematics import _axis_angle_rows, _norms, axis_angle, pose_matrix, pose_stack, poses_at, \
+from myrabot_desc.model.kinematics import _axis_angle_rows, axis_angle, pose_matrix, pose_stack, poses_at, \
     walk, world_transforms, world_transforms_from
 from myrabot_desc.model.transforms import compose, pose_T, rotate
 from myrabot_desc.records import Struct

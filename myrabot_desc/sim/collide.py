@@ -97,8 +97,8 @@ class ArmCollider:
             if float(np.linalg.norm(c - centre)) - r <= reach + 0.01:
                 self.other_objs.append(i)
         self.skipped_far = len(others) - len(self.other_objs)
-        # the pairs as added (arm and other objects are disjoint: Pinocchio drops none as a duplicate);
-        # read back through Pinocchio they cost ~0.5 us each
+        # the pairs as added (arm and other objects are disjoint: Pinocchio drops none as a duplicate),
+        # not read back through Pinocchio's slow accessors
         self.pairs = [(a, b) for a in self.arm_objs for b in self.other_objs]
         for a, b in self.pairs:
             gm.addCollisionPair(pin.CollisionPair(a, b))
@@ -236,8 +236,8 @@ def cold_gjk(gdata):
     optics went unseen after about one pose in 50).
 
     ``gdata`` must be fresh from ``pin.GeometryData(gm)``: its constructor gives every pair the
-    same request, so one request with the flag off is copied over all of them in C++ (setting the
-    flag on each, through a deprecation warning apiece, cost ~2 us a request)."""
+    same request, so one request with the flag off is copied over all of them in C++ (not set on each
+    request in Python, through a deprecation warning apiece)."""
     import warnings
 
     import coal

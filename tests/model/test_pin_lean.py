@@ -99,13 +99,17 @@ def test_the_cut_of_an_awkward_document(tmp_path):
     lean = lean_urdf(robot)
     assert lean == (
         '<robot name="awk" xmlns:x="urn:x">\n  <link name="a"/>\n  <link name="b"><inertial><mass value="2.5"/>'
-        '<origin xyz="0.1 0 0" rpy="0 0.3 0"/>\n      <inertia ixx="0.1" ixy="0.01" ixz="0" iyy="0.2" iyz="0" izz="0.3"/>'
-        '</inertial>\n    </link><joint name="j1" type="revolute"><!-- <joint name="fake"> -->\n    <parent link="a"/>'
-        '<child link="b"/><origin xyz="0 0 1" rpy="0.1 0 0"/><axis xyz="0 1 0"/>\n    <limit lower="-1.5" upper="1.5" '
-        'effort="10" velocity="2"/><dynamics damping="0.5" friction="0.25"/>\n  </joint>\n  <link name="c"><inertial>'
+        '<origin xyz="0.1 0 0" rpy="0 0.3 0"/>\n      '
+        '<inertia ixx="0.1" ixy="0.01" ixz="0" iyy="0.2" iyz="0" izz="0.3"/>'
+        '</inertial>\n    </link><joint name="j1" type="revolute"><!-- <joint name="fake"> -->\n    '
+        '<parent link="a"/><child link="b"/><origin xyz="0 0 1" rpy="0.1 0 0"/><axis xyz="0 1 0"/>\n    '
+        '<limit lower="-1.5" upper="1.5" effort="10" velocity="2"/><dynamics damping="0.5" friction="0.25"/>\n  '
+        '</joint>\n  <link name="c"><inertial>'
         '<mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link><joint name="j2" '
-        'type="prismatic"><parent link="b"/><child link="c"/>\n    <limit lower="0" upper="0.5" effort="1" velocity="1"/>'
-        '</joint>\n  <link name="d"></link>\n  <joint name="j3" type="fixed"><parent link="c"/><child link="d"/></joint>'
+        'type="prismatic"><parent link="b"/><child link="c"/>\n    '
+        '<limit lower="0" upper="0.5" effort="1" velocity="1"/>'
+        '</joint>\n  <link name="d"></link>\n  <joint name="j3" type="fixed"><parent link="c"/><child link="d"/>'
+        '</joint>'
         '\n</robot>')
     model = build_model(robot, lean=True)
     assert model.nq == 2 and list(model.names) == ["universe", "j1", "j2"]

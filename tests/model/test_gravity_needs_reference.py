@@ -14,6 +14,7 @@ import pytest
 
 from helpers import ERD, ROOT, corpus_model, corpus_robots, cpu_time
 from myrabot_desc.model import statics as S
+from myrabot_desc.model.kinematics import _norms
 from myrabot_desc.model.loader import load_robot
 from myrabot_desc.model.statics import _gravity_needs_np as gravity_needs
 
@@ -283,7 +284,7 @@ def _joint_frames(np, robot, W, names) -> dict:
     F = np.array([W[j.parent] for j in joints]) @ S.pose_stack(j.origin for j in joints)
     axes = (F[:, :3, :3] @ np.array([j.axis for j in joints], dtype=float).reshape(-1, 3, 1))[:, :, 0]
     frames = {}
-    for n, Fj, a, norm in zip(names, F, axes, S._norms(axes.tolist())):
+    for n, Fj, a, norm in zip(names, F, axes, _norms(axes.tolist())):
         frames[n] = (Fj[:3, 3], a / norm if norm > 0 else a)
     return frames
 

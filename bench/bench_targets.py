@@ -201,8 +201,8 @@ def main(argv=None) -> int:
     text = table(rows, head)
     n_note = (f"best of {f4['n']} (xacro CLI on 4,000 calls: {f4['xacro_n']} run), start-up best of {st['n']}, "
               f"load/check best of {ld['all69']['myrabot-desc check (69 files, one call)']['n']}, "
-              f"convert best of {a.repeat}, the star and the chain best of {scale.get('n', 2)}; sim: medians of 5 in process, MuJoCo's stepping median of 5 "
-              "from a fresh MjData, its compile not counted (bench_sim.py)")
+              f"convert best of {a.repeat}, the star and the chain best of {scale.get('n', 2)}; sim: medians of 5 "
+              "in process, MuJoCo's stepping median of 5 from a fresh MjData, its compile not counted (bench_sim.py)")
     meta = (f"Machine: {m['cores']} cores, {m['cpu']}, Python {m['python']}; {m['date']}; "
             f"load average {m['load']:.1f} at the end of the run; {baseline_text(base)}.\n"
             f"Fresh processes, wall clock unless the row says CPU (the child's user + system time), {n_note}.")

@@ -73,7 +73,8 @@ class Suppression(Struct):
 
 
 _cache: dict = {}        # (device, inode, mtime_ns, ctime_ns, size) -> [Suppression] (one read per file per process)
-_by_content: dict = {}   # (file, bytes with a marker) -> [Suppression]
+_by_content: dict = {}   # (file, bytes with a marker) -> [Suppression]; holds the bytes: bounded
+_BY_CONTENT_MOST = 64
 
 
 def suppressions_in(file: str) -> list[Suppression]:
@@ -109,6 +110,8 @@ def suppressions_of(file: str, data: bytes) -> list[Suppression]:
         return []
     key = (file, data)
     if key not in _by_content:
+        if len(_by_content) >= _BY_CONTENT_MOST:      # a long `check -r`: keep the memory, not every file
+            _by_content.clear()
         _by_content[key] = _parse(data, file)
     return _by_content[key]
 

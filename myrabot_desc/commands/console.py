@@ -29,15 +29,19 @@ def unstyle(text: str) -> str:
     return _ANSI.sub("", text)
 
 
+def is_terminal(stream) -> bool:
+    """Is ``stream`` a terminal (styles are kept for it only)? False for a closed or odd stream."""
+    try:
+        return bool(stream.isatty())
+    except Exception:
+        return False
+
+
 def _write(stream, text: str) -> None:
     """click.echo's writing: ANSI styles stripped when the stream is not a terminal, flushed."""
     if stream is None:
         return
-    try:
-        tty = stream.isatty()
-    except Exception:
-        tty = False
-    stream.write(text if tty else unstyle(text))
+    stream.write(text if is_terminal(stream) else unstyle(text))
     stream.flush()
 
 

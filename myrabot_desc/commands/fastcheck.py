@@ -19,7 +19,7 @@ from myrabot_desc.checks.report import merge_sarif_files, render, rule_table
 from myrabot_desc.checks.run import changed_since, default_jobs, exit_code, plan, run_tasks
 from myrabot_desc.checks.suppress import unused_findings
 from myrabot_desc.commands import options
-from myrabot_desc.commands.console import echo, guarded, out, unstyle
+from myrabot_desc.commands.console import echo, guarded, is_terminal, out, unstyle
 from myrabot_desc.commands.options import CHECK_OPTS, INPUT_OPTS, UsageProblem, make_inputs, parse_plain
 from myrabot_desc.output import write_output
 from myrabot_desc.sanitize import clean
@@ -53,12 +53,7 @@ def _progressbar(results, length):
 def _color(output: str) -> bool | None:
     """render's ``color``: styled for a terminal only; a file or a pipe gets the plain text _write would
     strip the styles to (render makes none: a 20,000-link star's report is 9 MB to strip)."""
-    if output != "-":
-        return False
-    try:
-        return None if sys.stdout.isatty() else False
-    except Exception:                       # a closed or replaced stream: plain, as _write decides
-        return False
+    return None if output == "-" and is_terminal(sys.stdout) else False
 
 
 def _write(text: str, output: str) -> None:

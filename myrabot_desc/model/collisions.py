@@ -29,7 +29,7 @@ import math
 
 from myrabot_desc.errors import InputError
 from myrabot_desc.model import meshes as meshio
-from myrabot_desc.model.kinematics import pose_stack, poses_at, world_transforms
+from myrabot_desc.model.kinematics import pose_stack, poses_at, stack_by_identity, world_transforms
 from myrabot_desc.model.penetration import Solid, penetration
 from myrabot_desc.model.shapes import describe
 from myrabot_desc.model.support import _mesh_reader, collision_shapes
@@ -430,7 +430,6 @@ class Scene:
 
         local, by_geometry = self._local, self._by_geometry
         found, frames, origins = [], [], []
-        boxes, box_row, which = [], {}, []     # the distinct boxes (equal sizes share one), each shape's row
         for link, it, mesh in collision_shapes(self.robot, world, self.read):
             g = it.geometry
             key = id(it)
@@ -451,17 +450,12 @@ class Scene:
             found.append((link.name, it, mesh, box))
             frames.append(world[link.name])
             origins.append(it.origin)
-            row = box_row.get(id(box))          # (the boxes stay alive in local: their ids are theirs)
-            if row is None:
-                row = box_row[id(box)] = len(boxes)
-                boxes.append(box)
-            which.append(row)
         if not found:
             return None
         T = np.array(frames, dtype=float).reshape(-1, 4, 4) @ pose_stack(origins)
-        rows = np.array(which, dtype=np.intp)
-        c = np.array([box[0] for box in boxes], dtype=float).reshape(-1, 3)[rows]
-        h = np.array([box[1] for box in boxes], dtype=float).reshape(-1, 3)[rows]
+        boxes = [f[3] for f in found]           # (equal primitives share one box)
+        c = stack_by_identity([box[0] for box in boxes], (3,))
+        h = stack_by_identity([box[1] for box in boxes], (3,))
         centres = (T[:, :3, :3] @ c[:, :, None])[:, :, 0] + T[:, :3, 3]
         radii = np.sqrt((h[:, None, :] @ h[:, :, None])[:, 0, 0])     # np.linalg.norm's dot
         return found, T, centres, radii

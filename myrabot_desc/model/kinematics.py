@@ -97,8 +97,32 @@ def _norms(axes) -> list[float]:
 
     if not axes:
         return []
-    a = np.array(axes, dtype=float).reshape(-1, 3)
-    return np.sqrt((a[:, None, :] @ a[:, :, None])[:, 0, 0]).tolist()
+    return norm_rows(np, axes).tolist()
+
+
+def norm_rows(np, axes):
+    """``_norms`` of the rows of an n x 3 array (or list of triples) as an array: the same products
+    on a contiguous copy, so the same bits whatever the caller's layout."""
+    a = np.ascontiguousarray(axes, dtype=float).reshape(-1, 3)
+    return np.sqrt((a[:, None, :] @ a[:, :, None])[:, 0, 0])
+
+
+def stack_by_identity(objs: list, shape: tuple):
+    """``np.array(objs, dtype=float).reshape(-1, *shape)``, each distinct object converted once and
+    put in place by one index: models repeat the same motion, box or tuple objects thousands of times
+    (a star's joints), and converting every one is most of the stacking. ``objs`` keeps them alive."""
+    import numpy as np
+
+    rows: dict = {}
+    distinct: list = []
+    which: list[int] = []
+    for o in objs:
+        k = rows.get(id(o))
+        if k is None:
+            k = rows[id(o)] = len(distinct)
+            distinct.append(o)
+        which.append(k)
+    return np.array(distinct, dtype=float).reshape(-1, *shape)[np.array(which, dtype=np.intp)]
 
 
 def axis_angle(axis, angle: float) -> np.ndarray:
@@ -291,9 +315,7 @@ def _world_transforms(robot: Robot, q, root_pose, frozen: bool = False) -> dict[
     # not depend on the others computed with it)
     axes = {id(j.axis): j.axis for j in every if j.type in _MOVING}
     norm = dict(zip(axes, _norms(list(axes.values()))))
-    motions: list = []      # the distinct motions (16 floats each), and each joint's row among them
-    rows: dict = {}
-    which: list[int] = []
+    motions: list = []      # each joint's motion (16 floats; joints that move alike share the object)
     same: dict = {}     # (type, axis, q) -> its motion, for the same axis and position objects
     for j in every:
         qv, axis = q.get(j.name, 0.0), j.axis
@@ -306,17 +328,13 @@ def _world_transforms(robot: Robot, q, root_pose, frozen: bool = False) -> dict[
             m = _motion_flat(j, norm.get(id(axis), 0.0), qv)
             if key is not None:
                 same[key] = (axis, qv, m)
-        row = rows.get(id(m))
-        if row is None:
-            row = rows[id(m)] = len(motions)
-            motions.append(m)           # (kept: its id stays its own)
-        which.append(row)
+        motions.append(m)
     P_all = pose_stack(j.origin for j in every)
-    M_all = np.array(motions, dtype=float).reshape(-1, 4, 4)[np.array(which, dtype=np.intp)]
+    M_all = stack_by_identity(motions, (4, 4))
     k = 0
     for joints in levels:
         n = len(joints)
-        parents = np.array([out[j.parent] for j in joints], dtype=float)
+        parents = stack_by_identity([out[j.parent] for j in joints], (4, 4))     # (siblings share theirs)
         T = parents @ P_all[k:k + n] @ M_all[k:k + n]
         k += n
         if frozen:

@@ -28,8 +28,8 @@ where the turns above a joint tie with its own, still keeps most turns: O(joints
 
 import math
 
-from myrabot_desc.model.kinematics import _axis_angle_rows, axis_angle, pose_matrix, pose_stack, poses_at, \
-    walk, world_transforms, world_transforms_from
+from myrabot_desc.model.kinematics import _axis_angle_rows, axis_angle, norm_rows, pose_matrix, pose_stack, poses_at, \
+    stack_by_identity, walk, world_transforms, world_transforms_from
 from myrabot_desc.model.transforms import compose, pose_T, rotate
 from myrabot_desc.records import Struct
 
@@ -858,10 +858,9 @@ def _joint_frames(np, robot, W, names) -> dict | _Frames:
         return {}
     # every joint's products at once: stacked products give each joint's numbers to the bit
     joints = [robot.joints[n] for n in names]
-    F = np.array([W[j.parent] for j in joints]) @ pose_stack(j.origin for j in joints)
-    axes = (F[:, :3, :3] @ np.array([j.axis for j in joints], dtype=float).reshape(-1, 3, 1))[:, :, 0]
-    a = np.ascontiguousarray(axes)          # _norms' array and products, without a round trip through lists
-    norms = np.sqrt((a[:, None, :] @ a[:, :, None])[:, 0, 0])[:, None]
+    F = stack_by_identity([W[j.parent] for j in joints], (4, 4)) @ pose_stack(j.origin for j in joints)
+    axes = (F[:, :3, :3] @ stack_by_identity([j.axis for j in joints], (3, 1)))[:, :, 0]
+    norms = norm_rows(np, axes)[:, None]
     unit = np.where(norms > 0, axes / np.where(norms > 0, norms, 1.0), axes)
     return _Frames(names, F[:, :3, 3], unit)
 

@@ -143,6 +143,23 @@ def test_suppression_comments_are_parsed_and_applied_in_linear_time(tmp_path):
     assert time.process_time() - t < 5.0                      # quadratic before: 20,000 x 20,000
 
 
+def test_suppressions_kept_by_content_are_bounded():
+    # the bytes a model was built from are cached with their suppressions: a long run over many files
+    # keeps at most a bounded number of them, and an entry dropped is parsed again, the same
+    from myrabot_desc.checks import suppress
+
+    suppress._by_content.clear()
+    first = b'<robot name="r"><!-- myrabot-desc: ignore[I008] --><link name="l0"/></robot>'
+    want = suppress.suppressions_of("f0.urdf", first)
+    assert [(s.codes, s.line) for s in want] == [(("I008",), 1)]
+    for i in range(1, 3 * suppress._BY_CONTENT_MOST):
+        data = first.replace(b"l0", f"l{i}".encode())
+        assert suppress.suppressions_of(f"f{i}.urdf", data)[0].codes == ("I008",)
+        assert len(suppress._by_content) <= suppress._BY_CONTENT_MOST
+    assert suppress.suppressions_of("f0.urdf", first) == want
+    assert suppress.suppressions_of("plain.urdf", b'<robot name="r"/>') == []
+
+
 def test_suppression_parsing_agrees_with_the_pattern():
     import re
 

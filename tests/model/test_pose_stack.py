@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from myrabot_desc.model.kinematics import pose_matrix, pose_stack
+from myrabot_desc.model.kinematics import pose_matrix, pose_stack, stack_by_identity
 from myrabot_desc.model.parts import Pose
 
 np = pytest.importorskip("numpy")
@@ -24,3 +24,14 @@ def test_pose_stack_is_each_pose_matrix():
             want = np.asarray(pose_matrix(pose), dtype=float)
             assert m.tobytes() == want.tobytes(), pose
     assert pose_stack(iter(poses)).tobytes() == pose_stack(poses).tobytes()
+
+
+def test_stack_by_identity_is_the_plain_stack():
+    # repeated objects, equal but distinct ones, zeros of either sign, arrays and tuples: the same bits
+    m, z, nz = tuple(float(k) for k in range(16)), (0.0, 0.0, 0.0), (-0.0, 0.0, -0.0)
+    a = np.array([1.5, -2.0, 3.25])
+    for objs, shape in (([m, m, tuple(m), m], (4, 4)), ([z, nz, z, (0.0, 0.0, 0.0), nz], (3,)),
+                        ([a, a, np.array([1.5, -2.0, 3.25]), z], (3,)), ([], (4, 4))):
+        got = stack_by_identity(objs, shape)
+        want = np.array(objs, dtype=float).reshape(-1, *shape)
+        assert got.shape == want.shape and got.tobytes() == want.tobytes()
